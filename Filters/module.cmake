@@ -1,0 +1,20 @@
+# Included from the build-tree copy of vtk.module (see the top-level CMakeLists.txt):
+# paths here are absolute so the module can be built from any binary directory.
+set(_ds_filters_dir "${DeformableSurface_SOURCE_DIR}/Filters")
+
+# The VTK algorithms (thin wrappers), one class per file.
+file(GLOB _ds_classes CONFIGURE_DEPENDS "${_ds_filters_dir}/vtk*.cxx")
+list(TRANSFORM _ds_classes REPLACE "\\.cxx$" "")
+
+# The algorithm core: plain C++, no pipeline types, unit-testable.
+file(GLOB _ds_core_sources CONFIGURE_DEPENDS "${_ds_filters_dir}/Core/*.cxx")
+file(GLOB _ds_core_headers CONFIGURE_DEPENDS "${_ds_filters_dir}/Core/*.h")
+
+vtk_module_add_module(DeformableSurface::Filters
+  CLASSES         ${_ds_classes}
+  SOURCES         ${_ds_core_sources}
+  PRIVATE_HEADERS ${_ds_core_headers})
+vtk_module_include(DeformableSurface::Filters
+  PUBLIC
+    "$<BUILD_INTERFACE:${_ds_filters_dir}>"
+    "$<BUILD_INTERFACE:${_ds_filters_dir}/Core>")
