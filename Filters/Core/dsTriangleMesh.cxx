@@ -1,0 +1,300 @@
+#include "dsTriangleMesh.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace dsurf
+{
+namespace
+{
+inline unsigned long long EdgeKey(int a, int b)
+{
+  if (a > b)
+  {
+    std::swap(a, b);
+  }
+  return (static_cast<unsigned long long>(static_cast<unsigned int>(a)) << 32) |
+    static_cast<unsigned int>(b);
+}
+}
+
+bool TriangleMesh::BuildTopology(std::string* error)
+{
+  const int nPts = this->NumberOfPoints();
+  const int nTri = this->NumberOfTriangles();
+  auto fail = [error](const std::string& msg) {
+    if (error)
+    {
+      *error = msg;
+    }
+    return false;
+  };
+  if (static_cast<int>(this->Labels.size()) != nPts)
+  {
+    this->Labels.assign(nPts, LabelN);
+  }
+  if (static_cast<int>(this->Levels.size()) != nPts)
+  {
+    this->Levels.assign(nPts, 0);
+  }
+
+  // Vertex -> triangles (CSR).
+  this->VertexTriangleOffsets.assign(nPts + 1, 0);
+  for (int t = 0; t < nTri; ++t)
+  {
+    const auto& tri = this->Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] < 0 || tri[k] >= nPts)
+      {
+        return fail("triangle " + std::to_string(t) + " has a point index out of range");
+      }
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+    {
+      return fail("triangle " + std::to_string(t) + " is degenerate (a repeated vertex)");
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      ++this->VertexTriangleOffsets[tri[k] + 1];
+    }
+  }
+  for (int v = 0; v < nPts; ++v)
+  {
+    this->VertexTriangleOffsets[v + 1] += this->VertexTriangleOffsets[v];
+  }
+  this->VertexTriangles.assign(this->VertexTriangleOffsets[nPts], -1);
+  {
+    std::vector<int> fill(this->VertexTriangleOffsets.begin(), this->VertexTriangleOffsets.end() - 1);
+    for (int t = 0; t < nTri; ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->VertexTriangles[fill[this->Triangles[t][k]]++] = t;
+      }
+    }
+  }
+
+  // Edges.
+  this->Edges.clear();
+  this->EdgeTriangles.clear();
+  this->TriangleEdges.assign(nTri, { -1, -1, -1 });
+  std::unordered_map<unsigned long long, int> edgeIds;
+  edgeIds.reserve(static_cast<size_t>(nTri) * 2);
+  for (int t = 0; t < nTri; ++t)
+  {
+    const auto& tri = this->Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      auto ins = edgeIds.emplace(EdgeKey(a, b), static_cast<int>(this->Edges.size()));
+      if (ins.second)
+      {
+        this->Edges.push_back({ std::min(a, b), std::max(a, b) });
+        this->EdgeTriangles.push_back({ t, -1 });
+      }
+      else
+      {
+        auto& et = this->EdgeTriangles[ins.first->second];
+        if (et[1] != -1)
+        {
+          return fail("non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) +
+            ") is shared by three or more triangles");
+        }
+        et[1] = t;
+      }
+      this->TriangleEdges[t][k] = ins.first->second;
+    }
+  }
+
+  // One-rings and boundary flags.
+  this->BoundaryVertex.assign(nPts, 0);
+  std::vector<std::vector<int>> rings(nPts);
+  for (size_t e = 0; e < this->Edges.size(); ++e)
+  {
+    const int a = this->Edges[e][0], b = this->Edges[e][1];
+    rings[a].push_back(b);
+    rings[b].push_back(a);
+    if (this->EdgeTriangles[e][1] == -1)
+    {
+      this->BoundaryVertex[a] = this->BoundaryVertex[b] = 1;
+    }
+  }
+  this->NeighborOffsets.assign(nPts + 1, 0);
+  for (int v = 0; v < nPts; ++v)
+  {
+    std::sort(rings[v].begin(), rings[v].end());
+    this->NeighborOffsets[v + 1] = this->NeighborOffsets[v] + static_cast<int>(rings[v].size());
+  }
+  this->Neighbors.resize(this->NeighborOffsets[nPts]);
+  for (int v = 0; v < nPts; ++v)
+  {
+    std::copy(rings[v].begin(), rings[v].end(), this->Neighbors.begin() + this->NeighborOffsets[v]);
+  }
+  this->EdgeLookup.swap(edgeIds);
+  return true;
+}
+
+int TriangleMesh::FindEdge(int a, int b) const
+{
+  auto it = this->EdgeLookup.find(EdgeKey(a, b));
+  return it == this->EdgeLookup.end() ? -1 : it->second;
+}
+
+bool TriangleMesh::IsClosed() const
+{
+  for (const auto& et : this->EdgeTriangles)
+  {
+    if (et[1] == -1)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool TriangleMesh::IsConsistentlyOriented() const
+{
+  for (size_t e = 0; e < this->Edges.size(); ++e)
+  {
+    const auto& et = this->EdgeTriangles[e];
+    if (et[1] == -1)
+    {
+      continue;
+    }
+    // Direction in which each triangle traverses the edge: +1 when a -> b.
+    int dir[2];
+    for (int s = 0; s < 2; ++s)
+    {
+      const auto& tri = this->Triangles[et[s]];
+      dir[s] = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] == this->Edges[e][0] && tri[(k + 1) % 3] == this->Edges[e][1])
+        {
+          dir[s] = 1;
+        }
+        else if (tri[k] == this->Edges[e][1] && tri[(k + 1) % 3] == this->Edges[e][0])
+        {
+          dir[s] = -1;
+        }
+      }
+    }
+    if (dir[0] == dir[1])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+int TriangleMesh::CountNonManifoldVertices() const
+{
+  // Walk each vertex's triangles across shared edges; more than one connected
+  // fan means two sheets touch at the vertex.
+  int count = 0;
+  std::vector<int> seen;
+  for (int v = 0; v < this->NumberOfPoints(); ++v)
+  {
+    const int begin = this->VertexTriangleOffsets[v], end = this->VertexTriangleOffsets[v + 1];
+    if (end - begin == 0)
+    {
+      continue;
+    }
+    seen.assign(end - begin, 0);
+    std::vector<int> stack{ 0 };
+    seen[0] = 1;
+    int reached = 1;
+    while (!stack.empty())
+    {
+      const int i = stack.back();
+      stack.pop_back();
+      const int t = this->VertexTriangles[begin + i];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int e = this->TriangleEdges[t][k];
+        if (this->Edges[e][0] != v && this->Edges[e][1] != v)
+        {
+          continue;
+        }
+        for (int s = 0; s < 2; ++s)
+        {
+          const int other = this->EdgeTriangles[e][s];
+          if (other < 0 || other == t)
+          {
+            continue;
+          }
+          for (int j = 0; j < end - begin; ++j)
+          {
+            if (!seen[j] && this->VertexTriangles[begin + j] == other)
+            {
+              seen[j] = 1;
+              ++reached;
+              stack.push_back(j);
+            }
+          }
+        }
+      }
+    }
+    if (reached != end - begin)
+    {
+      ++count;
+    }
+  }
+  return count;
+}
+
+double TriangleMesh::SignedVolume() const
+{
+  double vol = 0.0;
+  for (const auto& tri : this->Triangles)
+  {
+    vol += Dot(this->Points[tri[0]], Cross(this->Points[tri[1]], this->Points[tri[2]]));
+  }
+  return vol / 6.0;
+}
+
+double TriangleMesh::MeanEdgeLength() const
+{
+  if (this->Edges.empty())
+  {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (const auto& e : this->Edges)
+  {
+    sum += Norm(this->Points[e[1]] - this->Points[e[0]]);
+  }
+  return sum / static_cast<double>(this->Edges.size());
+}
+
+Vec3 TriangleMesh::AreaWeightedNormal(int v) const
+{
+  Vec3 n{ 0, 0, 0 };
+  for (int i = this->VertexTriangleOffsets[v]; i < this->VertexTriangleOffsets[v + 1]; ++i)
+  {
+    const auto& tri = this->Triangles[this->VertexTriangles[i]];
+    n = n + Cross(this->Points[tri[1]] - this->Points[tri[0]], this->Points[tri[2]] - this->Points[tri[0]]);
+  }
+  return n;
+}
+
+double TriangleMesh::MinAngleDegrees(int t) const
+{
+  const auto& tri = this->Triangles[t];
+  double minAngle = 180.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec3 a = this->Points[tri[(k + 1) % 3]] - this->Points[tri[k]];
+    const Vec3 b = this->Points[tri[(k + 2) % 3]] - this->Points[tri[k]];
+    const double na = Norm(a), nb = Norm(b);
+    if (na <= 0 || nb <= 0)
+    {
+      return 0.0;
+    }
+    const double c = std::max(-1.0, std::min(1.0, Dot(a, b) / (na * nb)));
+    minAngle = std::min(minAngle, std::acos(c) * 180.0 / 3.14159265358979323846);
+  }
+  return minAngle;
+}
+} // namespace dsurf

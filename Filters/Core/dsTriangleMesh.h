@@ -1,0 +1,104 @@
+// The triangle mesh the solver deforms and the refinement subdivides: plain C++,
+// no pipeline types. Points move during a solve; connectivity changes only in
+// refinement, after which BuildTopology() is called again.
+#ifndef dsTriangleMesh_h
+#define dsTriangleMesh_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace dsurf
+{
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
+inline Vec3 operator*(double s, const Vec3& a) { return { s * a[0], s * a[1], s * a[2] }; }
+inline double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 Cross(const Vec3& a, const Vec3& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+
+/// Vertex labels of red-green refinement (SPEC §6.4). Initial and red vertices are N;
+/// a green split labels its new midpoint M, the ends of the split edge C, the opposite corner D.
+enum VertexLabel : unsigned char
+{
+  LabelN = 0,
+  LabelC = 1,
+  LabelM = 2,
+  LabelD = 3
+};
+
+/// Finite-difference weight that a vertex labelled `self` gives a neighbour labelled
+/// `neighbor` (SPEC §6.4 table; row = self, column = neighbour).
+inline double UmbrellaWeight(unsigned char self, unsigned char neighbor)
+{
+  static const double table[4][4] = {
+    { 1, 1, 1, 1 }, // N
+    { 2, 2, 2, 1 }, // C
+    { 1, 2, 0, 1 }, // M
+    { 1, 1, 0, 1 }, // D
+  };
+  return table[self & 3][neighbor & 3];
+}
+
+struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
+{
+  // --- state (set by the caller / refinement) ---
+  std::vector<Vec3> Points;
+  std::vector<std::array<int, 3>> Triangles; ///< consistently oriented (outward for closed input)
+  std::vector<unsigned char> Labels;         ///< VertexLabel per point (N when empty)
+  std::vector<int> Levels;                   ///< refinement level that created each point
+
+  // --- topology, derived by BuildTopology() ---
+  /// One-ring of vertex v: Neighbors[NeighborOffsets[v] .. NeighborOffsets[v+1]), sorted ascending.
+  std::vector<int> NeighborOffsets, Neighbors;
+  /// Triangles incident to v: VertexTriangles[VertexTriangleOffsets[v] .. [v+1]).
+  std::vector<int> VertexTriangleOffsets, VertexTriangles;
+  /// Unique edges (a < b), the edges of each triangle (edge k joins corners k and k+1),
+  /// and the one or two triangles of each edge (-1 when the edge is on an open boundary).
+  std::vector<std::array<int, 2>> Edges;
+  std::vector<std::array<int, 3>> TriangleEdges;
+  std::vector<std::array<int, 2>> EdgeTriangles;
+  /// 1 for vertices on an open boundary (they stay fixed in the solver).
+  std::vector<unsigned char> BoundaryVertex;
+
+  int NumberOfPoints() const { return static_cast<int>(this->Points.size()); }
+  int NumberOfTriangles() const { return static_cast<int>(this->Triangles.size()); }
+
+  /// Derive the topology from Points/Triangles; fills Labels/Levels with N/0 when their
+  /// size does not match. Returns false with a message when an edge has three or more
+  /// triangles (non-manifold), a triangle is degenerate (repeated vertex) or an index
+  /// is out of range. Two triangles traversing a shared edge in the same direction
+  /// (inconsistent orientation) are reported by IsConsistentlyOriented(), not here.
+  bool BuildTopology(std::string* error);
+
+  /// Edge id of (a, b) in either order, -1 when absent. Needs BuildTopology().
+  int FindEdge(int a, int b) const;
+
+  // --- invariants (need BuildTopology()) ---
+  bool IsClosed() const;                ///< every edge has two triangles
+  bool IsConsistentlyOriented() const;  ///< neighbours traverse shared edges oppositely
+  int CountNonManifoldVertices() const; ///< vertices whose triangles form more than one fan
+  int EulerCharacteristic() const { return this->NumberOfPoints() - static_cast<int>(this->Edges.size()) + this->NumberOfTriangles(); }
+  /// Closed volume by the divergence theorem (positive when oriented outward).
+  double SignedVolume() const;
+  double MeanEdgeLength() const;
+  /// Unnormalised area-weighted normal of vertex v (sum of incident face cross products).
+  Vec3 AreaWeightedNormal(int v) const;
+  /// Smallest interior angle of triangle t, in degrees.
+  double MinAngleDegrees(int t) const;
+
+private:
+  std::unordered_map<unsigned long long, int> EdgeLookup;
+};
+} // namespace dsurf
+
+#endif
