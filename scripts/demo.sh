@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The main job: installs what is missing, builds, then runs the pvbatch demo on a real
+# volume from a Debian package and writes the result and a picture to OUT (default: out/).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$root/build}"
+out="${1:-$root/out}"
+"$root/scripts/build.sh"
+mkdir -p "$out"
+export PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
+xvfb-run -a pvbatch "$root/Examples/demo.py" \
+  --plugin "$build/lib/paraview-5.11/plugins/DeformableSurface/DeformableSurface.so" \
+  --output "$out"

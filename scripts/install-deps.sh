@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the project needs to build, test and run its demo.
+# Idempotent and quick when everything is there: apt runs only for missing packages.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  cmake g++ make
+  # ParaView 5.11 with its bundled VTK 9.2 (do NOT add libvtk9-dev/python3-vtk9: they remove python3-paraview)
+  paraview-dev python3-paraview libopenmpi-dev
+  # XML_DOCUMENTATION ON (the GUI help pages)
+  qttools5-dev qtxmlpatterns5-dev-tools libqt5svg5-dev
+  # third-party headers/config that ParaView's bundled VTK asks find_package() for
+  libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libjsoncpp-dev libutfcpp-dev
+  libpugixml-dev libeigen3-dev libglew-dev libfreetype-dev libpng-dev libjpeg-dev libtiff-dev
+  zlib1g-dev libxml2-dev libgl2ps-dev libfontconfig-dev libtheora-dev libogg-dev
+  # screenshots without a display
+  xvfb xauth
+  # real volumes: Colin27 T1 brain MRI (and its brain mask)
+  mricron-data
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  SUDO="sudo"
+fi
+echo "Installing: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
