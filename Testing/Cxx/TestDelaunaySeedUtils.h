@@ -115,7 +115,7 @@ inline SurfaceFacts Measure(vtkPolyData* surface)
 }
 
 /// The checks every valid seed surface must pass: closed, manifold, consistently and outward
-/// oriented, no unused points, expected Euler characteristic.
+/// oriented, no unused points, expected Euler characteristic (pass f.Euler to skip that one).
 inline void CheckClosedManifold(const SurfaceFacts& f, vtkIdType storedPoints, long expectedEuler)
 {
   DS_CHECK(f.Triangles > 0, "surface has triangles");
