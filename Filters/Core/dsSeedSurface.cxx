@@ -1,0 +1,536 @@
+#include "dsSeedSurface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+namespace dsurf
+{
+namespace
+{
+// Faces of a positively oriented tetrahedron (SeedTetSignedVolume > 0), face k opposite
+// corner k, each ordered so that its right-hand normal points away from corner k.
+constexpr int kFace[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+
+struct UnionFind
+{
+  std::vector<std::int64_t> Parent;
+  explicit UnionFind(std::int64_t n)
+    : Parent(static_cast<std::size_t>(n))
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), std::int64_t(0));
+  }
+  std::int64_t Find(std::int64_t i)
+  {
+    while (this->Parent[i] != i)
+    {
+      this->Parent[i] = this->Parent[this->Parent[i]];
+      i = this->Parent[i];
+    }
+    return i;
+  }
+  void Union(std::int64_t a, std::int64_t b)
+  {
+    a = this->Find(a);
+    b = this->Find(b);
+    if (a != b)
+    {
+      this->Parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+};
+
+SeedPoint Sub(const SeedPoint& a, const SeedPoint& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+double Dot(const SeedPoint& a, const SeedPoint& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+SeedPoint Cross(const SeedPoint& a, const SeedPoint& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+double Distance(const SeedPoint& a, const SeedPoint& b)
+{
+  const SeedPoint d = Sub(a, b);
+  return std::sqrt(Dot(d, d));
+}
+
+std::uint64_t EdgeKey(std::int64_t a, std::int64_t b)
+{
+  if (a > b)
+  {
+    std::swap(a, b);
+  }
+  return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b);
+}
+
+// Face-to-face adjacency of the whole tetrahedrisation (independent of which are kept):
+// neighbour[4t+k] = 4t'+k' of the tetrahedron across face k of t, or -1 on the hull.
+std::vector<std::int64_t> FaceNeighbours(const std::vector<SeedTet>& tets)
+{
+  struct Entry
+  {
+    std::array<std::int64_t, 3> Key;
+    std::int64_t Slot;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(tets.size() * 4);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      std::array<std::int64_t, 3> key = { tets[t][kFace[k][0]], tets[t][kFace[k][1]],
+        tets[t][kFace[k][2]] };
+      std::sort(key.begin(), key.end());
+      entries.push_back({ key, static_cast<std::int64_t>(4 * t + k) });
+    }
+  }
+  std::sort(entries.begin(), entries.end(),
+    [](const Entry& a, const Entry& b) { return a.Key < b.Key || (a.Key == b.Key && a.Slot < b.Slot); });
+  std::vector<std::int64_t> neighbour(entries.size(), -1);
+  for (std::size_t i = 0; i + 1 < entries.size(); ++i)
+  {
+    // A valid tetrahedrisation shares a face between at most two tetrahedra; a third
+    // (malformed input) is left unpaired rather than guessed.
+    if (entries[i].Key == entries[i + 1].Key)
+    {
+      neighbour[entries[i].Slot] = entries[i + 1].Slot;
+      neighbour[entries[i + 1].Slot] = entries[i].Slot;
+      ++i;
+    }
+  }
+  return neighbour;
+}
+
+bool IsKept(const std::vector<unsigned char>& status, std::int64_t slot)
+{
+  return slot >= 0 && status[slot / 4] == SeedKept;
+}
+} // namespace
+
+double SeedTetSignedVolume(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
+{
+  return Dot(Sub(b, a), Cross(Sub(c, a), Sub(d, a))) / 6.0;
+}
+
+double SeedTetCircumradius(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
+{
+  // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
+  const SeedPoint u = Sub(b, a), v = Sub(c, a), w = Sub(d, a);
+  const SeedPoint vw = Cross(v, w), wu = Cross(w, u), uv = Cross(u, v);
+  const double det = 2.0 * Dot(u, vw);
+  const double scale = std::max({ Dot(u, u), Dot(v, v), Dot(w, w) });
+  if (std::abs(det) <= 1e-12 * scale * std::sqrt(scale))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double uu = Dot(u, u), vv = Dot(v, v), ww = Dot(w, w);
+  SeedPoint centre;
+  for (int i = 0; i < 3; ++i)
+  {
+    centre[i] = (uu * vw[i] + vv * wu[i] + ww * uv[i]) / det;
+  }
+  return std::sqrt(Dot(centre, centre));
+}
+
+std::string SeedBoundaryReport::Summary() const
+{
+  std::ostringstream os;
+  const char* sep = "";
+  if (this->DegenerateRemoved > 0)
+  {
+    os << sep << "removed " << this->DegenerateRemoved << " flat tetrahedra at the boundary";
+    sep = "; ";
+  }
+  if (this->PinchedEdges > 0 || this->PinchedVertices > 0)
+  {
+    os << sep << "resolved " << this->PinchedEdges << " pinched edge(s) and " << this->PinchedVertices
+       << " pinched vertex(es) by splitting vertices (" << this->VertexCopiesAdded
+       << " point copies added, moved 2% of an edge apart)";
+    sep = "; ";
+  }
+  if (this->PinchTetsRemoved > 0)
+  {
+    os << sep << "removed " << this->PinchTetsRemoved
+       << " tetrahedra where two sheets shared an edge (Removed = 4)";
+    sep = "; ";
+  }
+  if (this->Components > 1)
+  {
+    os << sep << "the surface has " << this->Components << " separate closed components";
+  }
+  return os.str();
+}
+
+SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points, const std::vector<SeedTet>& inTets,
+  std::vector<unsigned char>& status, double degenerateVolume, SeedBoundaryReport& report)
+{
+  report = SeedBoundaryReport();
+  SeedSurface surface;
+  const std::int64_t nTets = static_cast<std::int64_t>(inTets.size());
+  if (status.size() != inTets.size())
+  {
+    status.assign(inTets.size(), SeedKept);
+  }
+
+  // Positively oriented copies, so each face's outward order comes from kFace.
+  std::vector<SeedTet> tets = inTets;
+  std::vector<char> flat(tets.size(), 0);
+  for (std::int64_t t = 0; t < nTets; ++t)
+  {
+    SeedTet& c = tets[t];
+    const double vol = SeedTetSignedVolume(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
+    if (vol < 0)
+    {
+      std::swap(c[0], c[1]);
+    }
+    flat[t] = std::abs(vol) <= degenerateVolume ? 1 : 0;
+  }
+  const std::vector<std::int64_t> neighbour = FaceNeighbours(tets);
+
+  // A tetrahedron can be removed for a pinch only a bounded number of times in total.
+  for (std::int64_t attempt = 0; attempt <= nTets; ++attempt)
+  {
+    // Peel flat tetrahedra that touch the boundary: their faces have no outward side.
+    std::vector<std::int64_t> queue;
+    for (std::int64_t t = 0; t < nTets; ++t)
+    {
+      if (flat[t] && status[t] == SeedKept)
+      {
+        queue.push_back(t);
+      }
+    }
+    while (!queue.empty())
+    {
+      const std::int64_t t = queue.back();
+      queue.pop_back();
+      if (status[t] != SeedKept)
+      {
+        continue;
+      }
+      bool exposed = false;
+      for (int k = 0; k < 4; ++k)
+      {
+        exposed = exposed || !IsKept(status, neighbour[4 * t + k]);
+      }
+      if (exposed)
+      {
+        status[t] = SeedRemovedDegenerate;
+        ++report.DegenerateRemoved;
+        for (int k = 0; k < 4; ++k)
+        {
+          const std::int64_t nb = neighbour[4 * t + k];
+          if (nb >= 0 && flat[nb / 4] && status[nb / 4] == SeedKept)
+          {
+            queue.push_back(nb / 4);
+          }
+        }
+      }
+    }
+
+    // Boundary faces, outward.
+    std::vector<std::int64_t> faceSlot;        // boundary face -> 4t+k
+    std::vector<std::int64_t> slotFace(4 * tets.size(), -1);
+    report.KeptTetrahedra = 0;
+    for (std::int64_t t = 0; t < nTets; ++t)
+    {
+      if (status[t] != SeedKept)
+      {
+        continue;
+      }
+      ++report.KeptTetrahedra;
+      for (int k = 0; k < 4; ++k)
+      {
+        if (!IsKept(status, neighbour[4 * t + k]))
+        {
+          slotFace[4 * t + k] = static_cast<std::int64_t>(faceSlot.size());
+          faceSlot.push_back(4 * t + k);
+        }
+      }
+    }
+    const std::int64_t nFaces = static_cast<std::int64_t>(faceSlot.size());
+    if (nFaces == 0)
+    {
+      return surface;
+    }
+    auto faceVertex = [&](std::int64_t f, int j) {
+      const std::int64_t slot = faceSlot[f];
+      return tets[slot / 4][kFace[slot % 4][j]];
+    };
+
+    // Pair the faces across each edge by walking through the kept tetrahedra of one solid
+    // wedge around the edge: the pairing is then manifold even where 4+ faces meet.
+    std::vector<std::int64_t> partner(3 * nFaces, -1);
+    for (std::int64_t f = 0; f < nFaces; ++f)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        const std::int64_t u = faceVertex(f, j), w = faceVertex(f, (j + 1) % 3);
+        std::int64_t slot = faceSlot[f];
+        for (std::int64_t step = 0; step <= nTets; ++step)
+        {
+          const std::int64_t t = slot / 4;
+          const int k = static_cast<int>(slot % 4);
+          // The current face holds u, w and a third corner x; the next face around the edge
+          // in this tetrahedron is the one opposite x.
+          int x = -1;
+          for (int c = 0; c < 4; ++c)
+          {
+            if (c != k && tets[t][c] != u && tets[t][c] != w)
+            {
+              x = c;
+            }
+          }
+          const std::int64_t next = 4 * t + x;
+          const std::int64_t nb = neighbour[next];
+          if (!IsKept(status, nb))
+          {
+            partner[3 * f + j] = slotFace[next];
+            break;
+          }
+          slot = nb;
+        }
+      }
+    }
+
+    // One vertex copy per fan: corners (f, j) are joined across paired edges.
+    UnionFind corners(3 * nFaces);
+    for (std::int64_t f = 0; f < nFaces; ++f)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        const std::int64_t g = partner[3 * f + j];
+        if (g < 0)
+        {
+          continue;
+        }
+        const std::int64_t u = faceVertex(f, j), w = faceVertex(f, (j + 1) % 3);
+        for (int i = 0; i < 3; ++i)
+        {
+          const std::int64_t gv = faceVertex(g, i);
+          if (gv == u)
+          {
+            corners.Union(3 * f + j, 3 * g + i);
+          }
+          else if (gv == w)
+          {
+            corners.Union(3 * f + (j + 1) % 3, 3 * g + i);
+          }
+        }
+      }
+    }
+
+    // New point per corner class, numbered in order of first use.
+    std::vector<std::int64_t> classPoint(3 * nFaces, -1);
+    surface.Points.clear();
+    surface.SourcePoint.clear();
+    surface.Triangles.assign(static_cast<std::size_t>(nFaces), SeedTriangle());
+    for (std::int64_t f = 0; f < nFaces; ++f)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        const std::int64_t root = corners.Find(3 * f + j);
+        if (classPoint[root] < 0)
+        {
+          classPoint[root] = static_cast<std::int64_t>(surface.Points.size());
+          surface.SourcePoint.push_back(faceVertex(f, j));
+          surface.Points.push_back(points[faceVertex(f, j)]);
+        }
+        surface.Triangles[f][j] = classPoint[root];
+      }
+    }
+
+    // Every undirected edge of the new numbering must have exactly two faces. If not, two
+    // sheets still share an edge: remove a kept tetrahedron there and extract again.
+    std::unordered_map<std::uint64_t, int> edgeUse;
+    edgeUse.reserve(static_cast<std::size_t>(3 * nFaces));
+    for (const SeedTriangle& tri : surface.Triangles)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        ++edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])];
+      }
+    }
+    std::int64_t removedNow = 0;
+    for (std::int64_t f = 0; f < nFaces; ++f)
+    {
+      const SeedTriangle& tri = surface.Triangles[f];
+      for (int j = 0; j < 3; ++j)
+      {
+        if (edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] != 2 && status[faceSlot[f] / 4] == SeedKept)
+        {
+          status[faceSlot[f] / 4] = SeedRemovedByPinch;
+          ++removedNow;
+          // One removal per edge is enough; mark the edge as handled.
+          edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] = 2;
+        }
+      }
+    }
+    if (removedNow > 0)
+    {
+      report.PinchTetsRemoved += removedNow;
+      continue;
+    }
+
+    // Counts for the report, on the original vertex numbering.
+    std::unordered_map<std::uint64_t, int> originalEdgeUse;
+    for (std::int64_t f = 0; f < nFaces; ++f)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        ++originalEdgeUse[EdgeKey(faceVertex(f, j), faceVertex(f, (j + 1) % 3))];
+      }
+    }
+    report.PinchedEdges = 0;
+    for (const auto& e : originalEdgeUse)
+    {
+      report.PinchedEdges += e.second > 2 ? 1 : 0;
+    }
+    std::unordered_map<std::int64_t, std::int64_t> copies;
+    for (std::int64_t source : surface.SourcePoint)
+    {
+      ++copies[source];
+    }
+    report.PinchedVertices = 0;
+    report.VertexCopiesAdded = 0;
+    for (const auto& c : copies)
+    {
+      if (c.second > 1)
+      {
+        ++report.PinchedVertices;
+        report.VertexCopiesAdded += c.second - 1;
+      }
+    }
+
+    // Move the copies of a split vertex into their own fans, a little, so that the sheets
+    // are no longer geometrically glued.
+    if (report.VertexCopiesAdded > 0)
+    {
+      const std::size_t nPoints = surface.Points.size();
+      std::vector<SeedPoint> ring(nPoints, SeedPoint{ 0, 0, 0 });
+      std::vector<double> length(nPoints, 0.0);
+      std::vector<int> count(nPoints, 0);
+      for (const SeedTriangle& tri : surface.Triangles)
+      {
+        for (int j = 0; j < 3; ++j)
+        {
+          const std::int64_t p = tri[j];
+          if (copies[surface.SourcePoint[p]] < 2)
+          {
+            continue;
+          }
+          for (int o = 1; o < 3; ++o)
+          {
+            const SeedPoint& q = points[surface.SourcePoint[tri[(j + o) % 3]]];
+            for (int i = 0; i < 3; ++i)
+            {
+              ring[p][i] += q[i];
+            }
+            length[p] += Distance(q, points[surface.SourcePoint[p]]);
+            ++count[p];
+          }
+        }
+      }
+      for (std::size_t p = 0; p < nPoints; ++p)
+      {
+        if (count[p] == 0)
+        {
+          continue;
+        }
+        SeedPoint dir;
+        for (int i = 0; i < 3; ++i)
+        {
+          dir[i] = ring[p][i] / count[p] - surface.Points[p][i];
+        }
+        const double norm = std::sqrt(Dot(dir, dir));
+        if (norm > 0)
+        {
+          const double shift = 0.02 * length[p] / count[p];
+          for (int i = 0; i < 3; ++i)
+          {
+            surface.Points[p][i] += shift * dir[i] / norm;
+          }
+        }
+      }
+    }
+
+    UnionFind parts(static_cast<std::int64_t>(surface.Points.size()));
+    for (const SeedTriangle& tri : surface.Triangles)
+    {
+      parts.Union(tri[0], tri[1]);
+      parts.Union(tri[0], tri[2]);
+    }
+    report.Components = 0;
+    for (std::size_t p = 0; p < surface.Points.size(); ++p)
+    {
+      report.Components += parts.Find(static_cast<std::int64_t>(p)) == static_cast<std::int64_t>(p) ? 1 : 0;
+    }
+    return surface;
+  }
+  // Unreachable in practice: every attempt removes at least one tetrahedron.
+  surface = SeedSurface();
+  return surface;
+}
+
+double SeedMeanEdgeLength(const SeedSurface& surface)
+{
+  // Interior edges are seen twice (once per side), which leaves the mean unchanged.
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const SeedTriangle& tri : surface.Triangles)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      sum += Distance(surface.Points[tri[j]], surface.Points[tri[(j + 1) % 3]]);
+      ++n;
+    }
+  }
+  return n > 0 ? sum / static_cast<double>(n) : 0.0;
+}
+
+int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTriangles)
+{
+  int steps = 0;
+  if (!(target > 0.0))
+  {
+    return 0;
+  }
+  while (SeedMeanEdgeLength(surface) > std::sqrt(2.0) * target &&
+    static_cast<std::int64_t>(surface.Triangles.size()) * 4 <= maxTriangles)
+  {
+    std::unordered_map<std::uint64_t, std::int64_t> midpoint;
+    midpoint.reserve(surface.Triangles.size() * 2);
+    auto mid = [&](std::int64_t a, std::int64_t b) {
+      const auto inserted = midpoint.emplace(EdgeKey(a, b), static_cast<std::int64_t>(surface.Points.size()));
+      if (inserted.second)
+      {
+        const SeedPoint& pa = surface.Points[a];
+        const SeedPoint& pb = surface.Points[b];
+        surface.Points.push_back({ 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) });
+        surface.SourcePoint.push_back(-1);
+      }
+      return inserted.first->second;
+    };
+    std::vector<SeedTriangle> finer;
+    finer.reserve(surface.Triangles.size() * 4);
+    for (const SeedTriangle& t : surface.Triangles)
+    {
+      const std::int64_t m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
+      finer.push_back({ t[0], m01, m20 });
+      finer.push_back({ m01, t[1], m12 });
+      finer.push_back({ m20, m12, t[2] });
+      finer.push_back({ m01, m12, m20 });
+    }
+    surface.Triangles.swap(finer);
+    ++steps;
+  }
+  return steps;
+}
+} // namespace dsurf

@@ -1,0 +1,403 @@
+#include "vtkDelaunaySeedSurface.h"
+
+#include "dsSeedSurface.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDataArray.h"
+#include "vtkDelaunay3D.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+vtkStandardNewMacro(vtkDelaunaySeedSurface);
+
+namespace
+{
+// Trilinear value of component 0 of the image's scalars at a physical point; false outside.
+bool SampleImage(vtkImageData* image, vtkDataArray* scalars, const double x[3], double& value)
+{
+  double ijk[3];
+  image->TransformPhysicalPointToContinuousIndex(x, ijk);
+  const int* ext = image->GetExtent();
+  int base[3];
+  double frac[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    const double lo = ext[2 * d], hi = ext[2 * d + 1];
+    if (!(ijk[d] >= lo - 1e-9 && ijk[d] <= hi + 1e-9))
+    {
+      return false;
+    }
+    const double c = std::min(std::max(ijk[d], lo), hi);
+    base[d] = std::min(static_cast<int>(std::floor(c)), std::max(ext[2 * d + 1] - 1, ext[2 * d]));
+    frac[d] = ext[2 * d + 1] > ext[2 * d] ? c - base[d] : 0.0;
+  }
+  value = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    int idx[3];
+    double w = 1.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      const int up = (corner >> d) & 1;
+      idx[d] = std::min(base[d] + up, ext[2 * d + 1]);
+      w *= up ? frac[d] : 1.0 - frac[d];
+    }
+    if (w != 0.0)
+    {
+      value += w * scalars->GetComponent(image->ComputePointId(idx), 0);
+    }
+  }
+  return true;
+}
+} // namespace
+
+vtkDelaunaySeedSurface::vtkDelaunaySeedSurface()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkDelaunaySeedSurface::~vtkDelaunaySeedSurface() = default;
+
+void vtkDelaunaySeedSurface::SetImageConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkDelaunaySeedSurface::SetImageData(vtkImageData* image)
+{
+  this->SetInputData(1, image);
+}
+
+void vtkDelaunaySeedSurface::AddRemovedTetrahedron(vtkIdType id)
+{
+  this->RemovedTetrahedra.push_back(id);
+  this->Modified();
+}
+
+void vtkDelaunaySeedSurface::RemoveAllRemovedTetrahedra()
+{
+  if (!this->RemovedTetrahedra.empty())
+  {
+    this->RemovedTetrahedra.clear();
+    this->Modified();
+  }
+}
+
+vtkIdType vtkDelaunaySeedSurface::GetNumberOfRemovedTetrahedra() const
+{
+  return static_cast<vtkIdType>(this->RemovedTetrahedra.size());
+}
+
+vtkIdType vtkDelaunaySeedSurface::GetRemovedTetrahedron(vtkIdType i) const
+{
+  return i >= 0 && i < this->GetNumberOfRemovedTetrahedra() ? this->RemovedTetrahedra[i] : -1;
+}
+
+vtkUnstructuredGrid* vtkDelaunaySeedSurface::GetTetrahedra()
+{
+  return vtkUnstructuredGrid::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+int vtkDelaunaySeedSurface::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  }
+  else
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+int vtkDelaunaySeedSurface::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkUnstructuredGrid");
+  return 1;
+}
+
+int vtkDelaunaySeedSurface::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  // The centroid of any tetrahedron may fall anywhere in the image: ask for all of it.
+  if (vtkInformation* imageInfo = inputVector[1]->GetInformationObject(0))
+  {
+    if (imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+        imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+    }
+  }
+  return 1;
+}
+
+int vtkDelaunaySeedSurface::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0], 0);
+  vtkImageData* image = vtkImageData::GetData(inputVector[1], 0);
+  vtkPolyData* surfaceOut = vtkPolyData::GetData(outputVector, 0);
+  vtkUnstructuredGrid* tetsOut = vtkUnstructuredGrid::GetData(outputVector, 1);
+  if (!input || !surfaceOut || !tetsOut)
+  {
+    vtkErrorMacro("Missing input or output.");
+    return 0;
+  }
+  surfaceOut->Initialize();
+  tetsOut->Initialize();
+
+  // Drop non-finite points: Delaunay3D's bounds and locator break on them.
+  const vtkIdType nIn = input->GetNumberOfPoints();
+  vtkNew<vtkPolyData> finite;
+  vtkNew<vtkPoints> finitePoints;
+  finitePoints->SetDataTypeToDouble();
+  std::vector<vtkIdType> inputId;
+  finite->GetPointData()->CopyAllocate(input->GetPointData(), nIn);
+  for (vtkIdType i = 0; i < nIn; ++i)
+  {
+    double x[3];
+    input->GetPoint(i, x);
+    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    {
+      finite->GetPointData()->CopyData(input->GetPointData(), i, finitePoints->InsertNextPoint(x));
+      inputId.push_back(i);
+    }
+  }
+  finite->SetPoints(finitePoints);
+  if (static_cast<vtkIdType>(inputId.size()) < nIn)
+  {
+    vtkWarningMacro("Ignored " << nIn - static_cast<vtkIdType>(inputId.size())
+                               << " point(s) with NaN or infinite coordinates.");
+  }
+  if (inputId.size() < 4)
+  {
+    vtkErrorMacro("Need at least 4 points with finite coordinates to build tetrahedra; got "
+      << inputId.size() << ".");
+    return 1;
+  }
+
+  vtkNew<vtkDelaunay3D> delaunay;
+  delaunay->SetInputData(finite);
+  delaunay->SetAlpha(0.0); // our own Alpha rule keeps the tetrahedron IDs stable
+  delaunay->SetTolerance(this->Tolerance);
+  delaunay->Update();
+  vtkUnstructuredGrid* complex = delaunay->GetOutput();
+
+  std::vector<dsurf::SeedPoint> points(static_cast<std::size_t>(complex->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < complex->GetNumberOfPoints(); ++i)
+  {
+    complex->GetPoint(i, points[i].data());
+  }
+  std::vector<dsurf::SeedTet> tets;
+  vtkNew<vtkIdList> cellPoints;
+  for (vtkIdType c = 0; c < complex->GetNumberOfCells(); ++c)
+  {
+    if (complex->GetCellType(c) == VTK_TETRA)
+    {
+      complex->GetCellPoints(c, cellPoints);
+      tets.push_back({ cellPoints->GetId(0), cellPoints->GetId(1), cellPoints->GetId(2), cellPoints->GetId(3) });
+    }
+  }
+
+  double bounds[6];
+  finite->GetBounds(bounds);
+  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  const double flatVolume = 1e-10 * diagonal * diagonal * diagonal;
+  const vtkIdType nTets = static_cast<vtkIdType>(tets.size());
+  std::vector<unsigned char> status(tets.size(), dsurf::SeedKept);
+  std::vector<double> radius(tets.size()), centroidValue;
+  bool anySolid = false;
+  for (vtkIdType t = 0; t < nTets; ++t)
+  {
+    const auto& c = tets[t];
+    radius[t] = dsurf::SeedTetCircumradius(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
+    anySolid = anySolid ||
+      std::abs(dsurf::SeedTetSignedVolume(points[c[0]], points[c[1]], points[c[2]], points[c[3]])) > flatVolume;
+  }
+  if (!anySolid)
+  {
+    vtkErrorMacro("The " << inputId.size()
+                         << " points span no volume (all coplanar, collinear or coincident): "
+                            "no tetrahedra, no surface.");
+    return 1;
+  }
+
+  vtkIdType outOfRange = 0;
+  for (vtkIdType id : this->RemovedTetrahedra)
+  {
+    if (id >= 0 && id < nTets)
+    {
+      status[id] = dsurf::SeedRemovedById;
+    }
+    else
+    {
+      ++outOfRange;
+    }
+  }
+  if (outOfRange > 0)
+  {
+    vtkWarningMacro(<< outOfRange << " RemovedTetrahedra ID(s) are not in [0, " << nTets
+                    << "): ignored.");
+  }
+  if (this->Alpha > 0.0)
+  {
+    for (vtkIdType t = 0; t < nTets; ++t)
+    {
+      if (status[t] == dsurf::SeedKept && radius[t] > this->Alpha)
+      {
+        status[t] = dsurf::SeedRemovedByAlpha;
+      }
+    }
+  }
+  if (this->UseIntensityRange)
+  {
+    vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+    if (image && !scalars && image->GetPointData()->GetNumberOfArrays() > 0)
+    {
+      scalars = image->GetPointData()->GetArray(0);
+    }
+    if (!scalars)
+    {
+      vtkWarningMacro("UseIntensityRange is on but no image with point scalars is connected to "
+                      "port 1 (Image): the intensity rule is skipped.");
+    }
+    else
+    {
+      centroidValue.assign(tets.size(), std::numeric_limits<double>::quiet_NaN());
+      for (vtkIdType t = 0; t < nTets; ++t)
+      {
+        const auto& c = tets[t];
+        double centroid[3];
+        for (int d = 0; d < 3; ++d)
+        {
+          centroid[d] = 0.25 * (points[c[0]][d] + points[c[1]][d] + points[c[2]][d] + points[c[3]][d]);
+        }
+        double value;
+        const bool inside = SampleImage(image, scalars, centroid, value);
+        if (inside)
+        {
+          centroidValue[t] = value;
+        }
+        if (status[t] == dsurf::SeedKept &&
+          (!inside || value < this->IntensityRange[0] || value > this->IntensityRange[1]))
+        {
+          status[t] = dsurf::SeedRemovedByIntensity;
+        }
+      }
+    }
+  }
+
+  dsurf::SeedBoundaryReport report;
+  dsurf::SeedSurface surface = dsurf::ExtractSeedBoundary(points, tets, status, flatVolume, report);
+  if (surface.Triangles.empty())
+  {
+    vtkWarningMacro("Every one of the " << nTets
+                                        << " tetrahedra was removed: the surface is empty.");
+  }
+  else
+  {
+    const std::string summary = report.Summary();
+    if (!summary.empty())
+    {
+      vtkWarningMacro("Seed surface: " << summary << ".");
+    }
+    dsurf::SubdivideSeedSurface(surface, this->TargetEdgeLength);
+  }
+
+  // Output 0: the surface.
+  vtkNew<vtkPoints> outPoints;
+  outPoints->SetDataTypeToDouble();
+  outPoints->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
+  vtkNew<vtkIdTypeArray> seedId;
+  seedId->SetName("SeedPointId");
+  seedId->SetNumberOfTuples(static_cast<vtkIdType>(surface.Points.size()));
+  for (std::size_t p = 0; p < surface.Points.size(); ++p)
+  {
+    outPoints->SetPoint(static_cast<vtkIdType>(p), surface.Points[p].data());
+    const std::int64_t source = surface.SourcePoint[p];
+    seedId->SetValue(static_cast<vtkIdType>(p), source >= 0 ? inputId[source] : -1);
+  }
+  vtkNew<vtkCellArray> triangles;
+  triangles->AllocateExact(static_cast<vtkIdType>(surface.Triangles.size()), 3 * surface.Triangles.size());
+  for (const auto& tri : surface.Triangles)
+  {
+    const vtkIdType ids[3] = { tri[0], tri[1], tri[2] };
+    triangles->InsertNextCell(3, ids);
+  }
+  surfaceOut->SetPoints(outPoints);
+  surfaceOut->SetPolys(triangles);
+  surfaceOut->GetPointData()->AddArray(seedId);
+
+  // Output 1: every tetrahedron with its stable ID and why it was removed.
+  vtkNew<vtkCellArray> tetCells;
+  tetCells->AllocateExact(nTets, 4 * nTets);
+  vtkNew<vtkIdTypeArray> tetraId;
+  tetraId->SetName("TetraId");
+  vtkNew<vtkUnsignedCharArray> removed;
+  removed->SetName("Removed");
+  vtkNew<vtkDoubleArray> circumradius;
+  circumradius->SetName("Circumradius");
+  for (vtkIdType t = 0; t < nTets; ++t)
+  {
+    const vtkIdType ids[4] = { tets[t][0], tets[t][1], tets[t][2], tets[t][3] };
+    tetCells->InsertNextCell(4, ids);
+    tetraId->InsertNextValue(t);
+    removed->InsertNextValue(status[t]);
+    circumradius->InsertNextValue(radius[t]);
+  }
+  tetsOut->SetPoints(complex->GetPoints());
+  tetsOut->GetPointData()->ShallowCopy(complex->GetPointData());
+  tetsOut->SetCells(VTK_TETRA, tetCells);
+  tetsOut->GetCellData()->AddArray(tetraId);
+  tetsOut->GetCellData()->AddArray(removed);
+  tetsOut->GetCellData()->AddArray(circumradius);
+  tetsOut->GetCellData()->SetActiveScalars("Removed");
+  if (!centroidValue.empty())
+  {
+    vtkNew<vtkDoubleArray> values;
+    values->SetName("CentroidValue");
+    values->SetNumberOfTuples(nTets);
+    for (vtkIdType t = 0; t < nTets; ++t)
+    {
+      values->SetValue(t, centroidValue[t]);
+    }
+    tetsOut->GetCellData()->AddArray(values);
+  }
+  return 1;
+}
+
+void vtkDelaunaySeedSurface::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RemovedTetrahedra: " << this->RemovedTetrahedra.size() << " ID(s)\n";
+  os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "UseIntensityRange: " << this->UseIntensityRange << "\n";
+  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1] << "\n";
+  os << indent << "TargetEdgeLength: " << this->TargetEdgeLength << "\n";
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+}

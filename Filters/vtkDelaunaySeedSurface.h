@@ -1,0 +1,128 @@
+/**
+ * @class   vtkDelaunaySeedSurface
+ * @brief   Start surface for the deformable surface: the outer boundary of a Delaunay
+ *          tetrahedrisation of picked points, after removing tetrahedra.
+ *
+ * The user picks points on the object's boundary (on slices, from a CSV through
+ * TableToPoints, a polyline, the points of any mesh); they are joined by a Delaunay
+ * tetrahedrisation (vtkDelaunay3D, Alpha 0, so the tetrahedron numbering depends only on the
+ * input); tetrahedra are removed to model non-convex shapes, and the boundary of the remaining
+ * tetrahedra is the start surface (Lürig, Kobbelt & Ertl 2000, section 7).
+ *
+ * A tetrahedron is removed when
+ * - its ID is in the RemovedTetrahedra list (IDs as shown by output 1, `TetraId`);
+ * - Alpha > 0 and its circumsphere radius exceeds Alpha (computed here on the full
+ *   tetrahedrisation, so IDs stay stable when Alpha changes);
+ * - UseIntensityRange is on, an image is connected to port 1, and the image value at the
+ *   tetrahedron's centroid (trilinear, first component of the active scalars) lies outside
+ *   IntensityRange, or the centroid lies outside the image. A seed of a dark cavity or a
+ *   bright bone thus follows the object.
+ *
+ * Input port 0: any vtkPointSet. Input port 1 (optional): vtkImageData for IntensityRange.
+ *
+ * Output 0: the boundary of the kept tetrahedra, a closed, 2-manifold, outward-oriented
+ * triangle surface holding only the points it uses, with point array `SeedPointId` (index of the
+ * input point; -1 for points added by subdivision). Pinches (an edge with four or more boundary
+ * faces, a vertex where two sheets meet) are resolved by splitting the vertex into one copy per
+ * fan, the copies moved 2% of an edge length into their fans; only where that is not enough is
+ * a tetrahedron removed. A warning says what was done. Flat tetrahedra exposed at the boundary are
+ * dropped. TargetEdgeLength > 0 subdivides the surface (1-to-4 midpoint) until the mean edge length
+ * is within a factor sqrt(2) of it, so the solver starts with enough vertices.
+ *
+ * Output 1: every tetrahedron of the Delaunay complex as a vtkUnstructuredGrid with cell arrays
+ * `TetraId` (the stable ID to put in RemovedTetrahedra), `Removed` (0 kept, 1 by ID, 2 by Alpha,
+ * 3 by intensity, 4 by pinch resolution, 5 flat at the boundary) and `Circumradius` (to choose
+ * Alpha), plus `CentroidValue` when an image is used. Threshold or colour by `Removed`.
+ *
+ * Bad input (fewer than 4 finite points, all points coplanar, every tetrahedron removed) gives
+ * an error or warning and an empty surface; NaN/inf points are dropped with a warning; duplicate
+ * points are merged by vtkDelaunay3D (Tolerance).
+ *
+ * Caveats: the whole point set is tetrahedrised on each process (no distributed Delaunay).
+ * Points with near-cospherical neighbours (e.g. regular grids) produce flat tetrahedra whose
+ * IDs are still stable, but they may disappear from the boundary.
+ */
+#ifndef vtkDelaunaySeedSurface_h
+#define vtkDelaunaySeedSurface_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <vector> // for the ID list
+
+class vtkImageData;
+class vtkUnstructuredGrid;
+
+class DEFORMABLESURFACEFILTERS_EXPORT vtkDelaunaySeedSurface : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkDelaunaySeedSurface* New();
+  vtkTypeMacro(vtkDelaunaySeedSurface, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The optional image (input port 1) used by IntensityRange.
+  void SetImageConnection(vtkAlgorithmOutput* output);
+  void SetImageData(vtkImageData* image);
+  ///@}
+
+  ///@{
+  /// IDs (`TetraId` of output 1) of tetrahedra the user deletes.
+  void AddRemovedTetrahedron(vtkIdType id);
+  void RemoveAllRemovedTetrahedra();
+  vtkIdType GetNumberOfRemovedTetrahedra() const;
+  vtkIdType GetRemovedTetrahedron(vtkIdType i) const;
+  ///@}
+
+  ///@{
+  /// Remove tetrahedra whose circumsphere radius exceeds Alpha (world units); 0 keeps all.
+  vtkSetClampMacro(Alpha, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Alpha, double);
+  ///@}
+
+  ///@{
+  /// Keep only tetrahedra whose centroid's image value lies in IntensityRange (needs port 1).
+  vtkSetMacro(UseIntensityRange, bool);
+  vtkGetMacro(UseIntensityRange, bool);
+  vtkBooleanMacro(UseIntensityRange, bool);
+  vtkSetVector2Macro(IntensityRange, double);
+  vtkGetVector2Macro(IntensityRange, double);
+  ///@}
+
+  ///@{
+  /// Subdivide the surface to about this mean edge length (world units); 0 leaves it as is.
+  vtkSetClampMacro(TargetEdgeLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(TargetEdgeLength, double);
+  ///@}
+
+  ///@{
+  /// Points closer than Tolerance x (bounding-box diagonal) are merged by vtkDelaunay3D.
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  /// Output 1: all tetrahedra with `TetraId`, `Removed`, `Circumradius`.
+  vtkUnstructuredGrid* GetTetrahedra();
+
+protected:
+  vtkDelaunaySeedSurface();
+  ~vtkDelaunaySeedSurface() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::vector<vtkIdType> RemovedTetrahedra;
+  double Alpha = 0.0;
+  bool UseIntensityRange = false;
+  double IntensityRange[2] = { 0.0, 1.0 };
+  double TargetEdgeLength = 0.0;
+  double Tolerance = 0.001;
+
+private:
+  vtkDelaunaySeedSurface(const vtkDelaunaySeedSurface&) = delete;
+  void operator=(const vtkDelaunaySeedSurface&) = delete;
+};
+
+#endif
