@@ -20,7 +20,11 @@
  *   sigma is) with q solved so the impulse response variance is exactly sigma^2,
  *   and the Triggs & Sdika (2006) start values for a replicated border, so the
  *   border does not ring. Axes with fewer than 1 voxel of sigma use a sampled
- *   Gaussian (radius 4 sigma); sigma below 0.001 voxel means no smoothing.
+ *   Gaussian (radius 4 sigma, width adjusted so the taps' variance is sigma^2);
+ *   sigma below 0.001 voxel means no smoothing. The recursive impulse response
+ *   has exactly the variance sigma^2 but is not exactly a Gaussian: it departs
+ *   from one by 4-7 % of its peak and has an exponential tail (~1e-3 of its
+ *   mass beyond 4 sigma), which is what a 3-pole filter can do.
  * - Derivatives are central differences (one-sided on the border) in index
  *   space, taken to world coordinates by Direction * diag(1/Spacing). Spacing,
  *   origin, extent and the direction matrix are honoured: Force is a world vector.

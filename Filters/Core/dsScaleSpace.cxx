@@ -212,16 +212,35 @@ AxisSmoother MakeSmoother(double sigmaVoxels)
     s.Type = AxisSmoother::FIR;
     s.Radius = std::max(1, static_cast<int>(std::ceil(4.0 * sigmaVoxels)));
     s.Taps.resize(2 * s.Radius + 1);
-    double sum = 0.0;
-    for (int k = -s.Radius; k <= s.Radius; ++k)
+    auto build = [&s](double width) {
+      double sum = 0.0, var = 0.0;
+      for (int k = -s.Radius; k <= s.Radius; ++k)
+      {
+        const double w = std::exp(-0.5 * k * k / (width * width));
+        s.Taps[k + s.Radius] = w;
+        sum += w;
+        var += w * k * k;
+      }
+      for (double& w : s.Taps)
+      {
+        w /= sum;
+      }
+      return var / sum;
+    };
+    // Sampling a narrow Gaussian loses variance; widen it so the taps have sigma^2.
+    double lo = 0.5 * sigmaVoxels, hi = 2.0 * sigmaVoxels;
+    if (build(hi) > sigmaVoxels * sigmaVoxels)
     {
-      const double w = std::exp(-0.5 * k * k / (sigmaVoxels * sigmaVoxels));
-      s.Taps[k + s.Radius] = w;
-      sum += w;
+      for (int it = 0; it < 100; ++it)
+      {
+        const double mid = 0.5 * (lo + hi);
+        (build(mid) < sigmaVoxels * sigmaVoxels ? lo : hi) = mid;
+      }
+      build(0.5 * (lo + hi));
     }
-    for (double& w : s.Taps)
+    else
     {
-      w /= sum;
+      build(sigmaVoxels);
     }
     return s;
   }
