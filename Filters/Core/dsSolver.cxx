@@ -1,7 +1,5 @@
 #include "dsSolver.h"
 
-#include "dsScaleSpace.h"
-
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -98,12 +96,6 @@ void Solver::SetMesh(TriangleMesh* mesh)
 {
   this->Mesh = mesh;
   this->BuildColoring();
-}
-
-void Solver::SetForceField(const ForceField* field, double forceScale)
-{
-  this->Field = field;
-  this->ForceScale = forceScale;
 }
 
 void Solver::BuildColoring()
@@ -246,10 +238,10 @@ void Solver::UpdateVertex(int v)
   Vec3 force{ 0, 0, 0 };
   Vec3 applied{ 0, 0, 0 };
   this->OutsideFlags[v] = 0;
-  if (this->Field)
+  if (this->Field && this->Sampler)
   {
     double f[3] = { 0, 0, 0 };
-    if (this->Field->SampleForce(m.Points[v].data(), f))
+    if (this->Sampler(this->Field, m.Points[v].data(), f))
     {
       force = { this->ForceScale * f[0], this->ForceScale * f[1], this->ForceScale * f[2] };
     }

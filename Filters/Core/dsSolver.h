@@ -12,13 +12,13 @@
 #define dsSolver_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
 #include <vector>
 
 namespace dsurf
 {
-struct ForceField;
 
 struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
 {
@@ -51,7 +51,15 @@ public:
 
   /// External force F(x) = forceScale * field->SampleForce(x); nullptr = no external force.
   /// The field is not copied and must outlive the sweeps.
-  void SetForceField(const ForceField* field, double forceScale);
+  void SetForceField(const ForceField* field, double forceScale)
+  {
+    // Sampled through a pointer set here, in the caller's code, so the solver library
+    // itself does not depend on the force implementation (refinement-only users link
+    // without it).
+    this->Field = field;
+    this->ForceScale = forceScale;
+    this->Sampler = field ? &Solver::SampleField : nullptr;
+  }
 
   /// One Gauss-Seidel sweep: every vertex not on an open boundary is corrected once,
   /// in place: c = gamma (tau c1 + (1 - tau) alpha c2 + F_projected), p <- p + c.
@@ -82,7 +90,13 @@ private:
 
   SolverParameters Parameters;
   TriangleMesh* Mesh = nullptr;
+  static bool SampleField(const ForceField* field, const double x[3], double f[3])
+  {
+    return field->SampleForce(x, f);
+  }
+
   const ForceField* Field = nullptr;
+  bool (*Sampler)(const ForceField*, const double*, double*) = nullptr;
   double ForceScale = 1.0;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
   std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
