@@ -2,6 +2,7 @@
 // internal forces without an external field (tau = 1 shrinks, tau = 0 keeps a sphere
 // round), a hand-made force field, determinism over thread counts, fixed boundaries.
 #include "DSTestHelpers.h"
+#include "TestSolverMeshes.h"
 
 #include "dsScaleSpace.h"
 #include "dsSolver.h"
@@ -12,59 +13,10 @@
 #include <set>
 
 using namespace dsurf;
+using dstest::MakeIcosphere;
 
 namespace
 {
-/// Icosphere of the given radius around c, `levels` midpoint subdivisions, outward.
-TriangleMesh MakeIcosphere(int levels, double radius, const Vec3& c)
-{
-  TriangleMesh m;
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> p = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 }, { 1, -t, 0 }, { 0, -1, t },
-    { 0, 1, t }, { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 }, { t, 0, 1 }, { -t, 0, -1 },
-    { -t, 0, 1 } };
-  std::vector<std::array<int, 3>> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 },
-    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },
-    { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 },
-    { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
-  for (auto& x : p)
-  {
-    x = (1.0 / Norm(x)) * x;
-  }
-  for (int l = 0; l < levels; ++l)
-  {
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      auto it = mid.find(key);
-      if (it != mid.end())
-      {
-        return it->second;
-      }
-      Vec3 x = 0.5 * (p[a] + p[b]);
-      p.push_back((1.0 / Norm(x)) * x);
-      mid[key] = static_cast<int>(p.size()) - 1;
-      return static_cast<int>(p.size()) - 1;
-    };
-    std::vector<std::array<int, 3>> g;
-    for (auto& tri : f)
-    {
-      const int a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), d = midpoint(tri[2], tri[0]);
-      g.push_back({ tri[0], a, d });
-      g.push_back({ tri[1], b, a });
-      g.push_back({ tri[2], d, b });
-      g.push_back({ a, b, d });
-    }
-    f.swap(g);
-  }
-  for (auto& x : p)
-  {
-    m.Points.push_back(c + radius * x);
-  }
-  m.Triangles = f;
-  return m;
-}
-
 void RadiusStats(const TriangleMesh& m, const Vec3& c, double& mean, double& minR, double& maxR)
 {
   mean = 0;
