@@ -156,6 +156,31 @@ Accuracy Measure(const dsurf::TriangleMesh& m, Dist dist)
   return a;
 }
 
+/// Surface accuracy, weighted by area: each triangle sampled at its centroid and edge
+/// midpoints. Unlike the vertex mean it does not favour meshes that put many vertices
+/// where the error is small (or penalise adaptive ones that put them where it is large).
+template <typename Dist>
+Accuracy MeasureArea(const dsurf::TriangleMesh& m, Dist dist)
+{
+  Accuracy a;
+  double area = 0;
+  for (const auto& t : m.Triangles)
+  {
+    const Vec3 &p0 = m.Points[t[0]], &p1 = m.Points[t[1]], &p2 = m.Points[t[2]];
+    const double ta = 0.5 * Norm(Cross(p1 - p0, p2 - p0));
+    const Vec3 samples[4] = { (1.0 / 3.0) * (p0 + p1 + p2), 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0) };
+    for (const auto& s : samples)
+    {
+      const double d = dist(s);
+      a.Mean += 0.25 * ta * d;
+      a.Max = std::max(a.Max, d);
+    }
+    area += ta;
+  }
+  a.Mean /= area > 0 ? area : 1.0;
+  return a;
+}
+
 /// Fraction of triangles whose smallest angle is at least `degrees`.
 inline double FractionMinAngleAtLeast(const dsurf::TriangleMesh& m, double degrees)
 {
