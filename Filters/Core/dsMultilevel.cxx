@@ -48,6 +48,8 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   this->Warnings.clear();
   this->ErrorIndicator.clear();
   this->Displacement.clear();
+  this->ExternalForce.clear();
+  this->MaxOutsideVertices = 0;
   this->Aborted = false;
   auto fail = [error](const std::string& msg) {
     if (error)
@@ -132,6 +134,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
       sr.MeanCorrection = st.MeanCorrection;
       sr.MaxCorrection = st.MaxCorrection;
       this->Sweeps.push_back(sr);
+      this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
       if (this->OnSweep && !this->OnSweep(sr, mesh))
       {
         stop = true;
@@ -152,6 +155,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     }
     this->ErrorIndicator = solver.ErrorIndicator();
     this->Displacement = solver.Displacement();
+    this->ExternalForce = solver.ExternalForceMagnitude();
     if (stop || level == maxLevels)
     {
       this->Levels.push_back(rec);

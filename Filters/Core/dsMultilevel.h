@@ -47,7 +47,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double InitialSigma = 0.0;
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
   int MaxLevels = 4;             ///< refinement steps (levels 0..MaxLevels are solved)
-  int MaxSweepsPerLevel = 2000;  ///< cap per level
+  int MaxSweepsPerLevel = 2000;  ///< cap per level (the phantom tests need <= ~130)
   double Tolerance = 1e-3;       ///< stop a level when mean |c| < Tolerance * mean edge length
   double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;
@@ -110,6 +110,13 @@ public:
   /// Per vertex of the final mesh, from the last sweep.
   const std::vector<double>& GetErrorIndicator() const { return this->ErrorIndicator; }
   const std::vector<double>& GetDisplacement() const { return this->Displacement; }
+  const std::vector<double>& GetExternalForce() const { return this->ExternalForce; }
+  /// Most vertices that lay outside the volume (no external force) in one sweep.
+  int GetMaxOutsideVertices() const { return this->MaxOutsideVertices; }
+  double GetFinalMeanCorrection() const { return this->Sweeps.empty() ? 0.0 : this->Sweeps.back().MeanCorrection; }
+  /// Sigma of the last level solved.
+  double GetFinalSigma() const { return this->Levels.empty() ? 0.0 : this->Levels.back().Sigma; }
+  bool GetLastLevelConverged() const { return !this->Levels.empty() && this->Levels.back().Converged; }
   int GetTotalSweeps() const { return static_cast<int>(this->Sweeps.size()); }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
@@ -123,7 +130,8 @@ private:
   std::vector<SweepRecord> Sweeps;
   std::vector<LevelRecord> Levels;
   std::vector<std::string> Warnings;
-  std::vector<double> ErrorIndicator, Displacement;
+  std::vector<double> ErrorIndicator, Displacement, ExternalForce;
+  int MaxOutsideVertices = 0;
   bool Aborted = false;
 };
 } // namespace dsurf
