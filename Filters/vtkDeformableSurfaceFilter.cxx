@@ -1,5 +1,6 @@
 #include "vtkDeformableSurfaceFilter.h"
 
+#include "dsMultilevel.h"
 #include "dsScaleSpace.h"
 #include "dsSelfIntersection.h"
 #include "dsSolver.h"
@@ -78,65 +79,6 @@ struct ConvergenceColumns
   }
 };
 
-/// What one level needs besides the mesh and the solver.
-struct LevelSettings
-{
-  int Level = 0;
-  double Sigma = 0;
-  int MaxSweeps = 200;
-  double Tolerance = 1e-3;
-};
-
-struct LevelResult
-{
-  int Sweeps = 0;
-  double FinalMeanCorrection = 0;
-  int MaxOutsideVertices = 0;
-  bool Converged = false;
-  bool Aborted = false;
-};
-
-/// Sweep the solver's mesh at one level until the mean |c| of a sweep drops below
-/// Tolerance * h or MaxSweeps is reached; one table row per sweep. `progress` gets the
-/// fraction of MaxSweeps done and returns false to abort. The force scale F = h sigma
-/// (-grad P) (SPEC §6b) uses h at the start of the level. The hierarchy calls this once
-/// per level with the refined mesh.
-LevelResult RunLevel(dsurf::Solver& solver, const dsurf::ForceField* field,
-  const LevelSettings& settings, int& sweepCounter, ConvergenceColumns& table,
-  const std::function<bool(double)>& progress)
-{
-  LevelResult result;
-  dsurf::TriangleMesh& mesh = *solver.GetMesh();
-  const double h = mesh.MeanEdgeLength();
-  solver.SetForceField(field, h * settings.Sigma);
-  for (int s = 0; s < settings.MaxSweeps; ++s)
-  {
-    const dsurf::SweepStatistics stats = solver.Sweep();
-    ++result.Sweeps;
-    ++sweepCounter;
-    result.FinalMeanCorrection = stats.MeanCorrection;
-    result.MaxOutsideVertices = std::max(result.MaxOutsideVertices, stats.OutsideVertices);
-    table.Sweep->InsertNextValue(sweepCounter);
-    table.Level->InsertNextValue(settings.Level);
-    table.Sigma->InsertNextValue(settings.Sigma);
-    table.Vertices->InsertNextValue(mesh.NumberOfPoints());
-    table.Triangles->InsertNextValue(mesh.NumberOfTriangles());
-    table.MeanCorrection->InsertNextValue(stats.MeanCorrection);
-    table.MaxCorrection->InsertNextValue(stats.MaxCorrection);
-    if (stats.MeanCorrection < settings.Tolerance * h)
-    {
-      result.Converged = true;
-      break;
-    }
-    if (!progress(static_cast<double>(s + 1) / settings.MaxSweeps))
-    {
-      result.Aborted = true;
-      break;
-    }
-  }
-  return result;
-}
-
 /// Triangulate and merge coincident points (copies; the input is untouched), then
 /// fill the core mesh. False with a message on bad input.
 bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error)
@@ -210,7 +152,7 @@ vtkSmartPointer<vtkDoubleArray> PointArray(const char* name, const std::vector<d
 }
 
 /// The deformed mesh as vtkPolyData with the solver's per-vertex arrays.
-void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::Solver& solver, vtkPolyData* output)
+void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
 {
   const int nPts = mesh.NumberOfPoints();
   vtkNew<vtkPoints> points;
@@ -257,9 +199,9 @@ void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::Solver& solver, vt
   const auto sized = [nPts](const std::vector<double>& v) {
     return static_cast<int>(v.size()) == nPts ? v : std::vector<double>(nPts, 0.0);
   };
-  pd->AddArray(PointArray("Displacement", sized(solver.Displacement())));
-  pd->AddArray(PointArray("ExternalForce", sized(solver.ExternalForceMagnitude())));
-  pd->AddArray(PointArray("ErrorIndicator", sized(solver.ErrorIndicator())));
+  pd->AddArray(PointArray("Displacement", sized(solver.GetDisplacement())));
+  pd->AddArray(PointArray("ExternalForce", sized(solver.GetExternalForce())));
+  pd->AddArray(PointArray("ErrorIndicator", sized(solver.GetErrorIndicator())));
   pd->AddArray(levels);
   pd->AddArray(labels);
 }
@@ -437,56 +379,70 @@ int vtkDeformableSurfaceFilter::RequestData(
     }
     values = converted.data();
   }
-  const double sigma = this->Sigma > 0 ? this->Sigma : this->SigmaFraction * geometry.MeanExtent();
-  dsurf::ScaleSpaceParameters forceParameters;
-  forceParameters.Sigma = sigma;
-  forceParameters.EdgeWeight = this->EdgeWeight;
-  forceParameters.ImageWeight = this->ImageWeight;
-  forceParameters.NormalizePotential = true; // F = h sigma (-grad P) assumes P in [-1, 0]
-  forceParameters.NumberOfThreads = this->NumberOfThreads;
-  dsurf::ForceField field;
-  if (!dsurf::ComputeScaleSpaceForce(values, geometry, forceParameters, field, &error))
-  {
-    vtkErrorMacro("External force failed: " << error);
-    return 1;
-  }
-  this->UpdateProgress(0.05);
-
-  // --- the solve ---
-  dsurf::SolverParameters solverParameters;
-  solverParameters.Tau = this->Tau;
-  solverParameters.Gamma = this->Gamma;
-  solverParameters.ProjectExternalForce = this->ProjectExternalForce;
-  solverParameters.NumberOfThreads = this->NumberOfThreads;
-  dsurf::Solver solver;
-  solver.SetParameters(solverParameters);
-  solver.SetMesh(&mesh);
-
-  ConvergenceColumns columns;
-  int sweeps = 0;
-  LevelSettings level;
-  level.Level = 0;
-  level.Sigma = sigma;
-  level.MaxSweeps = this->MaxSweepsPerLevel;
-  level.Tolerance = this->ConvergenceTolerance;
-  const LevelResult result = RunLevel(solver, &field, level, sweeps, columns, [this](double f) {
-    this->UpdateProgress(0.05 + 0.9 * f);
+  // --- the multilevel solve (hierarchy branch): dsurf::MultilevelSolver runs the
+  // levels (sweeps, error estimator, red-green refinement, butterfly, sigma halving,
+  // force field per level); here only parameters in and results out.
+  dsurf::MultilevelParameters mp;
+  mp.Solver.Tau = this->Tau;
+  mp.Solver.Gamma = this->Gamma;
+  mp.Solver.ProjectExternalForce = this->ProjectExternalForce;
+  mp.Solver.NumberOfThreads = this->NumberOfThreads;
+  mp.EdgeWeight = this->EdgeWeight;
+  mp.ImageWeight = this->ImageWeight;
+  mp.InitialSigma = this->Sigma;
+  mp.InitialSigmaFraction = this->SigmaFraction;
+  mp.HierarchicalSigma = this->HierarchicalSigma;
+  mp.MaxLevels = this->MaxLevels;
+  mp.MaxSweepsPerLevel = this->MaxSweepsPerLevel;
+  mp.Tolerance = this->ConvergenceTolerance;
+  mp.RefinementThreshold = this->RefinementThreshold;
+  mp.UniformRefinement = this->UniformRefinement;
+  mp.ProlongationMode =
+    this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
+  mp.MaxVertices = this->MaxVertices;
+  mp.CheckInvariants = this->CheckTopology;
+  dsurf::MultilevelSolver solver;
+  solver.SetParameters(mp);
+  solver.SetProgressCallback([this](double f) {
+    this->UpdateProgress(0.02 + 0.96 * f);
     return !this->GetAbortExecute();
   });
-  if (result.MaxOutsideVertices > 0)
+  ConvergenceColumns columns;
+  solver.SetSweepCallback([&columns](const dsurf::SweepRecord& r, const dsurf::TriangleMesh&) {
+    columns.Sweep->InsertNextValue(r.Sweep);
+    columns.Level->InsertNextValue(r.Level);
+    columns.Sigma->InsertNextValue(r.Sigma);
+    columns.Vertices->InsertNextValue(r.Vertices);
+    columns.Triangles->InsertNextValue(r.Triangles);
+    columns.MeanCorrection->InsertNextValue(r.MeanCorrection);
+    columns.MaxCorrection->InsertNextValue(r.MaxCorrection);
+    return true;
+  });
+  if (!solver.Run(values, geometry, mesh, &error))
   {
-    vtkWarningMacro(<< result.MaxOutsideVertices
+    vtkErrorMacro("Deformable surface failed: " << error);
+    output->Initialize();
+    return 1;
+  }
+  for (const std::string& w : solver.GetWarnings())
+  {
+    vtkWarningMacro(<< w);
+  }
+  if (solver.GetMaxOutsideVertices() > 0)
+  {
+    vtkWarningMacro(<< solver.GetMaxOutsideVertices()
                     << " vertices lay outside the image and felt no external force.");
   }
 
   // --- outputs ---
   FillOutput(mesh, solver, output);
   vtkFieldData* fd = output->GetFieldData();
-  AddFieldValue<vtkIntArray>(fd, "Sweeps", sweeps);
-  AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", result.FinalMeanCorrection);
+  AddFieldValue<vtkIntArray>(fd, "Sweeps", solver.GetTotalSweeps());
+  AddFieldValue<vtkIntArray>(fd, "Levels", static_cast<int>(solver.GetLevels().size()));
+  AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
   AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
-  AddFieldValue<vtkDoubleArray>(fd, "Sigma", sigma);
-  AddFieldValue<vtkIntArray>(fd, "Converged", result.Converged ? 1 : 0);
+  AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
+  AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   columns.AddTo(table);
   this->UpdateProgress(1.0);
   return 1;
@@ -505,6 +461,12 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxSweepsPerLevel: " << this->MaxSweepsPerLevel << "\n";
   os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
   os << indent << "MaxLevels: " << this->MaxLevels << "\n";
+  os << indent << "RefinementThreshold: " << this->RefinementThreshold << "\n";
+  os << indent << "UniformRefinement: " << this->UniformRefinement << "\n";
+  os << indent << "HierarchicalSigma: " << this->HierarchicalSigma << "\n";
+  os << indent << "ButterflyProlongation: " << this->ButterflyProlongation << "\n";
+  os << indent << "MaxVertices: " << this->MaxVertices << "\n";
+  os << indent << "CheckTopology: " << this->CheckTopology << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ProjectExternalForce: " << this->ProjectExternalForce << "\n";
 }

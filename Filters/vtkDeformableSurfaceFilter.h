@@ -40,12 +40,18 @@
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
- * Caveats: MaxLevels > 0 (the adaptive hierarchy of the paper: red-green refinement
- * and sigma halving) is accepted but this version runs only level 0. Sigma is
- * constant over the level. The whole image is requested. With the default
- * SigmaFraction (1/6 of the extent) a single level only finds coarse shapes; set
- * Sigma to a few voxels for detail. Abort stops after the current sweep and outputs
- * the (valid) surface reached so far.
+ * Hierarchy (SPEC §6, dsMultilevel.h): after a level converges, the error estimator
+ * (|internal part of the correction| per vertex) marks every triangle whose corner
+ * average exceeds RefinementThreshold times the level's mean (all triangles with
+ * UniformRefinement); the marked triangles are red-green refined (no T-vertices,
+ * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
+ * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
+ * It stops after MaxLevels refinements, when nothing is marked, or before exceeding
+ * MaxVertices (a warning).
+ *
+ * Caveats: the whole image is requested. Abort stops after the current sweep and
+ * outputs the (valid) surface reached so far. A weak boundary next to a strong one
+ * needs HierarchicalSigma off and a small Sigma.
  */
 #ifndef vtkDeformableSurfaceFilter_h
 #define vtkDeformableSurfaceFilter_h
@@ -109,7 +115,8 @@ public:
 
   ///@{
   /**
-   * Stop a level after this many sweeps. Default 200.
+   * Stop a level after this many sweeps (a cap; levels normally stop on
+   * ConvergenceTolerance first). Default 2000.
    */
   vtkSetClampMacro(MaxSweepsPerLevel, int, 1, 1000000);
   vtkGetMacro(MaxSweepsPerLevel, int);
@@ -126,11 +133,64 @@ public:
 
   ///@{
   /**
-   * Number of refinement levels after the first (0 = single level, the default).
-   * Values > 0 are accepted, but this version runs level 0 only.
+   * Number of refinement steps after the first level (default 4; 0 = a single level on
+   * the initial mesh).
    */
   vtkSetClampMacro(MaxLevels, int, 0, 10);
   vtkGetMacro(MaxLevels, int);
+  ///@}
+  ///@{
+  /**
+   * A triangle is refined when the mean error estimator of its corners exceeds
+   * RefinementThreshold times the mean estimator of the level (relative, so one default
+   * fits any data and level). Default 1: refine where the surface works harder than on
+   * average. Smaller refines more.
+   */
+  vtkSetClampMacro(RefinementThreshold, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RefinementThreshold, double);
+  ///@}
+  ///@{
+  /**
+   * Refine every triangle at every level instead of the marked ones. Default off.
+   */
+  vtkSetMacro(UniformRefinement, bool);
+  vtkGetMacro(UniformRefinement, bool);
+  vtkBooleanMacro(UniformRefinement, bool);
+  ///@}
+  ///@{
+  /**
+   * Halve sigma (and the kernel support) at every refinement. Default on. Off keeps
+   * sigma constant: for a weak boundary near a strong one, with a small Sigma.
+   */
+  vtkSetMacro(HierarchicalSigma, bool);
+  vtkGetMacro(HierarchicalSigma, bool);
+  vtkBooleanMacro(HierarchicalSigma, bool);
+  ///@}
+  ///@{
+  /**
+   * Place new vertices by the butterfly scheme (default on) or at edge midpoints.
+   */
+  vtkSetMacro(ButterflyProlongation, bool);
+  vtkGetMacro(ButterflyProlongation, bool);
+  vtkBooleanMacro(ButterflyProlongation, bool);
+  ///@}
+  ///@{
+  /**
+   * Refinement stops (with a warning) before the mesh would exceed this many vertices.
+   * Default 2 000 000.
+   */
+  vtkSetClampMacro(MaxVertices, vtkIdType, 4, VTK_ID_MAX);
+  vtkGetMacro(MaxVertices, vtkIdType);
+  ///@}
+  ///@{
+  /**
+   * Check the topology invariants (closed stays closed, manifold, Euler characteristic,
+   * orientation, no T-vertex) after every refinement; a failure is an error. Default
+   * off (always on in Debug builds).
+   */
+  vtkSetMacro(CheckTopology, bool);
+  vtkGetMacro(CheckTopology, bool);
+  vtkBooleanMacro(CheckTopology, bool);
   ///@}
 
   ///@{
@@ -173,9 +233,15 @@ protected:
   double ImageWeight = 0.0;
   double Sigma = 0.0;
   double SigmaFraction = 1.0 / 6.0;
-  int MaxSweepsPerLevel = 200;
+  int MaxSweepsPerLevel = 2000;
   double ConvergenceTolerance = 1e-3;
-  int MaxLevels = 0;
+  int MaxLevels = 4;
+  double RefinementThreshold = 1.0;
+  bool UniformRefinement = false;
+  bool HierarchicalSigma = true;
+  bool ButterflyProlongation = true;
+  vtkIdType MaxVertices = 2000000;
+  bool CheckTopology = false;
   int NumberOfThreads = 0;
   bool ProjectExternalForce = true;
 

@@ -219,7 +219,7 @@ void Solver::UpdateVertex(int v)
       alpha += w * back;
     }
   };
-  if (this->UniformWeights)
+  if (this->UniformWeights || !this->Parameters.UseLabelWeights)
   {
     accumulate(std::true_type{});
   }
