@@ -1,6 +1,18 @@
 // Scale-space external force of the deformable surface (SPEC.md §2, §6.6):
 // plain C++, no pipeline types. Shared by vtkImageScaleSpaceGradient and
 // vtkDeformableSurfaceFilter so the two never disagree.
+//
+// What is computed (also stated in vtkImageScaleSpaceGradient.h):
+//   s  = G_sigma * f          separable recursive Gaussian (Young-van Vliet, 3rd order,
+//                             forward + backward, Triggs-Sdika replicate-border start),
+//                             sigma isotropic in world units: sigma_axis = sigma / spacing;
+//                             axes with sigma_axis < 1 voxel use a sampled Gaussian FIR.
+//   g  = |grad s|             central differences (one-sided at the border), index
+//                             derivatives taken to world by Direction * diag(1/spacing).
+//   NormalizePotential on:    P = -(w_edge * g / max g + w_image * (s - min s) / (max s - min s))
+//                             so P lies in [-(w_edge + w_image), 0]; a zero range gives 0.
+//   NormalizePotential off:   P = -(w_edge * g + w_image * s)
+//   Force = -grad P           central differences of P, to world like g.
 #ifndef dsScaleSpace_h
 #define dsScaleSpace_h
 
@@ -24,7 +36,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
   {
     return static_cast<long long>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
   }
-  /// Mean physical extent (the paper's "average extent of the volume").
+  /// Mean physical extent (the paper's "average extent of the volume"):
+  /// mean over the axes of Dimensions[a] * Spacing[a], so a 256^3 unit-spacing
+  /// volume has extent 256 and sigma = extent / 6 = 42.7.
   double MeanExtent() const;
   /// World point -> continuous index (i,j,k).
   void WorldToIndex(const double x[3], double ijk[3]) const;
@@ -34,7 +48,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
 
 struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
 {
-  double Sigma = 1.0;          ///< physical units (isotropic in world space)
+  double Sigma = 1.0;          ///< physical units (isotropic in world space); 0 = no smoothing
   double EdgeWeight = 1.0;     ///< w_edge
   double ImageWeight = 0.0;    ///< w_image
   bool NormalizePotential = true;
@@ -64,6 +78,24 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const float* scalars,
   const ImageGeometry& geometry, const ScaleSpaceParameters& parameters, ForceField& out,
   std::string* error);
+
+/// Same computation into caller-owned buffers (no copy for the VTK filter):
+/// potential holds NumberOfVoxels floats, force 3 * NumberOfVoxels. The force buffer
+/// doubles as the smoothing scratch, so peak memory is input + 4 volumes.
+/// scalars must not alias either buffer.
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const float* scalars,
+  const ImageGeometry& geometry, const ScaleSpaceParameters& parameters, float* potential,
+  float* force, std::string* error);
+
+/// G_sigma * f alone (same separable filter, same border handling), in place on a
+/// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.
+DEFORMABLESURFACEFILTERS_EXPORT bool SmoothGaussian(float* volume, const ImageGeometry& geometry,
+  double sigma, int numberOfThreads, std::string* error);
+
+/// Variance (in voxels^2) of the 1-D impulse response the smoother applies at
+/// sigmaVoxels; equals sigmaVoxels^2 by construction for the recursive branch.
+/// Exposed for tests.
+DEFORMABLESURFACEFILTERS_EXPORT double SmootherVariance(double sigmaVoxels);
 } // namespace dsurf
 
 #endif

@@ -1,0 +1,215 @@
+#include "dsMultilevel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace dsurf
+{
+std::vector<char> MultilevelSolver::MarkTriangles(
+  const TriangleMesh& mesh, const std::vector<double>& estimator, double relativeThreshold, bool uniform)
+{
+  std::vector<char> marks(mesh.Triangles.size(), uniform ? 1 : 0);
+  if (uniform || estimator.size() != mesh.Points.size())
+  {
+    return marks;
+  }
+  // The level's mean over the vertices that move (fixed boundary vertices report 0 and
+  // would drag the mean down).
+  double sum = 0;
+  int count = 0;
+  for (int v = 0; v < mesh.NumberOfPoints(); ++v)
+  {
+    if (!mesh.BoundaryVertex[v])
+    {
+      sum += estimator[v];
+      ++count;
+    }
+  }
+  if (count == 0 || !(sum > 0))
+  {
+    return marks; // nothing moves: nothing to refine
+  }
+  const double threshold = relativeThreshold * sum / count;
+  for (size_t t = 0; t < marks.size(); ++t)
+  {
+    const auto& tri = mesh.Triangles[t];
+    const double e = (estimator[tri[0]] + estimator[tri[1]] + estimator[tri[2]]) / 3.0;
+    marks[t] = e > threshold ? 1 : 0;
+  }
+  return marks;
+}
+
+bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
+  this->Sweeps.clear();
+  this->Levels.clear();
+  this->Warnings.clear();
+  this->ErrorIndicator.clear();
+  this->Displacement.clear();
+  this->ExternalForce.clear();
+  this->MaxOutsideVertices = 0;
+  this->Aborted = false;
+  auto fail = [error](const std::string& msg) {
+    if (error)
+    {
+      *error = msg;
+    }
+    return false;
+  };
+  if (!scalars || geometry.NumberOfVoxels() <= 0)
+  {
+    return fail("the volume is empty");
+  }
+  if (mesh.Triangles.empty())
+  {
+    return fail("the initial surface has no triangles");
+  }
+  double sigma = P.InitialSigma > 0 ? P.InitialSigma : P.InitialSigmaFraction * geometry.MeanExtent();
+  if (!(sigma > 0) || !std::isfinite(sigma))
+  {
+    return fail("the initial sigma must be positive");
+  }
+
+  RedGreenRefiner refiner;
+  std::string msg;
+  if (!refiner.Initialize(mesh, &msg))
+  {
+    return fail("the initial surface is not a manifold triangle mesh: " + msg);
+  }
+#ifndef NDEBUG
+  const bool checkInvariants = true;
+#else
+  const bool checkInvariants = P.CheckInvariants;
+#endif
+  const int eulerStart = mesh.EulerCharacteristic();
+  const bool closedStart = mesh.IsClosed();
+
+  Solver solver;
+  solver.SetParameters(P.Solver);
+  ForceField field;
+  ScaleSpaceParameters ssp;
+  ssp.EdgeWeight = P.EdgeWeight;
+  ssp.ImageWeight = P.ImageWeight;
+  ssp.NormalizePotential = true;
+  ssp.NumberOfThreads = P.Solver.NumberOfThreads;
+
+  const int maxLevels = std::max(0, P.MaxLevels);
+  const int cap = std::max(1, P.MaxSweepsPerLevel);
+  int sweepCounter = 0;
+  for (int level = 0; level <= maxLevels; ++level)
+  {
+    // Force field at this level's sigma (rebuilt only when sigma changed).
+    if (field.Empty() || std::abs(field.Sigma - sigma) > 1e-12 * sigma)
+    {
+      ssp.Sigma = sigma;
+      if (!ComputeScaleSpaceForce(scalars, geometry, ssp, field, &msg))
+      {
+        return fail("scale-space force: " + msg);
+      }
+    }
+    const double h = mesh.MeanEdgeLength();
+    solver.SetMesh(&mesh);
+    solver.SetForceField(&field, P.ForceWeight * h * sigma);
+
+    LevelRecord rec;
+    rec.Level = level;
+    rec.Sigma = sigma;
+    rec.Vertices = mesh.NumberOfPoints();
+    rec.Triangles = mesh.NumberOfTriangles();
+    rec.MeanEdgeLength = h;
+    bool stop = false;
+    for (int s = 0; s < cap; ++s)
+    {
+      const SweepStatistics st = solver.Sweep();
+      ++sweepCounter;
+      ++rec.Sweeps;
+      SweepRecord sr;
+      sr.Sweep = sweepCounter;
+      sr.Level = level;
+      sr.Sigma = sigma;
+      sr.Vertices = mesh.NumberOfPoints();
+      sr.Triangles = mesh.NumberOfTriangles();
+      sr.MeanCorrection = st.MeanCorrection;
+      sr.MaxCorrection = st.MaxCorrection;
+      this->Sweeps.push_back(sr);
+      this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
+      if (this->OnSweep && !this->OnSweep(sr, mesh))
+      {
+        stop = true;
+        break;
+      }
+      if (this->Progress && (s % 8 == 0) &&
+        !this->Progress((level + std::min(1.0, double(s + 1) / std::min(cap, 400))) / (maxLevels + 1)))
+      {
+        this->Aborted = true;
+        stop = true;
+        break;
+      }
+      if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * h)
+      {
+        rec.Converged = true;
+        break;
+      }
+    }
+    this->ErrorIndicator = solver.ErrorIndicator();
+    this->Displacement = solver.Displacement();
+    this->ExternalForce = solver.ExternalForceMagnitude();
+    if (stop || level == maxLevels)
+    {
+      this->Levels.push_back(rec);
+      break;
+    }
+
+    // Mark, check the vertex budget, refine.
+    const std::vector<char> marks =
+      MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
+    std::unordered_set<int> splitEdges;
+    for (size_t t = 0; t < marks.size(); ++t)
+    {
+      if (marks[t])
+      {
+        ++rec.MarkedTriangles;
+        for (int e : mesh.TriangleEdges[t])
+        {
+          splitEdges.insert(e);
+        }
+      }
+    }
+    if (rec.MarkedTriangles == 0)
+    {
+      this->Levels.push_back(rec);
+      break;
+    }
+    if (static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) > P.MaxVertices)
+    {
+      this->Warnings.push_back("refinement stopped at level " + std::to_string(level) + ": the next step would exceed MaxVertices (" +
+        std::to_string(P.MaxVertices) + ")");
+      rec.MarkedTriangles = 0;
+      this->Levels.push_back(rec);
+      break;
+    }
+    rec.Refinement = refiner.Refine(mesh, marks, P.ProlongationMode);
+    this->Levels.push_back(rec);
+    if (!rec.Refinement.Ok)
+    {
+      return fail("refinement failed: " + rec.Refinement.Error);
+    }
+    if (checkInvariants && (!CheckTopologyInvariants(mesh, eulerStart, closedStart, &msg) || refiner.CountTVertices(mesh) != 0))
+    {
+      return fail("refinement broke a topology invariant at level " + std::to_string(level + 1) + ": " +
+        (msg.empty() ? std::string("T-vertex") : msg));
+    }
+    if (P.HierarchicalSigma)
+    {
+      sigma *= 0.5;
+    }
+  }
+  if (this->Progress)
+  {
+    this->Progress(1.0);
+  }
+  return true;
+}
+} // namespace dsurf

@@ -1,0 +1,139 @@
+// The adaptive multilevel schedule of the deformable surface (SPEC.md §6): plain C++,
+// no pipeline types; vtkDeformableSurfaceFilter converts data and calls Run().
+//
+// Per level l = 0, 1, ...:
+//   1. external force field at sigma_l (scale space of the volume, potential normalised
+//      to [0, 1]); F = ForceWeight * h_l * sigma_l * (-grad P) with h_l the mean edge
+//      length of the level's mesh (SPEC §6b: force in edge lengths, scale-normalised);
+//   2. Gauss-Seidel sweeps until the mean correction of a sweep is below
+//      Tolerance * h_l, or MaxSweepsPerLevel sweeps;
+//   3. unless l == MaxLevels: error estimator e(v) = |internal part of the last
+//      correction| (SPEC §6.2); a triangle is marked when the mean e of its corners
+//      exceeds RefinementThreshold * (mean e over all moving vertices of the level)
+//      (every triangle when UniformRefinement). The threshold is relative to the level's
+//      own statistics, so one default works whatever the data's units or the level;
+//      1 marks the triangles busier than average;
+//   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
+//      (dsButterfly.h);
+//   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
+//      sigma: it is 4 sigma in the recursive Gaussian), else sigma stays.
+// It stops after MaxLevels refinements, when no triangle is marked, when the next step
+// would exceed MaxVertices (a warning), or when the progress callback asks to abort
+// (the surface is valid at every moment).
+#ifndef dsMultilevel_h
+#define dsMultilevel_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsRedGreen.h"
+#include "dsScaleSpace.h"
+#include "dsSolver.h"
+#include "dsTriangleMesh.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace dsurf
+{
+struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
+{
+  SolverParameters Solver;      ///< tau, gamma, projection, label weights, threads
+  double EdgeWeight = 1.0;      ///< w_edge of the potential
+  double ImageWeight = 0.0;     ///< w_image of the potential
+  double ForceWeight = 1.0;     ///< multiplies h * sigma * (-grad P)
+  /// sigma_0 = InitialSigmaFraction * mean extent of the volume (SPEC §6.6: 1/6) unless
+  /// InitialSigma > 0 (physical units), which wins.
+  double InitialSigmaFraction = 1.0 / 6.0;
+  double InitialSigma = 0.0;
+  bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
+  int MaxLevels = 4;             ///< refinement steps (levels 0..MaxLevels are solved)
+  int MaxSweepsPerLevel = 2000;  ///< cap per level (the phantom tests need <= ~130)
+  double Tolerance = 1e-3;       ///< stop a level when mean |c| < Tolerance * mean edge length
+  double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
+  bool UniformRefinement = false;
+  Prolongation ProlongationMode = Prolongation::Butterfly;
+  long long MaxVertices = 2000000;
+  /// Check the topology invariants after every refinement (always on in Debug builds);
+  /// a broken invariant stops the run with an error.
+  bool CheckInvariants = false;
+};
+
+/// One row per sweep, for the convergence table.
+struct DEFORMABLESURFACEFILTERS_EXPORT SweepRecord
+{
+  int Sweep = 0; ///< 1-based, over the whole run
+  int Level = 0;
+  double Sigma = 0;
+  int Vertices = 0;
+  int Triangles = 0;
+  double MeanCorrection = 0;
+  double MaxCorrection = 0;
+};
+
+/// Per level, for reports and tests.
+struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
+{
+  int Level = 0;
+  double Sigma = 0;
+  int Sweeps = 0;
+  bool Converged = false; ///< mean |c| fell below the tolerance before the cap
+  int Vertices = 0;
+  int Triangles = 0;
+  double MeanEdgeLength = 0;
+  int MarkedTriangles = 0; ///< marked for the next refinement (0 on the last level)
+  RefinementCounts Refinement; ///< of the refinement that followed this level
+};
+
+class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
+{
+public:
+  /// Progress in [0, 1]; return false to abort (the surface stays valid).
+  using ProgressCallback = std::function<bool(double)>;
+  /// Called after every sweep (after the points moved); return false to stop the run.
+  using SweepCallback = std::function<bool(const SweepRecord&, const TriangleMesh&)>;
+
+  void SetParameters(const MultilevelParameters& p) { this->Parameters = p; }
+  const MultilevelParameters& GetParameters() const { return this->Parameters; }
+  void SetProgressCallback(ProgressCallback cb) { this->Progress = std::move(cb); }
+  void SetSweepCallback(SweepCallback cb) { this->OnSweep = std::move(cb); }
+
+  /// Deform `mesh` (any closed or open manifold triangle mesh, Points/Triangles set)
+  /// toward the boundaries of the volume `scalars` (one float per voxel, x fastest).
+  /// Returns false with a message on bad input or a broken invariant; the mesh is then
+  /// left as it was at the last valid state.
+  bool Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error);
+
+  const std::vector<SweepRecord>& GetSweeps() const { return this->Sweeps; }
+  const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
+  const std::vector<std::string>& GetWarnings() const { return this->Warnings; }
+  bool GetAborted() const { return this->Aborted; }
+  /// Per vertex of the final mesh, from the last sweep.
+  const std::vector<double>& GetErrorIndicator() const { return this->ErrorIndicator; }
+  const std::vector<double>& GetDisplacement() const { return this->Displacement; }
+  const std::vector<double>& GetExternalForce() const { return this->ExternalForce; }
+  /// Most vertices that lay outside the volume (no external force) in one sweep.
+  int GetMaxOutsideVertices() const { return this->MaxOutsideVertices; }
+  double GetFinalMeanCorrection() const { return this->Sweeps.empty() ? 0.0 : this->Sweeps.back().MeanCorrection; }
+  /// Sigma of the last level solved.
+  double GetFinalSigma() const { return this->Levels.empty() ? 0.0 : this->Levels.back().Sigma; }
+  bool GetLastLevelConverged() const { return !this->Levels.empty() && this->Levels.back().Converged; }
+  int GetTotalSweeps() const { return static_cast<int>(this->Sweeps.size()); }
+
+  /// The marking rule of step 3, exposed for tests: one mark per triangle.
+  static std::vector<char> MarkTriangles(const TriangleMesh& mesh, const std::vector<double>& estimator,
+    double relativeThreshold, bool uniform);
+
+private:
+  MultilevelParameters Parameters;
+  ProgressCallback Progress;
+  SweepCallback OnSweep;
+  std::vector<SweepRecord> Sweeps;
+  std::vector<LevelRecord> Levels;
+  std::vector<std::string> Warnings;
+  std::vector<double> ErrorIndicator, Displacement, ExternalForce;
+  int MaxOutsideVertices = 0;
+  bool Aborted = false;
+};
+} // namespace dsurf
+
+#endif

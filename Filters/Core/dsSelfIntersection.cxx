@@ -1,0 +1,350 @@
+#include "dsSelfIntersection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace dsurf
+{
+namespace
+{
+/// Signed distances (times |n|) of the three points to the plane through p0 with normal n;
+/// values within eps of zero are snapped to zero (touching = intersecting).
+inline void PlaneDistances(const Vec3& n, const Vec3& p0, const Vec3& x0, const Vec3& x1,
+  const Vec3& x2, double eps, double d[3])
+{
+  const double off = Dot(n, p0);
+  d[0] = Dot(n, x0) - off;
+  d[1] = Dot(n, x1) - off;
+  d[2] = Dot(n, x2) - off;
+  for (int i = 0; i < 3; ++i)
+  {
+    if (std::abs(d[i]) <= eps)
+    {
+      d[i] = 0;
+    }
+  }
+}
+
+/// Interval where the triangle with projections p[] and plane distances d[] crosses the
+/// intersection line. False when the configuration is coplanar (all d zero).
+inline bool Interval(const double p[3], const double d[3], double& lo, double& hi)
+{
+  int iso;
+  if (d[0] * d[1] > 0)
+  {
+    iso = 2;
+  }
+  else if (d[0] * d[2] > 0)
+  {
+    iso = 1;
+  }
+  else if (d[1] * d[2] > 0 || d[0] != 0)
+  {
+    iso = 0;
+  }
+  else if (d[1] != 0)
+  {
+    iso = 1;
+  }
+  else if (d[2] != 0)
+  {
+    iso = 2;
+  }
+  else
+  {
+    return false;
+  }
+  const int j = (iso + 1) % 3, k = (iso + 2) % 3;
+  const double tj = (d[iso] - d[j]) != 0 ? p[iso] + (p[j] - p[iso]) * d[iso] / (d[iso] - d[j]) : p[j];
+  const double tk = (d[iso] - d[k]) != 0 ? p[iso] + (p[k] - p[iso]) * d[iso] / (d[iso] - d[k]) : p[k];
+  lo = std::min(tj, tk);
+  hi = std::max(tj, tk);
+  return true;
+}
+
+inline double Orient2D(const double a[2], const double b[2], const double c[2])
+{
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+inline bool SegmentsIntersect2D(const double a[2], const double b[2], const double c[2], const double d[2])
+{
+  const double o1 = Orient2D(a, b, c), o2 = Orient2D(a, b, d);
+  const double o3 = Orient2D(c, d, a), o4 = Orient2D(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+  {
+    return true;
+  }
+  auto onSegment = [](const double p[2], const double q[2], const double r[2]) {
+    return std::min(p[0], q[0]) <= r[0] && r[0] <= std::max(p[0], q[0]) &&
+      std::min(p[1], q[1]) <= r[1] && r[1] <= std::max(p[1], q[1]);
+  };
+  return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
+    (o3 == 0 && onSegment(c, d, a)) || (o4 == 0 && onSegment(c, d, b));
+}
+
+inline bool PointInTriangle2D(const double p[2], const double t[3][2])
+{
+  const double o0 = Orient2D(t[0], t[1], p), o1 = Orient2D(t[1], t[2], p), o2 = Orient2D(t[2], t[0], p);
+  return (o0 >= 0 && o1 >= 0 && o2 >= 0) || (o0 <= 0 && o1 <= 0 && o2 <= 0);
+}
+
+bool CoplanarIntersect(const Vec3& n, const Vec3* a, const Vec3* b)
+{
+  // Drop the dominant axis of the normal.
+  int drop = 0;
+  if (std::abs(n[1]) > std::abs(n[drop]))
+  {
+    drop = 1;
+  }
+  if (std::abs(n[2]) > std::abs(n[drop]))
+  {
+    drop = 2;
+  }
+  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+  double pa[3][2], pb[3][2];
+  for (int i = 0; i < 3; ++i)
+  {
+    pa[i][0] = a[i][u];
+    pa[i][1] = a[i][v];
+    pb[i][0] = b[i][u];
+    pb[i][1] = b[i][v];
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      if (SegmentsIntersect2D(pa[i], pa[(i + 1) % 3], pb[j], pb[(j + 1) % 3]))
+      {
+        return true;
+      }
+    }
+  }
+  return PointInTriangle2D(pa[0], pb) || PointInTriangle2D(pb[0], pa);
+}
+
+inline double Tolerance(const Vec3& n, const Vec3& x0, const Vec3& x1, const Vec3& x2)
+{
+  const double scale = std::max({ Norm(x1 - x0), Norm(x2 - x0), Norm(x2 - x1) });
+  return 1e-12 * Norm(n) * scale;
+}
+} // namespace
+
+bool TrianglesIntersect(
+  const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2)
+{
+  const Vec3 nB = Cross(b1 - b0, b2 - b0);
+  double da[3];
+  PlaneDistances(nB, b0, a0, a1, a2, Tolerance(nB, b0, b1, b2), da);
+  if ((da[0] > 0 && da[1] > 0 && da[2] > 0) || (da[0] < 0 && da[1] < 0 && da[2] < 0))
+  {
+    return false;
+  }
+  const Vec3 nA = Cross(a1 - a0, a2 - a0);
+  double db[3];
+  PlaneDistances(nA, a0, b0, b1, b2, Tolerance(nA, a0, a1, a2), db);
+  if ((db[0] > 0 && db[1] > 0 && db[2] > 0) || (db[0] < 0 && db[1] < 0 && db[2] < 0))
+  {
+    return false;
+  }
+  const Vec3 a[3] = { a0, a1, a2 }, b[3] = { b0, b1, b2 };
+  const Vec3 dir = Cross(nA, nB);
+  // Project onto the dominant axis of the intersection line (same order as the line).
+  int axis = 0;
+  if (std::abs(dir[1]) > std::abs(dir[axis]))
+  {
+    axis = 1;
+  }
+  if (std::abs(dir[2]) > std::abs(dir[axis]))
+  {
+    axis = 2;
+  }
+  const double pa[3] = { a0[axis], a1[axis], a2[axis] };
+  const double pb[3] = { b0[axis], b1[axis], b2[axis] };
+  double aLo, aHi, bLo, bHi;
+  const bool okA = Interval(pa, da, aLo, aHi);
+  const bool okB = Interval(pb, db, bLo, bHi);
+  if (!okA || !okB || Dot(dir, dir) == 0)
+  {
+    return CoplanarIntersect(Norm(nA) > 0 ? nA : nB, a, b);
+  }
+  return !(aHi < bLo || bHi < aLo);
+}
+
+bool SharedVertexTrianglesOverlap(
+  const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2)
+{
+  // The planes meet in a line through s; each triangle covers a segment of it that
+  // starts at s (or only s). They overlap beyond s when both segments leave s on the
+  // same side.
+  const Vec3 nA = Cross(a1 - s, a2 - s), nB = Cross(b1 - s, b2 - s);
+  const Vec3 dir = Cross(nA, nB);
+  const double lenA = Norm(nA), lenB = Norm(nB);
+  if (lenA == 0 || lenB == 0 || Norm(dir) <= 1e-12 * lenA * lenB)
+  {
+    return false; // degenerate or coplanar
+  }
+  // Side of the crossing of the far edge (x1,x2) of one triangle with the other's plane.
+  auto side = [&](const Vec3& n, const Vec3& x1, const Vec3& x2, double eps) {
+    double d1 = Dot(n, x1 - s), d2 = Dot(n, x2 - s);
+    if (std::abs(d1) <= eps)
+    {
+      d1 = 0;
+    }
+    if (std::abs(d2) <= eps)
+    {
+      d2 = 0;
+    }
+    if ((d1 > 0 && d2 > 0) || (d1 < 0 && d2 < 0) || (d1 == 0 && d2 == 0))
+    {
+      return 0; // touches the plane only at s (or lies in it: coplanar edge, ignored)
+    }
+    const double t = d1 / (d1 - d2);
+    const Vec3 x = x1 + t * (x2 - x1);
+    const double along = Dot(x - s, dir);
+    return along > 0 ? 1 : (along < 0 ? -1 : 0);
+  };
+  const int sa = side(nB, a1, a2, Tolerance(nB, s, b1, b2));
+  const int sb = side(nA, b1, b2, Tolerance(nA, s, a1, a2));
+  return sa != 0 && sa == sb;
+}
+
+int CountSelfIntersections(const TriangleMesh& mesh, std::vector<std::pair<int, int>>* pairs)
+{
+  const int nTri = mesh.NumberOfTriangles();
+  if (pairs)
+  {
+    pairs->clear();
+  }
+  if (nTri < 2)
+  {
+    return 0;
+  }
+  const auto& P = mesh.Points;
+  std::vector<std::array<double, 6>> boxes(nTri);
+  double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+  double meanSize = 0;
+  for (int t = 0; t < nTri; ++t)
+  {
+    auto& b = boxes[t];
+    const auto& tri = mesh.Triangles[t];
+    for (int a = 0; a < 3; ++a)
+    {
+      b[a] = std::min({ P[tri[0]][a], P[tri[1]][a], P[tri[2]][a] });
+      b[a + 3] = std::max({ P[tri[0]][a], P[tri[1]][a], P[tri[2]][a] });
+      lo[a] = std::min(lo[a], b[a]);
+      hi[a] = std::max(hi[a], b[a + 3]);
+    }
+    meanSize += std::max({ b[3] - b[0], b[4] - b[1], b[5] - b[2] });
+  }
+  meanSize /= nTri;
+  // Cells about the size of a triangle; coarser if that would make the grid huge.
+  double cell = meanSize > 0 ? meanSize : 1.0;
+  const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
+  cell = std::max(cell, extent / 1024.0);
+  int dims[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / cell) + 1);
+  }
+  auto cellOf = [&](double x, int a) {
+    return std::min(dims[a] - 1, std::max(0, static_cast<int>((x - lo[a]) / cell)));
+  };
+
+  // (cell key, triangle) pairs, sorted: each run of equal keys is one occupied cell.
+  std::vector<std::pair<std::uint64_t, int>> entries;
+  entries.reserve(static_cast<size_t>(nTri) * 4);
+  std::vector<std::array<int, 6>> ranges(nTri);
+  for (int t = 0; t < nTri; ++t)
+  {
+    auto& r = ranges[t];
+    for (int a = 0; a < 3; ++a)
+    {
+      r[a] = cellOf(boxes[t][a], a);
+      r[a + 3] = cellOf(boxes[t][a + 3], a);
+    }
+    for (int k = r[2]; k <= r[5]; ++k)
+      for (int j = r[1]; j <= r[4]; ++j)
+        for (int i = r[0]; i <= r[3]; ++i)
+        {
+          const std::uint64_t key = (static_cast<std::uint64_t>(k) * dims[1] + j) * dims[0] + i;
+          entries.emplace_back(key, t);
+        }
+  }
+  std::sort(entries.begin(), entries.end());
+
+  int count = 0;
+  size_t begin = 0;
+  while (begin < entries.size())
+  {
+    size_t end = begin;
+    while (end < entries.size() && entries[end].first == entries[begin].first)
+    {
+      ++end;
+    }
+    const std::uint64_t key = entries[begin].first;
+    const int ci = static_cast<int>(key % dims[0]);
+    const int cj = static_cast<int>((key / dims[0]) % dims[1]);
+    const int ck = static_cast<int>(key / (static_cast<std::uint64_t>(dims[0]) * dims[1]));
+    for (size_t x = begin; x < end; ++x)
+    {
+      const int t1 = entries[x].second;
+      for (size_t y = x + 1; y < end; ++y)
+      {
+        const int t2 = entries[y].second;
+        const auto &r1 = ranges[t1], &r2 = ranges[t2];
+        // Test each pair once: in the lowest cell their cell ranges share.
+        if (std::max(r1[0], r2[0]) != ci || std::max(r1[1], r2[1]) != cj || std::max(r1[2], r2[2]) != ck)
+        {
+          continue;
+        }
+        const auto &b1 = boxes[t1], &b2 = boxes[t2];
+        if (b1[3] < b2[0] || b2[3] < b1[0] || b1[4] < b2[1] || b2[4] < b1[1] || b1[5] < b2[2] ||
+          b2[5] < b1[2])
+        {
+          continue;
+        }
+        const auto &A = mesh.Triangles[t1], &B = mesh.Triangles[t2];
+        int shared = 0, sa = -1, sb = -1;
+        for (int i = 0; i < 3; ++i)
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            if (A[i] == B[j])
+            {
+              ++shared;
+              sa = i;
+              sb = j;
+            }
+          }
+        }
+        bool hit = false;
+        if (shared == 0)
+        {
+          hit = TrianglesIntersect(P[A[0]], P[A[1]], P[A[2]], P[B[0]], P[B[1]], P[B[2]]);
+        }
+        else if (shared == 1)
+        {
+          hit = SharedVertexTrianglesOverlap(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
+            P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
+        }
+        if (hit)
+        {
+          ++count;
+          if (pairs)
+          {
+            pairs->emplace_back(std::min(t1, t2), std::max(t1, t2));
+          }
+        }
+      }
+    }
+    begin = end;
+  }
+  if (pairs)
+  {
+    std::sort(pairs->begin(), pairs->end());
+  }
+  return count;
+}
+} // namespace dsurf

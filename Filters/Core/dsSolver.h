@@ -1,0 +1,113 @@
+// The single-level deformable-surface solver (SPEC.md §3-5): umbrella operators with
+// the label weights of SPEC §6.4, one fixed-point step per vertex, Gauss-Seidel
+// in place, and the self-intersection rule for the external force. Plain C++, no
+// pipeline types; the hierarchy (refinement, sigma halving) drives it from outside.
+//
+// Parallel Gauss-Seidel: the vertex graph is coloured at distance 2 (two vertices
+// of one colour share no edge and no U^2 stencil), colours are swept in sequence and
+// the vertices of one colour in parallel. A vertex's update reads only points of
+// earlier colours or not yet updated ones, never one being written concurrently, so
+// the result does not depend on the number of threads (bit-identical).
+#ifndef dsSolver_h
+#define dsSolver_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsScaleSpace.h"
+#include "dsTriangleMesh.h"
+
+#include <vector>
+
+namespace dsurf
+{
+
+struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
+{
+  double Tau = 0.1;   ///< membrane (1) vs thin plate (0), SPEC §2
+  double Gamma = 0.07; ///< damping of the correction, SPEC §4
+  /// SPEC §5 rule (project F onto the umbrella or the normal). false is a test-only
+  /// switch that applies the raw force, to show what the rule prevents.
+  bool ProjectExternalForce = true;
+  /// (hierarchy branch) SPEC §6.4 label weights on (default). false weighs every
+  /// neighbour 1 whatever the labels: a test-only switch showing what the table prevents
+  /// (vertices drifting on red-green borders).
+  bool UseLabelWeights = true;
+  int NumberOfThreads = 0; ///< 0 = the machine's hardware concurrency
+};
+
+struct DEFORMABLESURFACEFILTERS_EXPORT SweepStatistics
+{
+  double MeanCorrection = 0; ///< mean |c| over the vertices moved in the sweep
+  double MaxCorrection = 0;  ///< max |c|
+  int MovedVertices = 0;     ///< vertices corrected (not on an open boundary, not isolated)
+  int OutsideVertices = 0;   ///< vertices that sampled no force because they lie outside the volume
+};
+
+class DEFORMABLESURFACEFILTERS_EXPORT Solver
+{
+public:
+  void SetParameters(const SolverParameters& parameters) { this->Parameters = parameters; }
+  const SolverParameters& GetParameters() const { return this->Parameters; }
+
+  /// The mesh to deform in place. It must have BuildTopology() done. Rebuilds the
+  /// colouring: call again after the connectivity changed (refinement).
+  void SetMesh(TriangleMesh* mesh);
+  TriangleMesh* GetMesh() const { return this->Mesh; }
+
+  /// External force F(x) = forceScale * field->SampleForce(x); nullptr = no external force.
+  /// The field is not copied and must outlive the sweeps.
+  void SetForceField(const ForceField* field, double forceScale)
+  {
+    // Sampled through a pointer set here, in the caller's code, so the solver library
+    // itself does not depend on the force implementation (refinement-only users link
+    // without it).
+    this->Field = field;
+    this->ForceScale = forceScale;
+    this->Sampler = field ? &Solver::SampleField : nullptr;
+  }
+
+  /// One Gauss-Seidel sweep: every vertex not on an open boundary is corrected once,
+  /// in place: c = gamma (tau c1 + (1 - tau) alpha c2 + F_projected), p <- p + c.
+  SweepStatistics Sweep();
+
+  /// Per vertex, from the last sweep (0 for fixed vertices):
+  /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (SPEC §6.2),
+  /// in the same units as Displacement().
+  const std::vector<double>& ErrorIndicator() const { return this->ErrorIndicatorValues; }
+  /// |c|, the length the vertex moved.
+  const std::vector<double>& Displacement() const { return this->DisplacementValues; }
+  /// |F| before the SPEC §5 projection (forceScale applied).
+  const std::vector<double>& ExternalForceMagnitude() const { return this->ForceValues; }
+
+  int NumberOfColors() const { return static_cast<int>(this->ClassOffsets.size()) - 1; }
+  /// Vertices of colour k: ColorVertices()[ColorOffsets()[k] .. ColorOffsets()[k+1]).
+  const std::vector<int>& ColorOffsets() const { return this->ClassOffsets; }
+  const std::vector<int>& ColorVertices() const { return this->ClassVertices; }
+
+  /// The umbrella operator of vertex v with the SPEC §6.4 weights (uniform when the
+  /// weights of v sum to zero): U(v) = sum w_i q_i / W - v. Exposed for tests.
+  Vec3 Umbrella(int v) const;
+
+private:
+  void BuildColoring();
+  /// Correct vertex v in place; records the per-vertex values.
+  void UpdateVertex(int v);
+
+  SolverParameters Parameters;
+  TriangleMesh* Mesh = nullptr;
+  static bool SampleField(const ForceField* field, const double x[3], double f[3])
+  {
+    return field->SampleForce(x, f);
+  }
+
+  const ForceField* Field = nullptr;
+  bool (*Sampler)(const ForceField*, const double*, double*) = nullptr;
+  double ForceScale = 1.0;
+  bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
+  std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
+  int ColoredPoints = -1; ///< point count the colouring was built for
+  std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues;
+  std::vector<unsigned char> OutsideFlags;
+};
+} // namespace dsurf
+
+#endif

@@ -1,0 +1,472 @@
+#include "vtkDeformableSurfaceFilter.h"
+
+#include "dsMultilevel.h"
+#include "dsScaleSpace.h"
+#include "dsSelfIntersection.h"
+#include "dsSolver.h"
+#include "dsTriangleMesh.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCleanPolyData.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTable.h"
+#include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkDeformableSurfaceFilter);
+
+namespace
+{
+constexpr double MaxStableGamma = 0.5;
+
+struct ToFloat
+{
+  template <typename ArrayT>
+  void operator()(ArrayT* array, std::vector<float>& out) const
+  {
+    const auto values = vtk::DataArrayValueRange<1>(array);
+    out.resize(values.size());
+    std::transform(values.cbegin(), values.cend(), out.begin(),
+      [](typename decltype(values)::ValueType v) { return static_cast<float>(v); });
+  }
+};
+
+/// The columns of the convergence table (output 1), one row per sweep.
+struct ConvergenceColumns
+{
+  vtkNew<vtkIntArray> Sweep, Level, Vertices, Triangles;
+  vtkNew<vtkDoubleArray> Sigma, MeanCorrection, MaxCorrection;
+
+  ConvergenceColumns()
+  {
+    this->Sweep->SetName("Sweep");
+    this->Level->SetName("Level");
+    this->Sigma->SetName("Sigma");
+    this->Vertices->SetName("Vertices");
+    this->Triangles->SetName("Triangles");
+    this->MeanCorrection->SetName("MeanCorrection");
+    this->MaxCorrection->SetName("MaxCorrection");
+  }
+  void AddTo(vtkTable* table)
+  {
+    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ this->Sweep, this->Level,
+           this->Sigma, this->Vertices, this->Triangles, this->MeanCorrection, this->MaxCorrection })
+    {
+      table->AddColumn(a);
+    }
+  }
+};
+
+/// Triangulate and merge coincident points (copies; the input is untouched), then
+/// fill the core mesh. False with a message on bad input.
+bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error)
+{
+  vtkNew<vtkPolyData> copy;
+  copy->ShallowCopy(input);
+  vtkNew<vtkTriangleFilter> triangulate;
+  triangulate->SetInputData(copy);
+  triangulate->PassVertsOff();
+  triangulate->PassLinesOff();
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputConnection(triangulate->GetOutputPort());
+  clean->PointMergingOn();
+  clean->ToleranceIsAbsoluteOff();
+  clean->SetTolerance(1e-6);
+  clean->ConvertLinesToPointsOff();
+  clean->ConvertPolysToLinesOff();
+  clean->ConvertStripsToPolysOff();
+  clean->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  clean->Update();
+  vtkPolyData* tri = clean->GetOutput();
+  if (!tri || tri->GetNumberOfPolys() == 0)
+  {
+    error = "the initial surface has no polygons or triangle strips";
+    return false;
+  }
+  const vtkIdType nPts = tri->GetNumberOfPoints();
+  mesh = dsurf::TriangleMesh();
+  mesh.Points.resize(nPts);
+  for (vtkIdType i = 0; i < nPts; ++i)
+  {
+    tri->GetPoint(i, mesh.Points[i].data());
+    for (double x : mesh.Points[i])
+    {
+      if (!std::isfinite(x))
+      {
+        error = "the initial surface has a non-finite point coordinate";
+        return false;
+      }
+    }
+  }
+  mesh.Triangles.reserve(tri->GetNumberOfPolys());
+  auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    if (n == 3)
+    {
+      mesh.Triangles.push_back(
+        { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+    }
+  }
+  std::string topologyError;
+  if (!mesh.BuildTopology(&topologyError))
+  {
+    error = "the initial surface is not a manifold triangle mesh: " + topologyError;
+    return false;
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkDoubleArray> PointArray(const char* name, const std::vector<double>& values)
+{
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), a->GetPointer(0));
+  return a;
+}
+
+/// The deformed mesh as vtkPolyData with the solver's per-vertex arrays.
+void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
+{
+  const int nPts = mesh.NumberOfPoints();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(nPts);
+  for (int i = 0; i < nPts; ++i)
+  {
+    points->SetPoint(i, mesh.Points[i].data());
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(mesh.NumberOfTriangles(), 3 * mesh.NumberOfTriangles());
+  for (const auto& t : mesh.Triangles)
+  {
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  output->SetPoints(points);
+  output->SetPolys(polys);
+
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(nPts);
+  vtkNew<vtkIntArray> levels;
+  levels->SetName("RefinementLevel");
+  levels->SetNumberOfTuples(nPts);
+  vtkNew<vtkUnsignedCharArray> labels;
+  labels->SetName("VertexLabel");
+  labels->SetNumberOfTuples(nPts);
+  for (int i = 0; i < nPts; ++i)
+  {
+    dsurf::Vec3 n = mesh.AreaWeightedNormal(i);
+    const double len = dsurf::Norm(n);
+    if (len > 0)
+    {
+      n = dsurf::operator*(1.0 / len, n);
+    }
+    normals->SetTuple3(i, n[0], n[1], n[2]);
+    levels->SetValue(i, mesh.Levels[i]);
+    labels->SetValue(i, mesh.Labels[i]);
+  }
+  vtkPointData* pd = output->GetPointData();
+  pd->SetNormals(normals);
+  const auto sized = [nPts](const std::vector<double>& v) {
+    return static_cast<int>(v.size()) == nPts ? v : std::vector<double>(nPts, 0.0);
+  };
+  pd->AddArray(PointArray("Displacement", sized(solver.GetDisplacement())));
+  pd->AddArray(PointArray("ExternalForce", sized(solver.GetExternalForce())));
+  pd->AddArray(PointArray("ErrorIndicator", sized(solver.GetErrorIndicator())));
+  pd->AddArray(levels);
+  pd->AddArray(labels);
+}
+
+template <typename ArrayT, typename T>
+void AddFieldValue(vtkFieldData* fd, const char* name, T value)
+{
+  vtkNew<ArrayT> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkDeformableSurfaceFilter::vtkDeformableSurfaceFilter()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+vtkDeformableSurfaceFilter::~vtkDeformableSurfaceFilter() = default;
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::SetInitialSurfaceConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkDeformableSurfaceFilter::SetInitialSurfaceData(vtkDataObject* surface)
+{
+  this->SetInputData(1, surface);
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::SetGamma(double gamma)
+{
+  double clamped = gamma;
+  if (!(gamma > 0.0) || gamma > MaxStableGamma)
+  {
+    clamped = (gamma > MaxStableGamma) ? MaxStableGamma : 1e-6;
+    vtkWarningMacro("Gamma " << gamma << " is outside the stable range (0, " << MaxStableGamma
+                             << "]; using " << clamped << ".");
+  }
+  if (this->Gamma != clamped)
+  {
+    this->Gamma = clamped;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTable* vtkDeformableSurfaceFilter::GetConvergenceTable()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+//------------------------------------------------------------------------------
+int vtkDeformableSurfaceFilter::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  }
+  else
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  }
+  return 1;
+}
+
+int vtkDeformableSurfaceFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+// The Gaussian reaches across the whole volume: always ask for all of it.
+int vtkDeformableSurfaceFilter::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0);
+  if (imageInfo && imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    int whole[6];
+    imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+  }
+  vtkInformation* surfaceInfo = inputVector[1]->GetInformationObject(0);
+  if (surfaceInfo)
+  {
+    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkDeformableSurfaceFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
+  vtkPolyData* surface = vtkPolyData::GetData(inputVector[1], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  if (!output || !table)
+  {
+    return 0;
+  }
+  output->Initialize();
+  table->Initialize();
+
+  // --- the image and its force field ---
+  if (!image || image->GetNumberOfPoints() <= 0)
+  {
+    vtkErrorMacro("No input image (port 0) or the image is empty.");
+    return 1;
+  }
+  if (!surface)
+  {
+    vtkErrorMacro("No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
+    return 1;
+  }
+  dsurf::ImageGeometry geometry;
+  image->GetDimensions(geometry.Dimensions);
+  if (geometry.Dimensions[0] < 2 || geometry.Dimensions[1] < 2 || geometry.Dimensions[2] < 2)
+  {
+    vtkErrorMacro("A 3-D image is needed (at least 2 voxels along every axis).");
+    return 1;
+  }
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  if (!scalars || scalars->GetNumberOfComponents() != 1 ||
+    scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    vtkErrorMacro("Choose a one-component point array of the image (Scalars).");
+    return 1;
+  }
+  image->GetSpacing(geometry.Spacing);
+  const int* extent = image->GetExtent();
+  image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], geometry.Origin);
+  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9,
+    geometry.Direction);
+
+  // --- the initial surface ---
+  dsurf::TriangleMesh mesh;
+  std::string error;
+  if (!BuildMesh(surface, mesh, error))
+  {
+    vtkErrorMacro("Bad initial surface: " << error << ".");
+    return 1;
+  }
+  if (!mesh.IsConsistentlyOriented())
+  {
+    vtkWarningMacro("The initial surface is not consistently oriented; vertex normals "
+                    "(used to project the external force) may be poor.");
+  }
+  vtkDebugMacro("Initial surface: " << mesh.NumberOfPoints() << " points, "
+                                    << mesh.NumberOfTriangles() << " triangles, signed volume "
+                                    << mesh.SignedVolume() << ".");
+
+  std::vector<float> converted;
+  const float* values = nullptr;
+  if (vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars))
+  {
+    values = asFloat->GetPointer(0);
+  }
+  else
+  {
+    if (!vtkArrayDispatch::Dispatch::Execute(scalars, ToFloat{}, converted))
+    {
+      ToFloat{}(scalars, converted);
+    }
+    values = converted.data();
+  }
+  // --- the multilevel solve (hierarchy branch): dsurf::MultilevelSolver runs the
+  // levels (sweeps, error estimator, red-green refinement, butterfly, sigma halving,
+  // force field per level); here only parameters in and results out.
+  dsurf::MultilevelParameters mp;
+  mp.Solver.Tau = this->Tau;
+  mp.Solver.Gamma = this->Gamma;
+  mp.Solver.ProjectExternalForce = this->ProjectExternalForce;
+  mp.Solver.NumberOfThreads = this->NumberOfThreads;
+  mp.EdgeWeight = this->EdgeWeight;
+  mp.ImageWeight = this->ImageWeight;
+  mp.InitialSigma = this->Sigma;
+  mp.InitialSigmaFraction = this->SigmaFraction;
+  mp.HierarchicalSigma = this->HierarchicalSigma;
+  mp.MaxLevels = this->MaxLevels;
+  mp.MaxSweepsPerLevel = this->MaxSweepsPerLevel;
+  mp.Tolerance = this->ConvergenceTolerance;
+  mp.RefinementThreshold = this->RefinementThreshold;
+  mp.UniformRefinement = this->UniformRefinement;
+  mp.ProlongationMode =
+    this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
+  mp.MaxVertices = this->MaxVertices;
+  mp.CheckInvariants = this->CheckTopology;
+  dsurf::MultilevelSolver solver;
+  solver.SetParameters(mp);
+  solver.SetProgressCallback([this](double f) {
+    this->UpdateProgress(0.02 + 0.96 * f);
+    return !this->GetAbortExecute();
+  });
+  ConvergenceColumns columns;
+  solver.SetSweepCallback([&columns](const dsurf::SweepRecord& r, const dsurf::TriangleMesh&) {
+    columns.Sweep->InsertNextValue(r.Sweep);
+    columns.Level->InsertNextValue(r.Level);
+    columns.Sigma->InsertNextValue(r.Sigma);
+    columns.Vertices->InsertNextValue(r.Vertices);
+    columns.Triangles->InsertNextValue(r.Triangles);
+    columns.MeanCorrection->InsertNextValue(r.MeanCorrection);
+    columns.MaxCorrection->InsertNextValue(r.MaxCorrection);
+    return true;
+  });
+  if (!solver.Run(values, geometry, mesh, &error))
+  {
+    vtkErrorMacro("Deformable surface failed: " << error);
+    output->Initialize();
+    return 1;
+  }
+  for (const std::string& w : solver.GetWarnings())
+  {
+    vtkWarningMacro(<< w);
+  }
+  if (solver.GetMaxOutsideVertices() > 0)
+  {
+    vtkWarningMacro(<< solver.GetMaxOutsideVertices()
+                    << " vertices lay outside the image and felt no external force.");
+  }
+
+  // --- outputs ---
+  FillOutput(mesh, solver, output);
+  vtkFieldData* fd = output->GetFieldData();
+  AddFieldValue<vtkIntArray>(fd, "Sweeps", solver.GetTotalSweeps());
+  AddFieldValue<vtkIntArray>(fd, "Levels", static_cast<int>(solver.GetLevels().size()));
+  AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
+  AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
+  AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
+  AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
+  columns.AddTo(table);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Tau: " << this->Tau << "\n";
+  os << indent << "Gamma: " << this->Gamma << "\n";
+  os << indent << "EdgeWeight: " << this->EdgeWeight << "\n";
+  os << indent << "ImageWeight: " << this->ImageWeight << "\n";
+  os << indent << "Sigma: " << this->Sigma << "\n";
+  os << indent << "SigmaFraction: " << this->SigmaFraction << "\n";
+  os << indent << "MaxSweepsPerLevel: " << this->MaxSweepsPerLevel << "\n";
+  os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
+  os << indent << "MaxLevels: " << this->MaxLevels << "\n";
+  os << indent << "RefinementThreshold: " << this->RefinementThreshold << "\n";
+  os << indent << "UniformRefinement: " << this->UniformRefinement << "\n";
+  os << indent << "HierarchicalSigma: " << this->HierarchicalSigma << "\n";
+  os << indent << "ButterflyProlongation: " << this->ButterflyProlongation << "\n";
+  os << indent << "MaxVertices: " << this->MaxVertices << "\n";
+  os << indent << "CheckTopology: " << this->CheckTopology << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "ProjectExternalForce: " << this->ProjectExternalForce << "\n";
+}

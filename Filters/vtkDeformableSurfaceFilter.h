@@ -1,0 +1,253 @@
+/**
+ * @class   vtkDeformableSurfaceFilter
+ * @brief   Deforms an initial triangle surface onto the boundaries of a volume.
+ *
+ * The deformable surface of Lürig, Kobbelt & Ertl (2000): a triangle mesh starting
+ * near an object of a 3-D image moves until it rests on the object's boundary,
+ * minimising membrane (Tau) and thin-plate (1 - Tau) energies plus the external
+ * potential P = -(EdgeWeight |grad(G_sigma * f)| + ImageWeight f).
+ *
+ * Inputs: port 0 a vtkImageData (the point array chosen with SetInputArrayToProcess,
+ * ParaView: Scalars; default the active scalars); port 1 the initial surface, any
+ * vtkPolyData with polygons and/or triangle strips, closed or open, any genus,
+ * several disjoint pieces at once (SetInitialSurfaceConnection()).
+ *
+ * How:
+ * - The surface is triangulated and coincident points are merged (ParaView's Box
+ *   has each face separate, Sphere has a seam), then the topology is built. Vertices
+ *   on an open boundary stay fixed. An edge with three or more triangles is an error.
+ *   The input is never modified.
+ * - The external force is the same code as vtkImageScaleSpaceGradient (normalised
+ *   potential, world coordinates: spacing, origin and direction honoured), sampled
+ *   trilinearly at every vertex. It is applied in edge lengths (SPEC §6b): F = h sigma
+ *   (-grad P), h the mean edge length at the start of the level, so Tau and Gamma
+ *   keep their meaning at any scale. Vertices outside the volume feel no external
+ *   force (warned once).
+ * - Each sweep corrects every vertex once, in place (Gauss-Seidel):
+ *   c = Gamma (Tau U + (1 - Tau) alpha (-U^2 / alpha) + F'), where U, U^2, alpha are
+ *   the umbrella operators and F' is F projected onto the umbrella direction when
+ *   F . U > 0, else onto the area-weighted vertex normal (the paper's rule against
+ *   self-intersection). Sweeps stop when the mean |c| falls below
+ *   ConvergenceTolerance times the mean edge length, or after MaxSweepsPerLevel.
+ * - Multithreaded (vtkSMPTools, STDThread backend, NumberOfThreads) by a distance-2
+ *   colouring of the vertex graph: the result is bit-identical for any thread count.
+ *
+ * Output 0: the surface (triangles, input orientation kept; point order of the merged
+ * input) with point arrays Normals, Displacement (|c| of the last sweep),
+ * ExternalForce (|F|), ErrorIndicator (|internal part of c| of the last sweep),
+ * RefinementLevel, VertexLabel, and field data Sweeps, FinalMeanCorrection,
+ * SelfIntersections (intersecting triangle pairs, from a grid search) and Sigma.
+ * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
+ * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
+ *
+ * Hierarchy (SPEC §6, dsMultilevel.h): after a level converges, the error estimator
+ * (|internal part of the correction| per vertex) marks every triangle whose corner
+ * average exceeds RefinementThreshold times the level's mean (all triangles with
+ * UniformRefinement); the marked triangles are red-green refined (no T-vertices,
+ * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
+ * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
+ * It stops after MaxLevels refinements, when nothing is marked, or before exceeding
+ * MaxVertices (a warning).
+ *
+ * Caveats: the whole image is requested. Abort stops after the current sweep and
+ * outputs the (valid) surface reached so far. A weak boundary next to a strong one
+ * needs HierarchicalSigma off and a small Sigma.
+ */
+#ifndef vtkDeformableSurfaceFilter_h
+#define vtkDeformableSurfaceFilter_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkTable;
+
+class DEFORMABLESURFACEFILTERS_EXPORT vtkDeformableSurfaceFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkDeformableSurfaceFilter* New();
+  vtkTypeMacro(vtkDeformableSurfaceFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * The initial surface (port 1); the image is port 0 (SetInputConnection(0, ...)).
+   */
+  void SetInitialSurfaceConnection(vtkAlgorithmOutput* output);
+  void SetInitialSurfaceData(vtkDataObject* surface);
+
+  ///@{
+  /**
+   * Tau: membrane (1) versus thin-plate (0) share of the internal energy. Default 0.1.
+   */
+  vtkSetClampMacro(Tau, double, 0.0, 1.0);
+  vtkGetMacro(Tau, double);
+  ///@}
+
+  ///@{
+  /**
+   * Gamma: damping of each correction. Default 0.07. Values above 0.5 make the
+   * iteration diverge; they are clamped with a warning.
+   */
+  virtual void SetGamma(double gamma);
+  vtkGetMacro(Gamma, double);
+  ///@}
+
+  ///@{
+  /**
+   * Weights of the edge term |grad(G_sigma * f)| (default 1) and the image term f
+   * (default 0) of the external potential, each normalised to [0, 1].
+   */
+  vtkSetClampMacro(EdgeWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(EdgeWeight, double);
+  vtkSetClampMacro(ImageWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ImageWeight, double);
+  ///@}
+
+  ///@{
+  /**
+   * Gaussian sigma in world units; 0 (default) = SigmaFraction times the mean extent
+   * of the image (as in vtkImageScaleSpaceGradient).
+   */
+  vtkSetClampMacro(Sigma, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Sigma, double);
+  vtkSetClampMacro(SigmaFraction, double, 0.0, 1.0);
+  vtkGetMacro(SigmaFraction, double);
+  ///@}
+
+  ///@{
+  /**
+   * Stop a level after this many sweeps (a cap; levels normally stop on
+   * ConvergenceTolerance first). Default 2000.
+   */
+  vtkSetClampMacro(MaxSweepsPerLevel, int, 1, 1000000);
+  vtkGetMacro(MaxSweepsPerLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * A level has converged when the mean |c| of a sweep is below this fraction of the
+   * mean edge length. Default 1e-3.
+   */
+  vtkSetClampMacro(ConvergenceTolerance, double, 0.0, 1.0);
+  vtkGetMacro(ConvergenceTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of refinement steps after the first level (default 4; 0 = a single level on
+   * the initial mesh).
+   */
+  vtkSetClampMacro(MaxLevels, int, 0, 10);
+  vtkGetMacro(MaxLevels, int);
+  ///@}
+  ///@{
+  /**
+   * A triangle is refined when the mean error estimator of its corners exceeds
+   * RefinementThreshold times the mean estimator of the level (relative, so one default
+   * fits any data and level). Default 1: refine where the surface works harder than on
+   * average. Smaller refines more.
+   */
+  vtkSetClampMacro(RefinementThreshold, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RefinementThreshold, double);
+  ///@}
+  ///@{
+  /**
+   * Refine every triangle at every level instead of the marked ones. Default off.
+   */
+  vtkSetMacro(UniformRefinement, bool);
+  vtkGetMacro(UniformRefinement, bool);
+  vtkBooleanMacro(UniformRefinement, bool);
+  ///@}
+  ///@{
+  /**
+   * Halve sigma (and the kernel support) at every refinement. Default on. Off keeps
+   * sigma constant: for a weak boundary near a strong one, with a small Sigma.
+   */
+  vtkSetMacro(HierarchicalSigma, bool);
+  vtkGetMacro(HierarchicalSigma, bool);
+  vtkBooleanMacro(HierarchicalSigma, bool);
+  ///@}
+  ///@{
+  /**
+   * Place new vertices by the butterfly scheme (default on) or at edge midpoints.
+   */
+  vtkSetMacro(ButterflyProlongation, bool);
+  vtkGetMacro(ButterflyProlongation, bool);
+  vtkBooleanMacro(ButterflyProlongation, bool);
+  ///@}
+  ///@{
+  /**
+   * Refinement stops (with a warning) before the mesh would exceed this many vertices.
+   * Default 2 000 000.
+   */
+  vtkSetClampMacro(MaxVertices, vtkIdType, 4, VTK_ID_MAX);
+  vtkGetMacro(MaxVertices, vtkIdType);
+  ///@}
+  ///@{
+  /**
+   * Check the topology invariants (closed stays closed, manifold, Euler characteristic,
+   * orientation, no T-vertex) after every refinement; a failure is an error. Default
+   * off (always on in Debug builds).
+   */
+  vtkSetMacro(CheckTopology, bool);
+  vtkGetMacro(CheckTopology, bool);
+  vtkBooleanMacro(CheckTopology, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Threads for the solver and the force computation; 0 (default) = all cores.
+   * The result does not depend on it.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Diagnostic switch, default on: apply the paper's self-intersection rule
+   * (project the external force onto the umbrella direction or the normal).
+   * Off applies the raw force, which folds surfaces; for tests and comparisons only.
+   */
+  vtkSetMacro(ProjectExternalForce, bool);
+  vtkGetMacro(ProjectExternalForce, bool);
+  vtkBooleanMacro(ProjectExternalForce, bool);
+  ///@}
+
+  /**
+   * The convergence table (output port 1).
+   */
+  vtkTable* GetConvergenceTable();
+
+protected:
+  vtkDeformableSurfaceFilter();
+  ~vtkDeformableSurfaceFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Tau = 0.1;
+  double Gamma = 0.07;
+  double EdgeWeight = 1.0;
+  double ImageWeight = 0.0;
+  double Sigma = 0.0;
+  double SigmaFraction = 1.0 / 6.0;
+  int MaxSweepsPerLevel = 2000;
+  double ConvergenceTolerance = 1e-3;
+  int MaxLevels = 4;
+  double RefinementThreshold = 1.0;
+  bool UniformRefinement = false;
+  bool HierarchicalSigma = true;
+  bool ButterflyProlongation = true;
+  vtkIdType MaxVertices = 2000000;
+  bool CheckTopology = false;
+  int NumberOfThreads = 0;
+  bool ProjectExternalForce = true;
+
+private:
+  vtkDeformableSurfaceFilter(const vtkDeformableSurfaceFilter&) = delete;
+  void operator=(const vtkDeformableSurfaceFilter&) = delete;
+};
+
+#endif

@@ -1,0 +1,278 @@
+// vtkDeformableSurfaceFilter input handling: ParaView's Box (24 points, faces apart)
+// is merged into a closed cube, triangle strips are accepted, the input is never
+// modified, an open surface keeps its boundary, two disjoint surfaces both evolve,
+// a non-manifold edge and a missing surface give an error and an empty output,
+// Gamma is clamped, vertices outside the image are warned about.
+#include "DSTestHelpers.h"
+#include "TestSolverMeshes.h"
+
+#include "vtkDeformableSurfaceFilter.h"
+
+#include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkCubeSource.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkStripper.h"
+#include "vtkTable.h"
+#include "vtkTriangleFilter.h"
+
+namespace
+{
+class EventCounter : public vtkCommand
+{
+public:
+  static EventCounter* New() { return new EventCounter; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+  int Count = 0;
+};
+
+/// Two soft balls of radius 8 around (20,32,32) and (44,32,32) in a 64^3 image.
+vtkSmartPointer<vtkImageData> TwoBalls()
+{
+  const int n = 64;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfTuples(n * n * n);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        double v = 0;
+        for (double cx : { 20.0, 44.0 })
+        {
+          const double r = std::sqrt((i - cx) * (i - cx) + (j - 32.0) * (j - 32.0) + (k - 32.0) * (k - 32.0));
+          v = std::max(v, 1.0 / (1.0 + std::exp(3.0 * (r - 8.0))));
+        }
+        values->SetValue(i + n * (j + n * k), static_cast<float>(v));
+      }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+vtkSmartPointer<vtkPolyData> Sphere(double cx, double r, double endPhi = 180)
+{
+  vtkNew<vtkSphereSource> s;
+  s->SetCenter(cx, 32, 32);
+  s->SetRadius(r);
+  s->SetThetaResolution(24);
+  s->SetPhiResolution(24);
+  s->SetEndPhi(endPhi);
+  s->Update();
+  return s->GetOutput();
+}
+
+struct Result
+{
+  vtkSmartPointer<vtkPolyData> Surface;
+  int Errors = 0, Warnings = 0;
+};
+
+Result Deform(vtkImageData* image, vtkDataObject* surface, int sweeps = 300, double gamma = 0.07)
+{
+  vtkNew<vtkDeformableSurfaceFilter> filter;
+  vtkNew<EventCounter> errors, warnings;
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->AddObserver(vtkCommand::WarningEvent, warnings);
+  filter->SetInputData(0, image);
+  if (surface)
+  {
+    filter->SetInitialSurfaceData(surface);
+  }
+  filter->SetGamma(gamma);
+  filter->SetSigma(1.5);
+  filter->SetMaxSweepsPerLevel(sweeps);
+  filter->Update();
+  Result r;
+  r.Surface = filter->GetOutput();
+  r.Errors = errors->Count;
+  r.Warnings = warnings->Count;
+  return r;
+}
+
+double MeanDistance(vtkPolyData* pd, double cx, double r, vtkIdType begin, vtkIdType end)
+{
+  double sum = 0;
+  for (vtkIdType i = begin; i < end; ++i)
+  {
+    double x[3];
+    pd->GetPoint(i, x);
+    sum += std::abs(std::sqrt((x[0] - cx) * (x[0] - cx) + (x[1] - 32) * (x[1] - 32) + (x[2] - 32) * (x[2] - 32)) - r);
+  }
+  return sum / std::max<vtkIdType>(end - begin, 1);
+}
+} // namespace
+
+int TestDeformableSurfaceInput(int, char*[])
+{
+  auto image = TwoBalls();
+
+  // --- ParaView's Box: 24 points (each face separate) merge into a closed cube ---
+  {
+    vtkNew<vtkCubeSource> box;
+    box->SetCenter(20, 32, 32);
+    box->SetXLength(24);
+    box->SetYLength(24);
+    box->SetZLength(24);
+    box->Update();
+    const Result r = Deform(image, box->GetOutput(), 20);
+    std::cout << "Box: " << box->GetOutput()->GetNumberOfPoints() << " input points -> "
+              << r.Surface->GetNumberOfPoints() << " output points, " << r.Surface->GetNumberOfPolys()
+              << " triangles" << std::endl;
+    DS_CHECK(r.Surface->GetNumberOfPoints() == 8, "the Box's 24 points merge into 8");
+    DS_CHECK(r.Surface->GetNumberOfPolys() == 12, "the Box's 6 quads become 12 triangles");
+    DS_CHECK(r.Errors == 0, "no error for the Box");
+  }
+
+  // --- the input is not modified; strips give the same result as triangles ---
+  {
+    auto sphere = Sphere(20, 11);
+    vtkNew<vtkPolyData> before;
+    before->DeepCopy(sphere);
+    const vtkMTimeType mtime = sphere->GetMTime();
+    const Result tris = Deform(image, sphere);
+    int changed = 0;
+    for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      sphere->GetPoint(i, a);
+      before->GetPoint(i, b);
+      changed += (a[0] != b[0] || a[1] != b[1] || a[2] != b[2]);
+    }
+    DS_CHECK_LE(changed, 0, "input points changed by the filter");
+    DS_CHECK(sphere->GetMTime() == mtime, "input MTime unchanged");
+    const double d = MeanDistance(tris.Surface, 20, 8, 0, tris.Surface->GetNumberOfPoints());
+    DS_CHECK_LE(d, 0.4, "sphere onto ball 1: mean |d|");
+
+    vtkNew<vtkStripper> stripper;
+    stripper->SetInputData(sphere);
+    stripper->Update();
+    DS_CHECK(stripper->GetOutput()->GetNumberOfStrips() > 0, "the stripper made strips");
+    const Result strips = Deform(image, stripper->GetOutput());
+    const double ds = MeanDistance(strips.Surface, 20, 8, 0, strips.Surface->GetNumberOfPoints());
+    std::cout << "strips: " << strips.Surface->GetNumberOfPolys() << " triangles" << std::endl;
+    DS_CHECK(strips.Surface->GetNumberOfPolys() == tris.Surface->GetNumberOfPolys(), "strips: same triangle count");
+    DS_CHECK_LE(ds, 0.4, "strips onto ball 1: mean |d|");
+  }
+
+  // --- two disjoint surfaces at once: both evolve onto their ball ---
+  {
+    vtkNew<vtkAppendPolyData> append;
+    append->AddInputData(Sphere(20, 11));
+    append->AddInputData(Sphere(44, 11));
+    append->Update();
+    const Result r = Deform(image, append->GetOutput());
+    const vtkIdType half = r.Surface->GetNumberOfPoints() / 2;
+    const double d1 = MeanDistance(r.Surface, 20, 8, 0, half);
+    const double d2 = MeanDistance(r.Surface, 44, 8, half, 2 * half);
+    DS_CHECK_LE(d1, 0.4, "two surfaces: mean |d| to ball 1");
+    DS_CHECK_LE(d2, 0.4, "two surfaces: mean |d| to ball 2");
+    const int selfx = r.Surface->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0);
+    DS_CHECK_LE(selfx, 0, "two surfaces: self-intersections");
+  }
+
+  // --- an open cap keeps its boundary ---
+  {
+    auto cap = Sphere(20, 11, 60);
+    vtkNew<vtkTriangleFilter> tri;
+    tri->SetInputData(cap);
+    tri->Update();
+    const Result r = Deform(image, cap);
+    dsurf::TriangleMesh m;
+    for (vtkIdType i = 0; i < r.Surface->GetNumberOfPoints(); ++i)
+    {
+      dsurf::Vec3 x;
+      r.Surface->GetPoint(i, x.data());
+      m.Points.push_back(x);
+    }
+    vtkCellArray* polys = r.Surface->GetPolys();
+    polys->InitTraversal();
+    vtkIdType n;
+    const vtkIdType* ids;
+    while (polys->GetNextCell(n, ids))
+    {
+      m.Triangles.push_back({ static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+    }
+    std::string err;
+    DS_CHECK(m.BuildTopology(&err), err);
+    // Every output boundary vertex must be an input point, unmoved.
+    int boundary = 0, moved = 0;
+    for (int v = 0; v < m.NumberOfPoints(); ++v)
+    {
+      if (!m.BoundaryVertex[v])
+      {
+        continue;
+      }
+      ++boundary;
+      double best = 1e300;
+      for (vtkIdType i = 0; i < cap->GetNumberOfPoints(); ++i)
+      {
+        double x[3];
+        cap->GetPoint(i, x);
+        best = std::min(best, std::abs(x[0] - m.Points[v][0]) + std::abs(x[1] - m.Points[v][1]) +
+            std::abs(x[2] - m.Points[v][2]));
+      }
+      moved += best > 0;
+    }
+    std::cout << "open cap: " << boundary << " boundary vertices" << std::endl;
+    DS_CHECK(boundary == 24, "the cap's boundary ring has 24 vertices");
+    DS_CHECK_LE(moved, 0, "boundary vertices that moved");
+  }
+
+  // --- bad input: a non-manifold edge, no surface, no polygons ---
+  {
+    vtkNew<vtkPolyData> fin;
+    vtkNew<vtkPoints> pts;
+    pts->InsertNextPoint(30, 30, 30);
+    pts->InsertNextPoint(34, 30, 30);
+    pts->InsertNextPoint(32, 34, 30);
+    pts->InsertNextPoint(32, 26, 30);
+    pts->InsertNextPoint(32, 30, 34);
+    vtkNew<vtkCellArray> polys;
+    for (vtkIdType third : { 2, 3, 4 })
+    {
+      const vtkIdType ids[3] = { 0, 1, third };
+      polys->InsertNextCell(3, ids);
+    }
+    fin->SetPoints(pts);
+    fin->SetPolys(polys);
+    std::cout << "(an error message about a non-manifold edge is expected next)" << std::endl;
+    const Result r = Deform(image, fin);
+    DS_CHECK(r.Errors == 1, "non-manifold edge: one error");
+    DS_CHECK(r.Surface->GetNumberOfPoints() == 0, "non-manifold edge: empty output");
+
+    vtkNew<vtkPolyData> pointsOnly;
+    pointsOnly->SetPoints(pts);
+    std::cout << "(an error message about a surface without polygons is expected next)" << std::endl;
+    const Result e = Deform(image, pointsOnly);
+    DS_CHECK(e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
+  }
+
+  // --- Gamma clamped with a warning; vertices outside the image warned about once ---
+  {
+    vtkNew<vtkDeformableSurfaceFilter> f;
+    vtkNew<EventCounter> warnings;
+    f->AddObserver(vtkCommand::WarningEvent, warnings);
+    f->SetGamma(3.0);
+    DS_CHECK(f->GetGamma() == 0.5 && warnings->Count == 1, "Gamma 3 clamped to 0.5 with a warning");
+    const Result r = Deform(image, Sphere(60, 10), 5);
+    DS_CHECK(r.Warnings == 1, "a surface partly outside the image: one warning");
+  }
+
+  return dstest::Result("TestDeformableSurfaceInput");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestDeformableSurfaceInput(argc, argv);
+}

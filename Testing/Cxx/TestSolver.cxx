@@ -1,0 +1,325 @@
+// Unit test of the single-level solver core (dsSolver): colouring, umbrella weights,
+// internal forces without an external field (tau = 1 shrinks, tau = 0 keeps a sphere
+// round), a hand-made force field, determinism over thread counts, fixed boundaries.
+#include "DSTestHelpers.h"
+#include "TestSolverMeshes.h"
+
+#include "dsScaleSpace.h"
+#include "dsSolver.h"
+#include "dsTriangleMesh.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+using namespace dsurf;
+using dstest::MakeIcosphere;
+
+namespace
+{
+void RadiusStats(const TriangleMesh& m, const Vec3& c, double& mean, double& minR, double& maxR)
+{
+  mean = 0;
+  minR = 1e300;
+  maxR = 0;
+  for (const auto& x : m.Points)
+  {
+    const double r = Norm(x - c);
+    mean += r;
+    minR = std::min(minR, r);
+    maxR = std::max(maxR, r);
+  }
+  mean /= m.NumberOfPoints();
+}
+
+Vec3 Centroid(const TriangleMesh& m)
+{
+  Vec3 c{ 0, 0, 0 };
+  for (const auto& x : m.Points)
+  {
+    c = c + x;
+  }
+  return (1.0 / m.NumberOfPoints()) * c;
+}
+
+/// A force field on a 64^3 grid pulling every point radially onto the sphere of radius
+/// R around the grid centre, F = (R - r) * rhat (in world units; direct test data).
+ForceField RadialField(double R)
+{
+  ForceField field;
+  field.Geometry.Dimensions[0] = field.Geometry.Dimensions[1] = field.Geometry.Dimensions[2] = 64;
+  field.Sigma = 1;
+  const long long n = field.Geometry.NumberOfVoxels();
+  field.Potential.assign(n, 0.0f);
+  field.Force.assign(3 * n, 0.0f);
+  for (int k = 0; k < 64; ++k)
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i)
+      {
+        const Vec3 d{ i - 31.5, j - 31.5, k - 31.5 };
+        const double r = Norm(d);
+        const long long idx = i + 64LL * (j + 64LL * k);
+        for (int a = 0; a < 3; ++a)
+        {
+          field.Force[3 * idx + a] = static_cast<float>(r > 0 ? (R - r) * d[a] / r : 0.0);
+        }
+      }
+  return field;
+}
+} // namespace
+
+int TestSolver(int, char*[])
+{
+  const Vec3 centre{ 31.5, 31.5, 31.5 };
+
+  // --- distance-2 colouring ---
+  {
+    TriangleMesh m = MakeIcosphere(3, 10, centre);
+    std::string err;
+    DS_CHECK(m.BuildTopology(&err), err);
+    Solver s;
+    s.SetMesh(&m);
+    std::vector<int> color(m.NumberOfPoints(), -1);
+    int assigned = 0;
+    for (int c = 0; c < s.NumberOfColors(); ++c)
+    {
+      for (int k = s.ColorOffsets()[c]; k < s.ColorOffsets()[c + 1]; ++k)
+      {
+        color[s.ColorVertices()[k]] = c;
+        ++assigned;
+      }
+    }
+    int conflicts = 0;
+    for (int v = 0; v < m.NumberOfPoints(); ++v)
+    {
+      std::set<int> ring2;
+      for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
+      {
+        const int q = m.Neighbors[i];
+        ring2.insert(q);
+        for (int j = m.NeighborOffsets[q]; j < m.NeighborOffsets[q + 1]; ++j)
+        {
+          ring2.insert(m.Neighbors[j]);
+        }
+      }
+      ring2.erase(v);
+      for (int u : ring2)
+      {
+        conflicts += color[u] == color[v];
+      }
+    }
+    std::cout << "colouring: " << s.NumberOfColors() << " colours for " << m.NumberOfPoints()
+              << " vertices" << std::endl;
+    DS_CHECK(assigned == m.NumberOfPoints(), "every vertex of a closed mesh is coloured once");
+    DS_CHECK_LE(conflicts, 0, "distance-2 colour conflicts");
+    DS_CHECK_LE(s.NumberOfColors(), 24, "number of colours");
+  }
+
+  // --- weighted umbrella (SPEC §6.4): a C vertex gives N/C/M neighbours weight 2, D weight 1 ---
+  {
+    TriangleMesh m;
+    // A fan: centre 0 and a hexagon 1..6 in the plane z = 0, plus one lifted vertex.
+    m.Points.push_back({ 0, 0, 0 });
+    for (int i = 0; i < 6; ++i)
+    {
+      const double a = i * 3.14159265358979323846 / 3;
+      m.Points.push_back({ std::cos(a), std::sin(a), i == 0 ? 1.0 : 0.0 });
+    }
+    for (int i = 0; i < 6; ++i)
+    {
+      m.Triangles.push_back({ 0, 1 + i, 1 + (i + 1) % 6 });
+    }
+    std::string err;
+    DS_CHECK(m.BuildTopology(&err), err);
+    m.Labels[0] = LabelC;
+    m.Labels[1] = LabelD; // the lifted vertex gets weight 1, the others 2
+    Solver s;
+    s.SetMesh(&m);
+    const Vec3 u = s.Umbrella(0);
+    // W = 1 + 5 * 2 = 11; z component = 1 * 1 / 11.
+    DS_CHECK_LE(std::abs(u[2] - 1.0 / 11.0), 1e-12, "|U_z - 1/11| for a C vertex with one D neighbour");
+    m.Labels[0] = LabelN;
+    s.SetMesh(&m);
+    DS_CHECK_LE(std::abs(s.Umbrella(0)[2] - 1.0 / 6.0), 1e-12, "|U_z - 1/6| for an N vertex");
+    // An M vertex whose neighbours are all M gives them weight 0: uniform fallback.
+    for (auto& l : m.Labels)
+    {
+      l = LabelM;
+    }
+    s.SetMesh(&m);
+    DS_CHECK_LE(std::abs(s.Umbrella(0)[2] - 1.0 / 6.0), 1e-12, "|U_z - 1/6| for the uniform fallback");
+  }
+
+  // --- tau = 1 (membrane), no external force: the sphere shrinks monotonically ---
+  {
+    TriangleMesh m = MakeIcosphere(3, 20, centre);
+    std::string err;
+    m.BuildTopology(&err);
+    Solver s;
+    SolverParameters p;
+    p.Tau = 1.0;
+    s.SetParameters(p);
+    s.SetMesh(&m);
+    double mean, minR, maxR;
+    RadiusStats(m, Centroid(m), mean, minR, maxR);
+    const double r0 = mean;
+    int increases = 0;
+    double prev = mean;
+    for (int i = 0; i < 200; ++i)
+    {
+      s.Sweep();
+      RadiusStats(m, Centroid(m), mean, minR, maxR);
+      increases += mean >= prev;
+      prev = mean;
+    }
+    std::cout << "tau=1: mean radius " << r0 << " -> " << mean << std::endl;
+    DS_CHECK_LE(increases, 0, "sweeps where the mean radius did not shrink (tau = 1)");
+    DS_CHECK_LE(mean, 0.9 * r0, "mean radius after 200 membrane sweeps");
+  }
+
+  // --- tau = 0 (thin plate), no external force: the sphere stays round ---
+  {
+    TriangleMesh m = MakeIcosphere(4, 20, centre);
+    std::string err;
+    m.BuildTopology(&err);
+    Solver s;
+    SolverParameters p;
+    p.Tau = 0.0;
+    s.SetParameters(p);
+    s.SetMesh(&m);
+    double worstSpread = 0, mean = 0, minR, maxR;
+    for (int i = 0; i < 500; ++i)
+    {
+      s.Sweep();
+      RadiusStats(m, Centroid(m), mean, minR, maxR);
+      worstSpread = std::max(worstSpread, (maxR - minR) / mean);
+    }
+    std::cout << "tau=0: mean radius after 500 sweeps " << mean << std::endl;
+    DS_CHECK_LE(worstSpread, 0.01, "worst (max r - min r) / mean r over 500 thin-plate sweeps");
+    DS_CHECK_GE(mean, 19.0, "mean radius after 500 thin-plate sweeps");
+  }
+
+  // --- a hand-made radial force field pulls a sphere of radius 25 onto radius 20 ---
+  const ForceField field = RadialField(20.0);
+  {
+    TriangleMesh m = MakeIcosphere(3, 25, centre);
+    std::string err;
+    m.BuildTopology(&err);
+    Solver s;
+    s.SetMesh(&m);
+    s.SetForceField(&field, 1.0);
+    SweepStatistics st;
+    int sweeps = 0;
+    for (; sweeps < 2000; ++sweeps)
+    {
+      st = s.Sweep();
+      if (st.MeanCorrection < 1e-6)
+      {
+        break;
+      }
+    }
+    double mean, minR, maxR;
+    RadiusStats(m, centre, mean, minR, maxR);
+    std::cout << "radial field: " << sweeps << " sweeps, r in [" << minR << ", " << maxR << "]"
+              << std::endl;
+    // The internal forces pull inward by about tau * h^2 / (2 r) per unit force; small.
+    DS_CHECK_LE(std::abs(mean - 20.0), 0.2, "|mean radius - 20| under the radial field");
+    DS_CHECK_LE(maxR - minR, 0.05, "radius spread under the radial field");
+    DS_CHECK(st.OutsideVertices == 0, "no vertex outside the field");
+    double maxErr = 0;
+    for (double e : s.ErrorIndicator())
+    {
+      maxErr = std::max(maxErr, e);
+    }
+    DS_CHECK_GE(maxErr, 1e-6, "error indicator (internal correction) at rest is non-zero");
+  }
+
+  // --- determinism: 1 and 2 threads give bit-identical points ---
+  {
+    TriangleMesh a = MakeIcosphere(4, 26, centre), b;
+    for (auto& x : a.Points)
+    {
+      x[0] += 0.3 * std::sin(x[1]); // break the symmetry
+    }
+    b = a;
+    std::string err;
+    a.BuildTopology(&err);
+    b.BuildTopology(&err);
+    Solver sa, sb;
+    SolverParameters pa, pb;
+    pa.NumberOfThreads = 1;
+    pb.NumberOfThreads = 2;
+    sa.SetParameters(pa);
+    sb.SetParameters(pb);
+    sa.SetMesh(&a);
+    sb.SetMesh(&b);
+    sa.SetForceField(&field, 1.0);
+    sb.SetForceField(&field, 1.0);
+    double meanA = 0, meanB = 0;
+    for (int i = 0; i < 30; ++i)
+    {
+      meanA = sa.Sweep().MeanCorrection;
+      meanB = sb.Sweep().MeanCorrection;
+    }
+    int differing = 0;
+    for (int v = 0; v < a.NumberOfPoints(); ++v)
+    {
+      differing += a.Points[v] != b.Points[v];
+    }
+    DS_CHECK_LE(differing, 0, "points differing between 1 and 2 threads");
+    DS_CHECK(meanA == meanB, "mean correction identical for 1 and 2 threads");
+  }
+
+  // --- open surface: boundary vertices stay fixed ---
+  {
+    TriangleMesh sphere = MakeIcosphere(3, 20, centre);
+    TriangleMesh m;
+    m.Points = sphere.Points;
+    for (const auto& t : sphere.Triangles)
+    {
+      if (sphere.Points[t[0]][2] > centre[2] && sphere.Points[t[1]][2] > centre[2] &&
+        sphere.Points[t[2]][2] > centre[2])
+      {
+        m.Triangles.push_back(t);
+      }
+    }
+    std::string err;
+    DS_CHECK(m.BuildTopology(&err), err);
+    DS_CHECK(!m.IsClosed(), "the cap is open");
+    const std::vector<Vec3> before = m.Points;
+    Solver s;
+    SolverParameters p;
+    p.Tau = 1.0;
+    s.SetParameters(p);
+    s.SetMesh(&m);
+    for (int i = 0; i < 50; ++i)
+    {
+      s.Sweep();
+    }
+    int boundaryMoved = 0, interiorMoved = 0, boundary = 0;
+    for (int v = 0; v < m.NumberOfPoints(); ++v)
+    {
+      const bool moved = m.Points[v] != before[v];
+      if (m.BoundaryVertex[v])
+      {
+        ++boundary;
+        boundaryMoved += moved;
+      }
+      else if (m.NeighborOffsets[v + 1] > m.NeighborOffsets[v])
+      {
+        interiorMoved += moved;
+      }
+    }
+    std::cout << "open cap: " << boundary << " boundary vertices" << std::endl;
+    DS_CHECK_GE(boundary, 10, "boundary vertices of the cap");
+    DS_CHECK_LE(boundaryMoved, 0, "boundary vertices that moved");
+    DS_CHECK_GE(interiorMoved, 10, "interior vertices that moved");
+  }
+
+  return dstest::Result("TestSolver");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestSolver(argc, argv);
+}

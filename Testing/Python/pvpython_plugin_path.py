@@ -1,0 +1,22 @@
+"""The plugin loads through PV_PLUGIN_PATH alone (no LoadPlugin call), the way a user
+installs it for the GUI, and every filter appears in paraview.simple."""
+import os
+import sys
+
+assert os.environ.get("PV_PLUGIN_PATH"), "ctest must set PV_PLUGIN_PATH"
+import paraview.simple as simple  # noqa: E402
+
+wanted = ["ScaleSpaceGradient", "DeformableSurface", "DelaunaySeedSurface"]
+missing = [name for name in wanted if not hasattr(simple, name)]
+print("found:", [name for name in wanted if name not in missing])
+if missing:
+    sys.exit("not loaded through PV_PLUGIN_PATH: %s" % missing)
+
+# The VTK-level package imports in pvpython too (PYTHONPATH set by ctest), and its
+# classes are the ones the plugin's proxies wrap.
+from deformablesurface import (vtkDeformableSurfaceFilter, vtkDelaunaySeedSurface,  # noqa: E402
+                               vtkImageScaleSpaceGradient)
+
+for cls in (vtkImageScaleSpaceGradient, vtkDeformableSurfaceFilter, vtkDelaunaySeedSurface):
+    assert cls().GetClassName() == cls.__name__, cls
+print("deformablesurface imports in pvpython")
