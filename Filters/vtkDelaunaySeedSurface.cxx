@@ -5,7 +5,9 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkAppendPolyData.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDelaunay3D.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
@@ -13,12 +15,14 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
@@ -27,8 +31,10 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkDelaunaySeedSurface);
+vtkCxxSetObjectMacro(vtkDelaunaySeedSurface, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -69,15 +75,79 @@ bool SampleImage(vtkImageData* image, vtkDataArray* scalars, const double x[3], 
   }
   return true;
 }
+
+// Collects every process's points (with their point data) on process 0, in process order, and
+// turns inputId into indices of the concatenation of all processes' inputs. Collective: every
+// process must call it. Returns false on the processes other than 0.
+bool GatherOnProcessZero(vtkMultiProcessController* controller, vtkIdType numberOfInputPoints,
+  vtkSmartPointer<vtkPolyData>& points, std::vector<vtkIdType>& inputId)
+{
+  const int nProcs = controller->GetNumberOfProcesses();
+  const int me = controller->GetLocalProcessId();
+  // Input sizes travel separately: an empty piece may not survive data-object marshalling.
+  long long localCount = numberOfInputPoints;
+  std::vector<long long> counts(static_cast<std::size_t>(nProcs), 0);
+  controller->Gather(&localCount, counts.data(), 1, 0);
+
+  vtkNew<vtkPolyData> piece;
+  piece->ShallowCopy(points);
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName("vtkDSInputId");
+  ids->SetNumberOfTuples(static_cast<vtkIdType>(inputId.size()));
+  for (std::size_t i = 0; i < inputId.size(); ++i)
+  {
+    ids->SetValue(static_cast<vtkIdType>(i), inputId[i]);
+  }
+  piece->GetPointData()->AddArray(ids);
+  std::vector<vtkSmartPointer<vtkDataObject>> pieces;
+  controller->Gather(piece, pieces, 0);
+  if (me != 0)
+  {
+    return false;
+  }
+
+  vtkNew<vtkAppendPolyData> append;
+  inputId.clear();
+  vtkIdType offset = 0;
+  for (int p = 0; p < nProcs; ++p)
+  {
+    vtkPolyData* received =
+      p < static_cast<int>(pieces.size()) ? vtkPolyData::SafeDownCast(pieces[p]) : nullptr;
+    vtkIdTypeArray* receivedIds = received
+      ? vtkIdTypeArray::SafeDownCast(received->GetPointData()->GetArray("vtkDSInputId"))
+      : nullptr;
+    if (received && receivedIds && received->GetNumberOfPoints() > 0)
+    {
+      for (vtkIdType i = 0; i < receivedIds->GetNumberOfTuples(); ++i)
+      {
+        inputId.push_back(offset + receivedIds->GetValue(i));
+      }
+      append->AddInputData(received);
+    }
+    offset += static_cast<vtkIdType>(counts[p]);
+  }
+  points = vtkSmartPointer<vtkPolyData>::New();
+  if (append->GetNumberOfInputConnections(0) > 0)
+  {
+    append->Update();
+    points->ShallowCopy(append->GetOutput());
+    points->GetPointData()->RemoveArray("vtkDSInputId");
+  }
+  return true;
+}
 } // namespace
 
 vtkDelaunaySeedSurface::vtkDelaunaySeedSurface()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkDelaunaySeedSurface::~vtkDelaunaySeedSurface() = default;
+vtkDelaunaySeedSurface::~vtkDelaunaySeedSurface()
+{
+  this->SetController(nullptr);
+}
 
 void vtkDelaunaySeedSurface::SetImageConnection(vtkAlgorithmOutput* output)
 {
@@ -143,13 +213,18 @@ int vtkDelaunaySeedSurface::RequestUpdateExtent(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
-  // The centroid of any tetrahedron may fall anywhere in the image: ask for all of it.
+  // The centroid of any tetrahedron may fall anywhere in the image: ask for all of it, also
+  // when the pipeline runs distributed and would otherwise hand each process one piece.
   if (vtkInformation* imageInfo = inputVector[1]->GetInformationObject(0))
   {
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
     if (imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
     {
       imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
         imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+      imageInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
     }
   }
   return 1;
@@ -170,15 +245,24 @@ int vtkDelaunaySeedSurface::RequestData(
   surfaceOut->Initialize();
   tetsOut->Initialize();
 
-  // Drop non-finite points: Delaunay3D's bounds and locator break on them.
+  // Drop non-finite points: Delaunay3D's bounds and locator break on them. Ghost copies of
+  // another process's points are dropped too (that process contributes the point itself).
   const vtkIdType nIn = input->GetNumberOfPoints();
-  vtkNew<vtkPolyData> finite;
+  vtkSmartPointer<vtkPolyData> finite = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> finitePoints;
   finitePoints->SetDataTypeToDouble();
   std::vector<vtkIdType> inputId;
+  vtkDataArray* ghosts = input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
   finite->GetPointData()->CopyAllocate(input->GetPointData(), nIn);
+  vtkIdType nonFinite = 0;
   for (vtkIdType i = 0; i < nIn; ++i)
   {
+    if (ghosts &&
+      (static_cast<int>(ghosts->GetTuple1(i)) &
+        (vtkDataSetAttributes::DUPLICATEPOINT | vtkDataSetAttributes::HIDDENPOINT)))
+    {
+      continue;
+    }
     double x[3];
     input->GetPoint(i, x);
     if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
@@ -186,12 +270,24 @@ int vtkDelaunaySeedSurface::RequestData(
       finite->GetPointData()->CopyData(input->GetPointData(), i, finitePoints->InsertNextPoint(x));
       inputId.push_back(i);
     }
+    else
+    {
+      ++nonFinite;
+    }
   }
   finite->SetPoints(finitePoints);
-  if (static_cast<vtkIdType>(inputId.size()) < nIn)
+  finite->GetPointData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  if (nonFinite > 0)
   {
-    vtkWarningMacro("Ignored " << nIn - static_cast<vtkIdType>(inputId.size())
-                               << " point(s) with NaN or infinite coordinates.");
+    vtkWarningMacro("Ignored " << nonFinite << " point(s) with NaN or infinite coordinates.");
+  }
+
+  // Distributed input: one process tetrahedrises all points, the others output nothing, so
+  // the seed is the one of the whole point set and is not duplicated downstream.
+  if (this->Controller && this->Controller->GetNumberOfProcesses() > 1 &&
+    !GatherOnProcessZero(this->Controller, nIn, finite, inputId))
+  {
+    return 1;
   }
   if (inputId.size() < 4)
   {
@@ -400,4 +496,5 @@ void vtkDelaunaySeedSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1] << "\n";
   os << indent << "TargetEdgeLength: " << this->TargetEdgeLength << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

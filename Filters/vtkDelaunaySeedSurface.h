@@ -38,7 +38,18 @@
  * an error or warning and an empty surface; NaN/inf points are dropped with a warning; duplicate
  * points are merged by vtkDelaunay3D (Tolerance).
  *
- * Caveats: the whole point set is tetrahedrised on each process (no distributed Delaunay).
+ * Distributed input (pvbatch/pvserver under MPI): the points of every process are gathered on
+ * process 0 (through Controller, by default the global controller), which alone tetrahedrises
+ * them and produces both outputs; the other processes output empty data, so the seed is neither
+ * partial nor duplicated when it is rendered or saved. Points flagged as ghost duplicates
+ * (vtkGhostType) are dropped first; exact duplicates along piece seams are merged by
+ * vtkDelaunay3D. SeedPointId then indexes the concatenation of all processes' inputs in process
+ * order. The optional image is requested whole (whole extent, piece 0 of 1) on every process,
+ * because a centroid may fall anywhere in it. With no controller, or one process, nothing of
+ * this happens. A script calling the filter on one process only of an MPI job must set
+ * the Controller to nullptr, or the gather waits for the others forever.
+ *
+ * Caveats: the whole point set is tetrahedrised on one process (no distributed Delaunay).
  * Points with near-cospherical neighbours (e.g. regular grids) produce flat tetrahedra whose
  * IDs are still stable, but they may disappear from the boundary.
  */
@@ -51,6 +62,7 @@
 #include <vector> // for the ID list
 
 class vtkImageData;
+class vtkMultiProcessController;
 class vtkUnstructuredGrid;
 
 class DEFORMABLESURFACEFILTERS_EXPORT vtkDelaunaySeedSurface : public vtkPolyDataAlgorithm
@@ -101,6 +113,13 @@ public:
   vtkGetMacro(Tolerance, double);
   ///@}
 
+  ///@{
+  /// Processes whose points are gathered (default: the global controller). nullptr or one
+  /// process: serial behaviour.
+  void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
   /// Output 1: all tetrahedra with `TetraId`, `Removed`, `Circumradius`.
   vtkUnstructuredGrid* GetTetrahedra();
 
@@ -119,6 +138,7 @@ protected:
   double IntensityRange[2] = { 0.0, 1.0 };
   double TargetEdgeLength = 0.0;
   double Tolerance = 0.001;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkDelaunaySeedSurface(const vtkDelaunaySeedSurface&) = delete;
