@@ -397,6 +397,7 @@ int vtkDeformableSurfaceFilter::RequestData(
   mp.Tolerance = this->ConvergenceTolerance;
   mp.RefinementThreshold = this->RefinementThreshold;
   mp.UniformRefinement = this->UniformRefinement;
+  mp.InitialEdgeSigmaRatio = this->SubdivideInitialSurface ? 4.0 : 0.0;
   mp.ProlongationMode =
     this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
   mp.MaxVertices = this->MaxVertices;
@@ -439,6 +440,7 @@ int vtkDeformableSurfaceFilter::RequestData(
   vtkFieldData* fd = output->GetFieldData();
   AddFieldValue<vtkIntArray>(fd, "Sweeps", solver.GetTotalSweeps());
   AddFieldValue<vtkIntArray>(fd, "Levels", static_cast<int>(solver.GetLevels().size()));
+  AddFieldValue<vtkIntArray>(fd, "InitialSubdivisions", solver.GetInitialSubdivisions());
   AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
   AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
   AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
@@ -463,6 +465,7 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxLevels: " << this->MaxLevels << "\n";
   os << indent << "RefinementThreshold: " << this->RefinementThreshold << "\n";
   os << indent << "UniformRefinement: " << this->UniformRefinement << "\n";
+  os << indent << "SubdivideInitialSurface: " << this->SubdivideInitialSurface << "\n";
   os << indent << "HierarchicalSigma: " << this->HierarchicalSigma << "\n";
   os << indent << "ButterflyProlongation: " << this->ButterflyProlongation << "\n";
   os << indent << "MaxVertices: " << this->MaxVertices << "\n";

@@ -40,6 +40,11 @@
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
+ * Start surface: with SubdivideInitialSurface (default on) a coarse start is first
+ * split 1 -> 4 at edge midpoints until its mean edge length is at most 4 sigma_0, so a
+ * Box of 12 triangles around the whole volume is pulled in evenly (field data
+ * InitialSubdivisions).
+ *
  * Hierarchy (SPEC §6, dsMultilevel.h): after a level converges, the error estimator
  * (|internal part of the correction| per vertex) marks every triangle whose corner
  * average exceeds RefinementThreshold times the level's mean (all triangles with
@@ -157,6 +162,19 @@ public:
   vtkGetMacro(UniformRefinement, bool);
   vtkBooleanMacro(UniformRefinement, bool);
   ///@}
+
+  ///@{
+  /**
+   * Before the first level, subdivide the initial surface uniformly (midpoints: its
+   * shape is kept) until its mean edge length is at most 4 x the first sigma, so a
+   * coarse start such as a Box of 12 triangles around the whole volume is sampled
+   * finely enough for the force to pull it in evenly. Default on. The field data
+   * InitialSubdivisions says how many times it was subdivided.
+   */
+  vtkSetMacro(SubdivideInitialSurface, bool);
+  vtkGetMacro(SubdivideInitialSurface, bool);
+  vtkBooleanMacro(SubdivideInitialSurface, bool);
+  ///@}
   ///@{
   /**
    * Halve sigma (and the kernel support) at every refinement. Default on. Off keeps
@@ -238,6 +256,7 @@ protected:
   int MaxLevels = 4;
   double RefinementThreshold = 1.0;
   bool UniformRefinement = false;
+  bool SubdivideInitialSurface = true;
   bool HierarchicalSigma = true;
   bool ButterflyProlongation = true;
   vtkIdType MaxVertices = 2000000;

@@ -50,6 +50,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   this->Displacement.clear();
   this->ExternalForce.clear();
   this->MaxOutsideVertices = 0;
+  this->InitialSubdivisions = 0;
   this->Aborted = false;
   auto fail = [error](const std::string& msg) {
     if (error)
@@ -77,6 +78,32 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   if (!refiner.Initialize(mesh, &msg))
   {
     return fail("the initial surface is not a manifold triangle mesh: " + msg);
+  }
+  if (P.InitialEdgeSigmaRatio > 0)
+  {
+    // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
+    // and the result is a fresh level-0 mesh for the hierarchy.
+    bool subdivided = false;
+    while (mesh.MeanEdgeLength() > P.InitialEdgeSigmaRatio * sigma &&
+      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
+    {
+      const std::vector<char> all(mesh.Triangles.size(), 1);
+      const RefinementCounts rc = refiner.Refine(mesh, all, Prolongation::Linear);
+      if (!rc.Ok)
+      {
+        return fail("subdividing the initial surface failed: " + rc.Error);
+      }
+      ++this->InitialSubdivisions;
+      subdivided = true;
+    }
+    if (subdivided)
+    {
+      mesh.Levels.assign(mesh.Points.size(), 0);
+      if (!refiner.Initialize(mesh, &msg))
+      {
+        return fail("the subdivided initial surface is not a manifold triangle mesh: " + msg);
+      }
+    }
   }
 #ifndef NDEBUG
   const bool checkInvariants = true;

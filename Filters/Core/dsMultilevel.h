@@ -52,6 +52,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;
   Prolongation ProlongationMode = Prolongation::Butterfly;
+  /// Before level 0, subdivide the start surface uniformly (1 -> 4, midpoints, so its
+  /// shape is kept exactly) while its mean edge length exceeds InitialEdgeSigmaRatio *
+  /// sigma_0: a vertex samples the force only where it stands, so a coarse start (a Box
+  /// of 12 triangles around a whole volume) needs edges comparable to the first sigma
+  /// to be pulled in evenly. 0 turns it off. The subdivided surface counts as level 0.
+  double InitialEdgeSigmaRatio = 4.0;
   long long MaxVertices = 2000000;
   /// Check the topology invariants after every refinement (always on in Debug builds);
   /// a broken invariant stops the run with an error.
@@ -107,6 +113,8 @@ public:
   const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
   const std::vector<std::string>& GetWarnings() const { return this->Warnings; }
   bool GetAborted() const { return this->Aborted; }
+  /// Uniform subdivisions applied to the start surface before level 0.
+  int GetInitialSubdivisions() const { return this->InitialSubdivisions; }
   /// Per vertex of the final mesh, from the last sweep.
   const std::vector<double>& GetErrorIndicator() const { return this->ErrorIndicator; }
   const std::vector<double>& GetDisplacement() const { return this->Displacement; }
@@ -132,6 +140,7 @@ private:
   std::vector<std::string> Warnings;
   std::vector<double> ErrorIndicator, Displacement, ExternalForce;
   int MaxOutsideVertices = 0;
+  int InitialSubdivisions = 0;
   bool Aborted = false;
 };
 } // namespace dsurf

@@ -81,7 +81,7 @@ struct Result
 // Input handling is checked on one level (MaxLevels 0); the open cap is also run
 // through the hierarchy, where refinement must keep the boundary where it was.
 Result Deform(vtkImageData* image, vtkDataObject* surface, int sweeps = 300, double gamma = 0.07,
-  int levels = 0)
+  int levels = 0, bool subdivide = false)
 {
   vtkNew<vtkDeformableSurfaceFilter> filter;
   vtkNew<EventCounter> errors, warnings;
@@ -96,6 +96,7 @@ Result Deform(vtkImageData* image, vtkDataObject* surface, int sweeps = 300, dou
   filter->SetSigma(1.5);
   filter->SetMaxSweepsPerLevel(sweeps);
   filter->SetMaxLevels(levels);
+  filter->SetSubdivideInitialSurface(subdivide);
   filter->Update();
   Result r;
   r.Surface = filter->GetOutput();
@@ -136,6 +137,16 @@ int TestDeformableSurfaceInput(int, char*[])
     DS_CHECK(r.Surface->GetNumberOfPoints() == 8, "the Box's 24 points merge into 8");
     DS_CHECK(r.Surface->GetNumberOfPolys() == 12, "the Box's 6 quads become 12 triangles");
     DS_CHECK(r.Errors == 0, "no error for the Box");
+
+    // With SubdivideInitialSurface (the default) the merged cube (mean edge 27.3) is split
+    // 1 -> 4 until its mean edge is <= 4 sigma = 6: three times, 8 -> 26 -> 98 -> 386 points.
+    const Result sub = Deform(image, box->GetOutput(), 20, 0.07, 0, true);
+    vtkDataArray* count = sub.Surface->GetFieldData()->GetArray("InitialSubdivisions");
+    std::cout << "Box, subdivided: " << sub.Surface->GetNumberOfPoints() << " points, "
+              << sub.Surface->GetNumberOfPolys() << " triangles" << std::endl;
+    DS_CHECK(count && count->GetTuple1(0) == 3, "three initial subdivisions");
+    DS_CHECK(sub.Surface->GetNumberOfPoints() == 386, "386 points after three subdivisions");
+    DS_CHECK(sub.Surface->GetNumberOfPolys() == 768, "768 triangles after three subdivisions");
   }
 
   // --- the input is not modified; strips give the same result as triangles ---
