@@ -41,7 +41,8 @@
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
  * Start surface: with SubdivideInitialSurface (default on) a coarse start is first
- * split 1 -> 4 at edge midpoints until its mean edge length is at most 4 sigma_0, so a
+ * split 1 -> 4 at edge midpoints until its mean edge length is at most 4 sigma_0 (never
+ * below two voxels), so a
  * Box of 12 triangles around the whole volume is pulled in evenly (field data
  * InitialSubdivisions).
  *
@@ -166,7 +167,8 @@ public:
   ///@{
   /**
    * Before the first level, subdivide the initial surface uniformly (midpoints: its
-   * shape is kept) until its mean edge length is at most 4 x the first sigma, so a
+   * shape is kept) until its mean edge length is at most 4 x the first sigma (but not
+   * below two voxels), so a
    * coarse start such as a Box of 12 triangles around the whole volume is sampled
    * finely enough for the force to pull it in evenly. Default on. The field data
    * InitialSubdivisions says how many times it was subdivided.

@@ -83,8 +83,11 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   {
     // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
     // and the result is a fresh level-0 mesh for the hierarchy.
+    // Edges shorter than two voxels resolve nothing more, whatever sigma is.
+    const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
+    const double target = std::max(P.InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
     bool subdivided = false;
-    while (mesh.MeanEdgeLength() > P.InitialEdgeSigmaRatio * sigma &&
+    while (mesh.MeanEdgeLength() > target &&
       4LL * mesh.NumberOfPoints() <= P.MaxVertices)
     {
       const std::vector<char> all(mesh.Triangles.size(), 1);

@@ -56,7 +56,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// shape is kept exactly) while its mean edge length exceeds InitialEdgeSigmaRatio *
   /// sigma_0: a vertex samples the force only where it stands, so a coarse start (a Box
   /// of 12 triangles around a whole volume) needs edges comparable to the first sigma
-  /// to be pulled in evenly. 0 turns it off. The subdivided surface counts as level 0.
+  /// to be pulled in evenly; never below two voxels (mean spacing), which resolve nothing
+  /// more. 0 turns it off. The subdivided surface counts as level 0.
   double InitialEdgeSigmaRatio = 4.0;
   long long MaxVertices = 2000000;
   /// Check the topology invariants after every refinement (always on in Debug builds);

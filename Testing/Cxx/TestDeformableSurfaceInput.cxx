@@ -147,6 +147,18 @@ int TestDeformableSurfaceInput(int, char*[])
     DS_CHECK(count && count->GetTuple1(0) == 3, "three initial subdivisions");
     DS_CHECK(sub.Surface->GetNumberOfPoints() == 386, "386 points after three subdivisions");
     DS_CHECK(sub.Surface->GetNumberOfPolys() == 768, "768 triangles after three subdivisions");
+
+    // A sigma far below the voxel size must not subdivide the start without end: the
+    // subdivision stops at a mean edge of two voxels (27.3 -> 1.7: four times, 1538 points).
+    vtkNew<vtkDeformableSurfaceFilter> tiny;
+    tiny->SetInputData(0, image);
+    tiny->SetInitialSurfaceData(box->GetOutput());
+    tiny->SetSigma(1e-9);
+    tiny->SetMaxLevels(0);
+    tiny->SetMaxSweepsPerLevel(5);
+    tiny->Update();
+    std::cout << "Box, sigma 1e-9: " << tiny->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
+    DS_CHECK(tiny->GetOutput()->GetNumberOfPoints() == 1538, "subdivision floored at two voxels");
   }
 
   // --- the input is not modified; strips give the same result as triangles ---
