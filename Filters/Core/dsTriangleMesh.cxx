@@ -5,19 +5,6 @@
 
 namespace dsurf
 {
-namespace
-{
-inline unsigned long long EdgeKey(int a, int b)
-{
-  if (a > b)
-  {
-    std::swap(a, b);
-  }
-  return (static_cast<unsigned long long>(static_cast<unsigned int>(a)) << 32) |
-    static_cast<unsigned int>(b);
-}
-}
-
 bool TriangleMesh::BuildTopology(std::string* error)
 {
   const int nPts = this->NumberOfPoints();

@@ -26,6 +26,19 @@ inline Vec3 Cross(const Vec3& a, const Vec3& b)
 }
 inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
 
+/// Key of the undirected edge (a, b), for hash maps of edges.
+inline unsigned long long EdgeKey(int a, int b)
+{
+  if (a > b)
+  {
+    const int t = a;
+    a = b;
+    b = t;
+  }
+  return (static_cast<unsigned long long>(static_cast<unsigned int>(a)) << 32) |
+    static_cast<unsigned int>(b);
+}
+
 /// Vertex labels of red-green refinement (SPEC §6.4). Initial and red vertices are N;
 /// a green split labels its new midpoint M, the ends of the split edge C, the opposite corner D.
 enum VertexLabel : unsigned char
