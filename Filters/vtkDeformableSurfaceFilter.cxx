@@ -9,8 +9,11 @@
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
 #include "vtkCleanPolyData.h"
+#include "vtkDSPolyDataGather.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -19,11 +22,13 @@
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTable.h"
 #include "vtkTriangleFilter.h"
@@ -36,6 +41,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkDeformableSurfaceFilter);
+vtkCxxSetObjectMacro(vtkDeformableSurfaceFilter, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -206,6 +212,28 @@ void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& 
   pd->AddArray(labels);
 }
 
+/// This process's share of the initial surface to send for gathering: its points, polygons
+/// and strips (all that BuildMesh uses), without the ghost cells another process owns.
+vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
+{
+  auto piece = vtkSmartPointer<vtkPolyData>::New();
+  if (!surface || surface->GetNumberOfPoints() == 0)
+  {
+    return piece;
+  }
+  vtkSmartPointer<vtkPolyData> owned = surface;
+  if (surface->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName()))
+  {
+    owned = vtkSmartPointer<vtkPolyData>::New();
+    owned->DeepCopy(surface); // RemoveGhostCells works in place; the input stays as it is
+    owned->RemoveGhostCells();
+  }
+  piece->SetPoints(owned->GetPoints());
+  piece->SetPolys(owned->GetPolys());
+  piece->SetStrips(owned->GetStrips());
+  return piece;
+}
+
 template <typename ArrayT, typename T>
 void AddFieldValue(vtkFieldData* fd, const char* name, T value)
 {
@@ -223,9 +251,13 @@ vtkDeformableSurfaceFilter::vtkDeformableSurfaceFilter()
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkDeformableSurfaceFilter::~vtkDeformableSurfaceFilter() = default;
+vtkDeformableSurfaceFilter::~vtkDeformableSurfaceFilter()
+{
+  this->SetController(nullptr);
+}
 
 //------------------------------------------------------------------------------
 void vtkDeformableSurfaceFilter::SetInitialSurfaceConnection(vtkAlgorithmOutput* output)
@@ -282,22 +314,32 @@ int vtkDeformableSurfaceFilter::FillOutputPortInformation(int port, vtkInformati
 }
 
 //------------------------------------------------------------------------------
-// The Gaussian reaches across the whole volume: always ask for all of it.
+// The Gaussian reaches across the whole volume: always ask for all of it, also when the
+// pipeline runs distributed and would otherwise hand each process one piece. The surface is
+// asked whole in serial, one piece per process when distributed (gathered in RequestData).
 int vtkDeformableSurfaceFilter::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0);
-  if (imageInfo && imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  if (vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0))
   {
-    int whole[6];
-    imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), whole, 6);
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    if (imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+        imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+      imageInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+    }
   }
-  vtkInformation* surfaceInfo = inputVector[1]->GetInformationObject(0);
-  if (surfaceInfo)
+  if (vtkInformation* surfaceInfo = inputVector[1]->GetInformationObject(0))
   {
-    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
+    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(),
+      distributed ? this->Controller->GetLocalProcessId() : 0);
+    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(),
+      distributed ? this->Controller->GetNumberOfProcesses() : 1);
+    surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   }
   return 1;
 }
@@ -316,6 +358,20 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
   output->Initialize();
   table->Initialize();
+
+  // Distributed: before any check that could return early on one process only, every
+  // process hands its piece of the surface to process 0, which alone solves; the others keep
+  // their outputs empty.
+  vtkNew<vtkPolyData> gathered;
+  if (vtkDSPolyDataGather::IsDistributed(this->Controller))
+  {
+    if (!vtkDSPolyDataGather::GatherOnProcessZero(
+          this->Controller, OwnedSurfacePiece(surface), gathered))
+    {
+      return 1;
+    }
+    surface = gathered;
+  }
 
   // --- the image and its force field ---
   if (!image || image->GetNumberOfPoints() <= 0)
@@ -472,4 +528,5 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckTopology: " << this->CheckTopology << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ProjectExternalForce: " << this->ProjectExternalForce << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

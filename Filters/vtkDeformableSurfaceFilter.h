@@ -55,6 +55,21 @@
  * It stops after MaxLevels refinements, when nothing is marked, or before exceeding
  * MaxVertices (a warning).
  *
+ * Distributed input (pvbatch/pvserver under MPI): the solve is global (every vertex sees the
+ * whole force field and its neighbours), so process 0 does it alone. Each process asks for
+ * its own piece of the initial surface; the pieces (ghost cells dropped) are gathered on
+ * process 0 (through Controller, by default the global controller), where the seam points
+ * held by two pieces are merged with the other coincident points. Process 0 outputs the
+ * surface and the convergence table; the other processes output an empty surface and an
+ * empty table, so nothing is duplicated downstream. The image is requested whole (whole
+ * extent, piece 0 of 1) on every process, as the serial algorithm needs: for a large
+ * volume this holds one full copy per process (the other processes do not use theirs).
+ * With no controller, or one process, the surface is requested whole and nothing is
+ * gathered. A script calling the filter on one process only of an MPI job must set the
+ * Controller to nullptr, or the gather waits for the others forever. The result equals the
+ * serial result on the same gathered surface; the vertex order follows the pieces, so
+ * against a serial run on the undivided surface it agrees up to the convergence tolerance.
+ *
  * Caveats: the whole image is requested. Abort stops after the current sweep and
  * outputs the (valid) surface reached so far. A weak boundary next to a strong one
  * needs HierarchicalSigma off and a small Sigma.
@@ -65,6 +80,7 @@
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+class vtkMultiProcessController;
 class vtkTable;
 
 class DEFORMABLESURFACEFILTERS_EXPORT vtkDeformableSurfaceFilter : public vtkPolyDataAlgorithm
@@ -233,6 +249,15 @@ public:
   vtkBooleanMacro(ProjectExternalForce, bool);
   ///@}
 
+  ///@{
+  /**
+   * Processes whose surface pieces are gathered (default: the global controller). nullptr
+   * or one process: serial behaviour.
+   */
+  void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
   /**
    * The convergence table (output port 1).
    */
@@ -265,6 +290,7 @@ protected:
   bool CheckTopology = false;
   int NumberOfThreads = 0;
   bool ProjectExternalForce = true;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkDeformableSurfaceFilter(const vtkDeformableSurfaceFilter&) = delete;

@@ -5,7 +5,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
-#include "vtkAppendPolyData.h"
+#include "vtkDSPolyDataGather.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDelaunay3D.h"
@@ -84,10 +84,16 @@ bool GatherOnProcessZero(vtkMultiProcessController* controller, vtkIdType number
 {
   const int nProcs = controller->GetNumberOfProcesses();
   const int me = controller->GetLocalProcessId();
-  // Input sizes travel separately: an empty piece may not survive data-object marshalling.
+  // Each process offsets its input IDs by the input sizes of the processes before it, so the
+  // IDs stay unique once the pieces are appended.
   long long localCount = numberOfInputPoints;
   std::vector<long long> counts(static_cast<std::size_t>(nProcs), 0);
-  controller->Gather(&localCount, counts.data(), 1, 0);
+  controller->AllGather(&localCount, counts.data(), 1);
+  vtkIdType offset = 0;
+  for (int p = 0; p < me; ++p)
+  {
+    offset += static_cast<vtkIdType>(counts[p]);
+  }
 
   vtkNew<vtkPolyData> piece;
   piece->ShallowCopy(points);
@@ -96,41 +102,23 @@ bool GatherOnProcessZero(vtkMultiProcessController* controller, vtkIdType number
   ids->SetNumberOfTuples(static_cast<vtkIdType>(inputId.size()));
   for (std::size_t i = 0; i < inputId.size(); ++i)
   {
-    ids->SetValue(static_cast<vtkIdType>(i), inputId[i]);
+    ids->SetValue(static_cast<vtkIdType>(i), offset + inputId[i]);
   }
   piece->GetPointData()->AddArray(ids);
-  std::vector<vtkSmartPointer<vtkDataObject>> pieces;
-  controller->Gather(piece, pieces, 0);
-  if (me != 0)
+  vtkNew<vtkPolyData> all;
+  if (!vtkDSPolyDataGather::GatherOnProcessZero(controller, piece, all))
   {
     return false;
   }
 
-  vtkNew<vtkAppendPolyData> append;
   inputId.clear();
-  vtkIdType offset = 0;
-  for (int p = 0; p < nProcs; ++p)
-  {
-    vtkPolyData* received =
-      p < static_cast<int>(pieces.size()) ? vtkPolyData::SafeDownCast(pieces[p]) : nullptr;
-    vtkIdTypeArray* receivedIds = received
-      ? vtkIdTypeArray::SafeDownCast(received->GetPointData()->GetArray("vtkDSInputId"))
-      : nullptr;
-    if (received && receivedIds && received->GetNumberOfPoints() > 0)
-    {
-      for (vtkIdType i = 0; i < receivedIds->GetNumberOfTuples(); ++i)
-      {
-        inputId.push_back(offset + receivedIds->GetValue(i));
-      }
-      append->AddInputData(received);
-    }
-    offset += static_cast<vtkIdType>(counts[p]);
-  }
   points = vtkSmartPointer<vtkPolyData>::New();
-  if (append->GetNumberOfInputConnections(0) > 0)
+  vtkIdTypeArray* allIds =
+    vtkIdTypeArray::SafeDownCast(all->GetPointData()->GetArray("vtkDSInputId"));
+  if (allIds && all->GetNumberOfPoints() > 0)
   {
-    append->Update();
-    points->ShallowCopy(append->GetOutput());
+    inputId.assign(allIds->GetPointer(0), allIds->GetPointer(0) + allIds->GetNumberOfTuples());
+    points->ShallowCopy(all);
     points->GetPointData()->RemoveArray("vtkDSInputId");
   }
   return true;
@@ -284,7 +272,7 @@ int vtkDelaunaySeedSurface::RequestData(
 
   // Distributed input: one process tetrahedrises all points, the others output nothing, so
   // the seed is the one of the whole point set and is not duplicated downstream.
-  if (this->Controller && this->Controller->GetNumberOfProcesses() > 1 &&
+  if (vtkDSPolyDataGather::IsDistributed(this->Controller) &&
     !GatherOnProcessZero(this->Controller, nIn, finite, inputId))
   {
     return 1;
