@@ -20,3 +20,10 @@ from deformablesurface import (vtkDeformableSurfaceFilter, vtkDelaunaySeedSurfac
 for cls in (vtkImageScaleSpaceGradient, vtkDeformableSurfaceFilter, vtkDelaunaySeedSurface):
     assert cls().GetClassName() == cls.__name__, cls
 print("deformablesurface imports in pvpython")
+
+# The GUI's defaults are the C++ defaults: SigmaFraction is exactly the paper's 1/6, so a
+# ParaView run and a VTK run with defaults give the same surface.
+from deformablesurface import vtkDeformableSurfaceFilter as _F  # noqa: E402
+assert simple.DeformableSurface().SigmaFraction == _F().GetSigmaFraction() == 1.0 / 6.0
+assert simple.ScaleSpaceGradient().SigmaFraction == vtkImageScaleSpaceGradient().GetSigmaFraction()
+print("ParaView defaults equal the C++ defaults")
