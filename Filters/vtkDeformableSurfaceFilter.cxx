@@ -2,6 +2,7 @@
 
 #include "dsMultilevel.h"
 #include "dsScaleSpace.h"
+#include "dsVTKImage.h"
 #include "dsSelfIntersection.h"
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
@@ -46,18 +47,6 @@ vtkCxxSetObjectMacro(vtkDeformableSurfaceFilter, Controller, vtkMultiProcessCont
 namespace
 {
 constexpr double MaxStableGamma = 0.5;
-
-struct ToFloat
-{
-  template <typename ArrayT>
-  void operator()(ArrayT* array, std::vector<float>& out) const
-  {
-    const auto values = vtk::DataArrayValueRange<1>(array);
-    out.resize(values.size());
-    std::transform(values.cbegin(), values.cend(), out.begin(),
-      [](typename decltype(values)::ValueType v) { return static_cast<float>(v); });
-  }
-};
 
 /// The columns of the convergence table (output 1), one row per sweep.
 struct ConvergenceColumns
@@ -384,29 +373,17 @@ int vtkDeformableSurfaceFilter::RequestData(
     vtkErrorMacro("No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
     return 1;
   }
-  dsurf::ImageGeometry geometry;
-  image->GetDimensions(geometry.Dimensions);
-  if (geometry.Dimensions[0] < 2 || geometry.Dimensions[1] < 2 || geometry.Dimensions[2] < 2)
+  dsurf::ImageVolume volume;
+  std::string error;
+  if (!dsurf::GetImageVolume(image, this->GetInputArrayToProcess(0, inputVector), volume, error))
   {
-    vtkErrorMacro("A 3-D image is needed (at least 2 voxels along every axis).");
+    vtkErrorMacro(<< error << ".");
     return 1;
   }
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  if (!scalars || scalars->GetNumberOfComponents() != 1 ||
-    scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
-  {
-    vtkErrorMacro("Choose a one-component point array of the image (Scalars).");
-    return 1;
-  }
-  image->GetSpacing(geometry.Spacing);
-  const int* extent = image->GetExtent();
-  image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], geometry.Origin);
-  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9,
-    geometry.Direction);
+  const dsurf::ImageGeometry& geometry = volume.Geometry;
 
   // --- the initial surface ---
   dsurf::TriangleMesh mesh;
-  std::string error;
   if (!BuildMesh(surface, mesh, error))
   {
     vtkErrorMacro("Bad initial surface: " << error << ".");
@@ -421,20 +398,6 @@ int vtkDeformableSurfaceFilter::RequestData(
                                     << mesh.NumberOfTriangles() << " triangles, signed volume "
                                     << mesh.SignedVolume() << ".");
 
-  std::vector<float> converted;
-  const float* values = nullptr;
-  if (vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars))
-  {
-    values = asFloat->GetPointer(0);
-  }
-  else
-  {
-    if (!vtkArrayDispatch::Dispatch::Execute(scalars, ToFloat{}, converted))
-    {
-      ToFloat{}(scalars, converted);
-    }
-    values = converted.data();
-  }
   // --- the multilevel solve (hierarchy branch): dsurf::MultilevelSolver runs the
   // levels (sweeps, error estimator, red-green refinement, butterfly, sigma halving,
   // force field per level); here only parameters in and results out.
@@ -475,7 +438,7 @@ int vtkDeformableSurfaceFilter::RequestData(
     columns.MaxCorrection->InsertNextValue(r.MaxCorrection);
     return true;
   });
-  if (!solver.Run(values, geometry, mesh, &error))
+  if (!solver.Run(volume.Values, geometry, mesh, &error))
   {
     vtkErrorMacro("Deformable surface failed: " << error);
     output->Initialize();

@@ -1,6 +1,7 @@
 #include "vtkImageScaleSpaceGradient.h"
 
 #include "dsScaleSpace.h"
+#include "dsVTKImage.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellData.h"
@@ -22,22 +23,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkImageScaleSpaceGradient);
-
-namespace
-{
-// Any scalar type to float, one value per voxel.
-struct ToFloat
-{
-  template <typename ArrayT>
-  void operator()(ArrayT* array, std::vector<float>& out) const
-  {
-    const auto values = vtk::DataArrayValueRange<1>(array);
-    out.resize(values.size());
-    std::transform(values.cbegin(), values.cend(), out.begin(),
-      [](typename decltype(values)::ValueType v) { return static_cast<float>(v); });
-  }
-};
-} // namespace
 
 //------------------------------------------------------------------------------
 vtkImageScaleSpaceGradient::vtkImageScaleSpaceGradient()
@@ -84,40 +69,14 @@ int vtkImageScaleSpaceGradient::RequestData(
     return 0;
   }
   output->Initialize();
-  if (!input || input->GetNumberOfPoints() <= 0)
+  dsurf::ImageVolume volume;
+  std::string error;
+  if (!dsurf::GetImageVolume(input, this->GetInputArrayToProcess(0, inputVector), volume, error))
   {
-    vtkErrorMacro("The input image is empty.");
+    vtkErrorMacro(<< error << ".");
     return 1;
   }
-  dsurf::ImageGeometry geometry;
-  input->GetDimensions(geometry.Dimensions);
-  if (geometry.Dimensions[0] < 2 || geometry.Dimensions[1] < 2 || geometry.Dimensions[2] < 2)
-  {
-    vtkErrorMacro("A 3-D image is needed (at least 2 voxels along every axis); got "
-      << geometry.Dimensions[0] << "x" << geometry.Dimensions[1] << "x"
-      << geometry.Dimensions[2] << ".");
-    return 1;
-  }
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  if (!scalars)
-  {
-    vtkErrorMacro("No point scalars to process: choose a point array (Scalars).");
-    return 1;
-  }
-  if (scalars->GetNumberOfComponents() != 1 ||
-    scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
-  {
-    vtkErrorMacro("The array '" << (scalars->GetName() ? scalars->GetName() : "(unnamed)")
-                                << "' must be a point array with one component.");
-    return 1;
-  }
-
-  input->GetSpacing(geometry.Spacing);
-  const int* extent = input->GetExtent();
-  // Index (0,0,0) of the core is the first voxel of the extent.
-  input->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], geometry.Origin);
-  std::copy(input->GetDirectionMatrix()->GetData(), input->GetDirectionMatrix()->GetData() + 9,
-    geometry.Direction);
+  const dsurf::ImageGeometry& geometry = volume.Geometry;
 
   double sigma = this->Sigma;
   if (!(sigma > 0.0))
@@ -125,22 +84,6 @@ int vtkImageScaleSpaceGradient::RequestData(
     sigma = this->SigmaFraction * geometry.MeanExtent();
   }
 
-  // Float input of the usual layout is used in place; anything else is converted.
-  std::vector<float> converted;
-  const float* values = nullptr;
-  vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars);
-  if (asFloat)
-  {
-    values = asFloat->GetPointer(0);
-  }
-  else
-  {
-    if (!vtkArrayDispatch::Dispatch::Execute(scalars, ToFloat{}, converted))
-    {
-      ToFloat{}(scalars, converted);
-    }
-    values = converted.data();
-  }
   this->UpdateProgress(0.1);
 
   const vtkIdType n = input->GetNumberOfPoints();
@@ -158,9 +101,8 @@ int vtkImageScaleSpaceGradient::RequestData(
   parameters.ImageWeight = this->ImageWeight;
   parameters.NormalizePotential = this->NormalizePotential;
   parameters.NumberOfThreads = this->NumberOfThreads;
-  std::string error;
   if (!dsurf::ComputeScaleSpaceForceInto(
-        values, geometry, parameters, potential->GetPointer(0), force->GetPointer(0), &error))
+        volume.Values, geometry, parameters, potential->GetPointer(0), force->GetPointer(0), &error))
   {
     vtkErrorMacro("Scale-space gradient failed: " << error);
     return 1;
