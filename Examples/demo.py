@@ -101,14 +101,15 @@ def nifti_source(path, name):
     return source
 
 
-def segment_brain(settings=None):
-    """The pipeline: ch2bet -> DeformableSurface(start = Box at the image bounds).
-    Returns a dict with the proxies, the fetched surface, table and image, and the time."""
+def segment_brain(settings=None, inset=0.0):
+    """The pipeline: ch2bet -> DeformableSurface(start = Box at the image bounds, shrunk by
+    inset mm on every side). settings: filter properties (default SOLVER_SETTINGS). Returns a dict with the proxies, the fetched surface, table and image, and the time."""
     require_data()
     brain = nifti_source(BRAIN, "T1")
     brain.UpdatePipeline()
     b = brain.GetDataInformation().GetBounds()
-    box = simple.Box(XLength=b[1] - b[0], YLength=b[3] - b[2], ZLength=b[5] - b[4],
+    box = simple.Box(XLength=b[1] - b[0] - 2 * inset, YLength=b[3] - b[2] - 2 * inset,
+                     ZLength=b[5] - b[4] - 2 * inset,
                      Center=[0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])])
     surface = simple.DeformableSurface(Input=brain, InitialSurface=box)
     surface.Scalars = ["POINTS", "T1"]
