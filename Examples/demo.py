@@ -425,6 +425,8 @@ def main(argv=None):
     except RuntimeError as error:
         sys.exit("demo: %s" % error)
     os.makedirs(args.output, exist_ok=True)
+    from vtkmodules.vtkCommonCore import vtkLogger
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_WARNING)  # not VTK's INFO chatter
     load_plugin(args.plugin)
 
     result = segment_brain()
