@@ -14,15 +14,11 @@ only feels the brain as a blob, each refinement halves sigma and lets the finer 
 follow finer detail.
 
 Non-default parameters (everything else is the filter's default):
-  MaxLevels 6            the start box has 8 vertices; the default 4 refinements leave
-                         ~450 vertices (~10 mm triangles) on a 170 mm brain. 6 ends at
-                         sigma = 0.5 mm (below the 1 mm voxel, where finer levels add
-                         nothing) with 2-3 mm triangles on the boundary.
-  RefinementThreshold 0.5
-                         refine every triangle whose error is above half the level's
-                         mean (default: above the mean): a finer mesh on the curved
-                         cortex for a picture, still adaptive (flat parts stay coarse).
-  NumberOfThreads 2      this machine's two cores.
+  MaxLevels 6            the start box is split once (SubdivideInitialSurface) to 48
+                         triangles; the default 4 refinements then end at ~1300 vertices
+                         (~7 mm triangles) on a 170 mm brain. 6 end at sigma = 0.5 mm
+                         (below the 1 mm voxel, where finer levels add nothing) with
+                         ~10 000 vertices, refined where the cortex has detail.
 
 Truth: the boundary of the brain mask (ch2bet > 0), the 0.5 iso-surface of that binary
 volume. The numbers: distance of every surface vertex to it (how well the surface sits on
@@ -47,7 +43,7 @@ BRAIN = os.path.join(TEMPLATES, "ch2bet.nii.gz")
 HEAD = os.path.join(TEMPLATES, "ch2.nii.gz")
 
 # The non-default filter properties of the job and why: see the module docstring.
-SOLVER_SETTINGS = {"MaxLevels": 6, "RefinementThreshold": 0.5, "NumberOfThreads": 2}
+SOLVER_SETTINGS = {"MaxLevels": 6}
 
 
 def require_data():
@@ -67,52 +63,29 @@ def load_plugin(path=None):
         raise RuntimeError("DeformableSurface plugin not loaded: pass --plugin or set DS_PLUGIN")
 
 
-# ParaView 5.11 has no reader for .nii.gz (its AnalyzeNIfTI plugin reads only plain .nii),
-# VTK's vtkNIFTIImageReader does: a ProgrammableSource wraps it (the same two scripts work
-# pasted into the GUI's Programmable Source). The NIfTI qform is ignored: the image is
-# placed at the origin with its spacing, and so are the mask and the surface.
-_NIFTI_INFO = """
-from vtkmodules.vtkIOImage import vtkNIFTIImageReader
-from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-from vtkmodules.vtkCommonDataModel import vtkDataObject
-reader = vtkNIFTIImageReader()
-reader.SetFileName(%(path)r)
-reader.UpdateInformation()
-src = reader.GetOutputInformation(0)
-dst = self.GetOutputInformation(0)
-dst.Set(sddp.WHOLE_EXTENT(), src.Get(sddp.WHOLE_EXTENT()), 6)
-dst.Set(vtkDataObject.SPACING(), src.Get(vtkDataObject.SPACING()), 3)
-dst.Set(vtkDataObject.ORIGIN(), src.Get(vtkDataObject.ORIGIN()), 3)
-"""
-_NIFTI_DATA = """
-from vtkmodules.vtkIOImage import vtkNIFTIImageReader
-reader = vtkNIFTIImageReader()
-reader.SetFileName(%(path)r)
-reader.Update()
-output.ShallowCopy(reader.GetOutput())
-output.GetPointData().GetScalars().SetName(%(name)r)
-"""
-
-
-def nifti_source(path, name):
-    source = simple.ProgrammableSource(OutputDataSetType="vtkImageData")
-    source.ScriptRequestInformation = _NIFTI_INFO % {"path": path}
-    source.Script = _NIFTI_DATA % {"path": path, "name": name}
-    return source
+# ParaView 5.11 has no reader for .nii.gz (its AnalyzeNIfTI plugin reads only plain .nii);
+# the DeformableSurface plugin adds one (VTK's vtkNIFTIImageReader), which OpenDataFile picks.
+# The NIfTI qform is not applied: the image lies at the origin with its spacing, and so do
+# the mask and the surface. The scalar array is called "NIFTI".
+def nifti_source(path):
+    reader = simple.OpenDataFile(path)
+    if reader is None or reader.GetXMLName() != "DSNIfTIImageReader":
+        raise RuntimeError("%s: the plugin's NIfTI reader did not open it" % path)
+    return reader
 
 
 def segment_brain(settings=None, inset=0.0):
     """The pipeline: ch2bet -> DeformableSurface(start = Box at the image bounds, shrunk by
     inset mm on every side). settings: filter properties (default SOLVER_SETTINGS). Returns a dict with the proxies, the fetched surface, table and image, and the time."""
     require_data()
-    brain = nifti_source(BRAIN, "T1")
+    brain = nifti_source(BRAIN)
     brain.UpdatePipeline()
     b = brain.GetDataInformation().GetBounds()
     box = simple.Box(XLength=b[1] - b[0] - 2 * inset, YLength=b[3] - b[2] - 2 * inset,
                      ZLength=b[5] - b[4] - 2 * inset,
                      Center=[0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])])
     surface = simple.DeformableSurface(Input=brain, InitialSurface=box)
-    surface.Scalars = ["POINTS", "T1"]
+    surface.Scalars = ["POINTS", "NIFTI"]
     for name, value in (settings or SOLVER_SETTINGS).items():
         setattr(surface, name, value)
     t0 = time.time()
@@ -221,7 +194,7 @@ def measure(result):
 
     surface = result["polydata"]
     image = result["image"]
-    t1 = vtk_to_numpy(image.GetPointData().GetArray("T1"))
+    t1 = vtk_to_numpy(image.GetPointData().GetArray("NIFTI"))
     mask = vtkImageData()
     mask.CopyStructure(image)
     mask.GetPointData().SetScalars(numpy_to_vtk((t1 > 0).astype(np.float32), deep=1))
@@ -313,7 +286,7 @@ def _caption(view, text, location="Upper Left Corner"):
 def render(result, png, size=(1600, 800), metrics=None):
     """Left: a sagittal slice of the full head T1 (ch2.nii.gz) with the line where the
     surface cuts it. Right: the surface mesh coloured by its distance to the mask boundary."""
-    head = nifti_source(HEAD, "T1")
+    head = nifti_source(HEAD)
     surface = simple.TrivialProducer(registrationName="brain surface")
     surface.GetClientSideObject().SetOutput(result["annotated"])
     surface.UpdatePipeline()
@@ -334,8 +307,8 @@ def render(result, png, size=(1600, 800), metrics=None):
     cut.SliceType.Origin = [x, 108.0, 90.0]
     cut.SliceType.Normal = [1.0, 0.0, 0.0]
     slice_display = simple.Show(cut, left)
-    simple.ColorBy(slice_display, ("POINTS", "T1"))
-    grey = simple.GetColorTransferFunction("T1")
+    simple.ColorBy(slice_display, ("POINTS", "NIFTI"))
+    grey = simple.GetColorTransferFunction("NIFTI")
     grey.ApplyPreset("Grayscale", True)
     grey.RescaleTransferFunction(0.0, 130.0)
     slice_display.SetScalarBarVisibility(left, False)
