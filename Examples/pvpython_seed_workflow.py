@@ -86,16 +86,11 @@ def build_pipeline(step=3):
     seed.TargetEdgeLength = 2.0
     seed.UpdatePipeline()
 
-    solved = None
-    if hasattr(simple, "DeformableSurface"):
-        try:
-            solved = simple.DeformableSurface(Image=image, InitialSurface=simple.OutputPort(seed, 0))
-            solved.UpdatePipeline()
-        except Exception as error:  # the solver's properties may still change
-            print("DeformableSurface not run:", error)
-            solved = None
-    else:
-        print("DeformableSurface is not in this plugin build yet: stopping at the seed surface.")
+    # The solver starts at the seed. Scalars is named: paraview.simple first connects the
+    # active source (the seed, whose SeedPointId would be the default array) before Input.
+    solved = simple.DeformableSurface(Input=image, InitialSurface=simple.OutputPort(seed, 0))
+    solved.Scalars = ["POINTS", "density"]
+    solved.UpdatePipeline()
     return {"image": image, "slices": slices, "outline": outline, "picked": picked,
             "seed": seed, "solved": solved, "n_picked": len(ids) // 2}
 

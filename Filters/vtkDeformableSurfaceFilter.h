@@ -49,7 +49,8 @@
  * Hierarchy (SPEC §6, dsMultilevel.h): after a level converges, the error estimator
  * (|internal part of the correction| per vertex) marks every triangle whose corner
  * average exceeds RefinementThreshold times the level's mean (all triangles with
- * UniformRefinement); the marked triangles are red-green refined (no T-vertices,
+ * UniformRefinement; adaptively, never a triangle whose edges are all shorter than a
+ * voxel); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
  * It stops after MaxLevels refinements, when nothing is marked, or before exceeding

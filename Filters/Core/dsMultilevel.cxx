@@ -73,6 +73,8 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     return fail("the initial sigma must be positive");
   }
 
+  // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
+  const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
   RedGreenRefiner refiner;
   std::string msg;
   if (!refiner.Initialize(mesh, &msg))
@@ -84,7 +86,6 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
     // and the result is a fresh level-0 mesh for the hierarchy.
     // Edges shorter than two voxels resolve nothing more, whatever sigma is.
-    const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
     const double target = std::max(P.InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
     bool subdivided = false;
     while (mesh.MeanEdgeLength() > target &&
@@ -192,9 +193,27 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
       break;
     }
 
-    // Mark, check the vertex budget, refine.
-    const std::vector<char> marks =
+    // Mark, check the vertex budget, refine. Adaptively, triangles whose edges are all
+    // shorter than a voxel are not split again: the image has no finer detail for their
+    // children to follow. (UniformRefinement splits everything, as asked.)
+    std::vector<char> marks =
       MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
+    for (size_t t = 0; t < marks.size() && !P.UniformRefinement; ++t)
+    {
+      if (marks[t])
+      {
+        const auto& tri = mesh.Triangles[t];
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          longest = std::max(longest, Norm(mesh.Points[tri[(k + 1) % 3]] - mesh.Points[tri[k]]));
+        }
+        if (longest < voxel)
+        {
+          marks[t] = 0;
+        }
+      }
+    }
     std::unordered_set<int> splitEdges;
     for (size_t t = 0; t < marks.size(); ++t)
     {

@@ -12,7 +12,8 @@
 //      exceeds RefinementThreshold * (mean e over all moving vertices of the level)
 //      (every triangle when UniformRefinement). The threshold is relative to the level's
 //      own statistics, so one default works whatever the data's units or the level;
-//      1 marks the triangles busier than average;
+//      1 marks the triangles busier than average. Adaptively, a triangle whose edges are
+//      all shorter than a voxel (mean spacing) is never marked: the image has no finer detail;
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows

@@ -15,6 +15,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSphereSource.h"
 #include "vtkTable.h"
 
 int TestHierarchyFilter(int, char*[])
@@ -82,6 +83,30 @@ int TestHierarchyFilter(int, char*[])
     DS_CHECK_LE(sum / out->GetNumberOfPoints(), 0.15, name + ": mean |distance| (voxels)");
     DS_CHECK_LE(maxD, 0.5, name + ": max |distance| (voxels)");
     DS_CHECK_LE(out->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0), 0, name + ": self-intersections");
+  }
+
+  // A start finer than the voxels (ParaView's Sphere, radius 30, 320 x 320: edges <= 0.85
+  // voxel) is not refined further: the image has no detail for smaller triangles, so the
+  // adaptive hierarchy stops after the first level instead of multiplying the mesh.
+  {
+    vtkNew<vtkSphereSource> fine;
+    fine->SetCenter(0.5 * (n - 1), 0.5 * (n - 1), 0.5 * (n - 1));
+    fine->SetRadius(30.0);
+    fine->SetThetaResolution(320);
+    fine->SetPhiResolution(320);
+    vtkNew<vtkDeformableSurfaceFilter> filter;
+    filter->SetInputData(0, image);
+    filter->SetInitialSurfaceConnection(fine->GetOutputPort());
+    filter->SetSigma(2.0);
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    const int levels = static_cast<int>(out->GetFieldData()->GetArray("Levels")->GetTuple1(0));
+    fine->Update();
+    std::cout << "  fine start: " << fine->GetOutput()->GetNumberOfPoints() << " input points -> "
+              << out->GetNumberOfPoints() << " output points, " << levels << " level(s)" << std::endl;
+    DS_CHECK(levels == 1, "a sub-voxel start is not refined (one level)");
+    DS_CHECK_LE(out->GetNumberOfPoints(), fine->GetOutput()->GetNumberOfPoints(),
+      "output points of a sub-voxel start (merged seams: at most the input's)");
   }
   return dstest::Result("TestHierarchyFilter");
 }
