@@ -50,7 +50,7 @@ output.PointData.SetActiveScalars("density")
 
 
 def build_pipeline(step=3):
-    """Returns a dict of the proxies; 'seed' is the seed surface, 'solved' the deformed one or None."""
+    """Returns a dict of the proxies; 'seed' is the seed surface, 'solved' the deformed one."""
     image = simple.ProgrammableSource(OutputDataSetType="vtkImageData")
     image.ScriptRequestInformation = PHANTOM_INFO
     image.Script = PHANTOM
@@ -114,8 +114,8 @@ def render(proxies, png, size=(900, 700)):
     tets.SetRepresentationType("Wireframe")
     simple.ColorBy(tets, ("CELLS", "Removed"))
     tets.Opacity = 0.25
-    shown = proxies["solved"] or proxies["seed"]
-    surface = simple.Show(simple.OutputPort(shown, 0), view)
+    # The seed, the subject of this example (the solved surface is finer and hides the picks).
+    surface = simple.Show(simple.OutputPort(proxies["seed"], 0), view)
     surface.SetRepresentationType("Surface With Edges")
     surface.ColorArrayName = ["POINTS", ""]
     surface.AmbientColor = surface.DiffuseColor = [0.95, 0.8, 0.35]
@@ -139,6 +139,9 @@ def main(argv=None):
     info = proxies["seed"].GetDataInformation()
     print("picked %d points -> seed surface with %d points, %d triangles"
           % (proxies["n_picked"], info.GetNumberOfPoints(), info.GetNumberOfCells()))
+    solved = proxies["solved"].GetDataInformation()
+    print("DeformableSurface from the seed: %d points, %d triangles"
+          % (solved.GetNumberOfPoints(), solved.GetNumberOfCells()))
     if args.png:
         render(proxies, args.png)
     return proxies
