@@ -4,12 +4,23 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <thread>
 
 namespace dsurf
 {
 namespace
 {
+/// What the umbrella operators read: the mesh itself (Solver::Umbrella) or the
+/// solver's breadth-first copy (the sweeps). Same arithmetic either way.
+struct MeshView
+{
+  const int* NeighborOffsets;
+  const int* Neighbors;
+  const unsigned char* Labels;
+  const Vec3* Points;
+};
+
 /// Weight sum of vertex v and the normalised weight it gives neighbour slot i.
 /// Uniform fallback when the label weights of v sum to zero (an M vertex whose only
 /// neighbours are M cannot occur in a valid red-green mesh, but must not divide by 0).
@@ -20,7 +31,7 @@ struct RingWeights
 };
 
 template <bool AllN>
-inline RingWeights ComputeRingWeights(const TriangleMesh& m, int v)
+inline RingWeights ComputeRingWeights(const MeshView& m, int v)
 {
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   RingWeights rw;
@@ -48,7 +59,7 @@ inline RingWeights ComputeRingWeights(const TriangleMesh& m, int v)
 }
 
 template <bool AllN>
-inline double SlotWeight(const TriangleMesh& m, int v, int q, const RingWeights& rw)
+inline double SlotWeight(const MeshView& m, int v, int q, const RingWeights& rw)
 {
   if (AllN || rw.Uniform)
   {
@@ -59,7 +70,7 @@ inline double SlotWeight(const TriangleMesh& m, int v, int q, const RingWeights&
 
 /// U(v) and the normalised weight that v gives the vertex `other` (0 if not a neighbour).
 template <bool AllN>
-inline Vec3 UmbrellaOf(const TriangleMesh& m, int v, int other, double* weightOfOther)
+inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOther)
 {
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const RingWeights rw = ComputeRingWeights<AllN>(m, v);
@@ -79,6 +90,22 @@ inline Vec3 UmbrellaOf(const TriangleMesh& m, int v, int other, double* weightOf
   }
   const Vec3& p = m.Points[v];
   return { s0 - p[0], s1 - p[1], s2 - p[2] };
+}
+
+/// Spin briefly, then give the core away: the other thread is usually microseconds
+/// from done, but on a loaded machine it may be descheduled.
+inline void WaitPause(int& spins)
+{
+  if (++spins < 256)
+  {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  else
+  {
+    std::this_thread::yield();
+  }
 }
 
 int ResolveThreads(int requested)
@@ -183,23 +210,109 @@ void Solver::BuildColoring()
       this->ClassVertices[counts[color[v]]++] = v;
     }
   }
+  this->BuildLocalLayout();
+}
+
+void Solver::BuildLocalLayout()
+{
+  const TriangleMesh& m = *this->Mesh;
+  const int n = m.NumberOfPoints();
+  // Breadth-first order, component by component: any prefix of it is a compact patch,
+  // so contiguous shares of it are compact regions with short borders.
+  this->Original.clear();
+  this->Original.reserve(n);
+  this->Local.assign(n, -1);
+  for (int seed = 0; seed < n; ++seed)
+  {
+    if (this->Local[seed] >= 0)
+    {
+      continue;
+    }
+    std::size_t head = this->Original.size();
+    this->Local[seed] = static_cast<int>(this->Original.size());
+    this->Original.push_back(seed);
+    for (; head < this->Original.size(); ++head)
+    {
+      const int v = this->Original[head];
+      for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
+      {
+        const int q = m.Neighbors[i];
+        if (this->Local[q] < 0)
+        {
+          this->Local[q] = static_cast<int>(this->Original.size());
+          this->Original.push_back(q);
+        }
+      }
+    }
+  }
+
+  // Neighbour lists and triangle fans in local ids, each in the mesh's order, so every
+  // sum is evaluated in the same order as on the mesh itself.
+  this->LocalNeighborOffsets.assign(n + 1, 0);
+  this->LocalNeighbors.resize(m.Neighbors.size());
+  this->LocalFanOffsets.assign(n + 1, 0);
+  this->LocalFan.resize(m.VertexTriangles.size());
+  this->LocalLabels.resize(n);
+  this->LocalPoints.resize(n);
+  for (int l = 0; l < n; ++l)
+  {
+    const int v = this->Original[l];
+    int k = this->LocalNeighborOffsets[l];
+    for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
+    {
+      this->LocalNeighbors[k++] = this->Local[m.Neighbors[i]];
+    }
+    this->LocalNeighborOffsets[l + 1] = k;
+    int f = this->LocalFanOffsets[l];
+    for (int i = m.VertexTriangleOffsets[v]; i < m.VertexTriangleOffsets[v + 1]; ++i)
+    {
+      const auto& tri = m.Triangles[m.VertexTriangles[i]];
+      this->LocalFan[f++] = { this->Local[tri[0]], this->Local[tri[1]], this->Local[tri[2]] };
+    }
+    this->LocalFanOffsets[l + 1] = f;
+  }
+
+  // The colour classes in local ids, ascending: a thread's share of a colour is a
+  // contiguous run of it, hence a compact region.
+  const int numColors = this->NumberOfColors();
+  this->WorkOffsets = this->ClassOffsets;
+  this->WorkVertices.resize(this->ClassVertices.size());
+  for (int c = 0; c < numColors; ++c)
+  {
+    for (int k = this->ClassOffsets[c]; k < this->ClassOffsets[c + 1]; ++k)
+    {
+      this->WorkVertices[k] = this->Local[this->ClassVertices[k]];
+    }
+    std::sort(this->WorkVertices.begin() + this->ClassOffsets[c],
+      this->WorkVertices.begin() + this->ClassOffsets[c + 1]);
+  }
+
+  // Fixed vertices keep 0; moving ones are overwritten by every sweep.
+  this->ErrorIndicatorValues.assign(n, 0.0);
+  this->DisplacementValues.assign(n, 0.0);
+  this->ForceValues.assign(n, 0.0);
+  this->OutsideFlags.assign(n, 0);
 }
 
 Vec3 Solver::Umbrella(int v) const
 {
   double unused = 0;
-  if (this->Mesh->NeighborOffsets[v + 1] == this->Mesh->NeighborOffsets[v])
+  const TriangleMesh& m = *this->Mesh;
+  if (m.NeighborOffsets[v + 1] == m.NeighborOffsets[v])
   {
     return { 0, 0, 0 };
   }
-  return UmbrellaOf<false>(*this->Mesh, v, -1, &unused);
+  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), m.Labels.data(), m.Points.data() };
+  return UmbrellaOf<false>(view, v, -1, &unused);
 }
 
 void Solver::UpdateVertex(int v)
 {
-  TriangleMesh& m = *this->Mesh;
+  const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(), this->LocalLabels.data(),
+    this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau, gamma = this->Parameters.Gamma;
+  const int original = this->Original[v];
 
   // U(p), U^2(p) and alpha (SPEC §3 with the §6.4 weights).
   Vec3 u, u2acc{ 0, 0, 0 };
@@ -237,17 +350,18 @@ void Solver::UpdateVertex(int v)
   // tangentially over each other.
   Vec3 force{ 0, 0, 0 };
   Vec3 applied{ 0, 0, 0 };
-  this->OutsideFlags[v] = 0;
+  unsigned char outside = 0;
+  Vec3* points = this->LocalPoints.data();
   if (this->Field && this->Sampler)
   {
     double f[3] = { 0, 0, 0 };
-    if (this->Sampler(this->Field, m.Points[v].data(), f))
+    if (this->Sampler(this->Field, points[v].data(), f))
     {
       force = { this->ForceScale * f[0], this->ForceScale * f[1], this->ForceScale * f[2] };
     }
     else
     {
-      this->OutsideFlags[v] = 1;
+      outside = 1;
     }
     if (!this->Parameters.ProjectExternalForce)
     {
@@ -262,7 +376,13 @@ void Solver::UpdateVertex(int v)
       }
       else
       {
-        const Vec3 nrm = m.AreaWeightedNormal(v);
+        // The area-weighted normal, as TriangleMesh::AreaWeightedNormal on the local copy.
+        Vec3 nrm{ 0, 0, 0 };
+        for (int i = this->LocalFanOffsets[v]; i < this->LocalFanOffsets[v + 1]; ++i)
+        {
+          const auto& tri = this->LocalFan[i];
+          nrm = nrm + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+        }
         const double nn = Dot(nrm, nrm);
         if (nn > 0)
         {
@@ -273,10 +393,13 @@ void Solver::UpdateVertex(int v)
   }
 
   const Vec3 c = gamma * (internal + applied);
-  m.Points[v] = m.Points[v] + c;
-  this->ErrorIndicatorValues[v] = gamma * Norm(internal);
-  this->DisplacementValues[v] = Norm(c);
-  this->ForceValues[v] = Norm(force);
+  points[v] = points[v] + c;
+  // The mesh is only written during a sweep (all reads go to the local copy).
+  this->Mesh->Points[original] = points[v];
+  this->OutsideFlags[original] = outside;
+  this->ErrorIndicatorValues[original] = gamma * Norm(internal);
+  this->DisplacementValues[original] = Norm(c);
+  this->ForceValues[original] = Norm(force);
 }
 
 SweepStatistics Solver::Sweep()
@@ -295,84 +418,102 @@ SweepStatistics Solver::Sweep()
   if (this->ColoredPoints != n)
   {
     this->BuildColoring();
+    if (this->ColoredPoints != n)
+    {
+      return stats; // no labels yet: nothing was coloured
+    }
   }
-  this->ErrorIndicatorValues.assign(n, 0.0);
-  this->DisplacementValues.assign(n, 0.0);
-  this->ForceValues.assign(n, 0.0);
-  this->OutsideFlags.assign(n, 0);
 
   const int numColors = this->NumberOfColors();
   const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
   const int total = this->ClassOffsets.back();
+  // The caller may have moved points (or relabelled them) since the last sweep.
+  const auto refresh = [&](int first, int last) {
+    for (int l = first; l < last; ++l)
+    {
+      const int v = this->Original[l];
+      this->LocalPoints[l] = m.Points[v];
+      this->LocalLabels[l] = m.Labels[v];
+    }
+  };
   if (numThreads <= 1 || total < 256)
   {
+    refresh(0, n);
     for (int k = 0; k < total; ++k)
     {
-      this->UpdateVertex(this->ClassVertices[k]);
+      this->UpdateVertex(this->WorkVertices[k]);
     }
   }
   else
   {
-    // One parallel region per sweep (thread start-up is the dominant cost of a
-    // vtkSMPTools::For with STDThread, and there are ~10-20 colours). Workers claim
-    // chunks of the current colour; a worker moves to the next colour only when every
-    // chunk of this one is done. A worker waits only for chunks being processed by a
-    // running worker, so this cannot deadlock even if the backend ran the jobs one
-    // after another.
-    constexpr int chunk = 32;
-    std::vector<int> chunkOffsets(numColors + 1, 0);
-    for (int c = 0; c < numColors; ++c)
+    // One parallel region per sweep: VTK 9.2's STDThread backend starts its threads on
+    // every For, which costs about as much as a colour's work. Phase 0 copies the mesh
+    // into the local layout, phase 1 + c sweeps colour c. Each phase is cut into
+    // blocks, `perThread` consecutive ones per thread: thread t first does its own
+    // blocks (the same surface region every phase and every sweep, so its points stay
+    // in its cache), then takes any block nobody has claimed, then waits for the phase
+    // to finish. A thread waits only for blocks a running thread has claimed, so this
+    // cannot deadlock even if the backend ran the jobs one after another, and a thread
+    // that is descheduled on a busy machine has its share taken over.
+    constexpr int perThread = 4;
+    const int blocks = numThreads * perThread;
+    const int phases = numColors + 1;
+    std::unique_ptr<std::atomic<int>[]> claimed(new std::atomic<int>[phases * blocks]);
+    std::unique_ptr<std::atomic<int>[]> done(new std::atomic<int>[phases]);
+    for (int i = 0; i < phases * blocks; ++i)
     {
-      const int size = this->ClassOffsets[c + 1] - this->ClassOffsets[c];
-      chunkOffsets[c + 1] = chunkOffsets[c] + (size + chunk - 1) / chunk;
+      claimed[i].store(0, std::memory_order_relaxed);
     }
-    const int totalChunks = chunkOffsets[numColors];
-    std::atomic<int> nextChunk{ 0 };
-    std::vector<std::atomic<int>> done(numColors);
-    for (auto& d : done)
+    for (int p = 0; p < phases; ++p)
     {
-      d.store(0, std::memory_order_relaxed);
+      done[p].store(0, std::memory_order_relaxed);
     }
-    auto worker = [&](vtkIdType, vtkIdType) {
-      int color = 0;
-      int complete = 0; // colours [0, complete) are known to be finished
-      for (;;)
+    const auto runBlock = [&](int phase, int b) {
+      if (phase == 0)
       {
-        const int k = nextChunk.fetch_add(1, std::memory_order_relaxed);
-        if (k >= totalChunks)
+        refresh(static_cast<int>(static_cast<long long>(n) * b / blocks),
+          static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
+        return;
+      }
+      const int cBegin = this->WorkOffsets[phase - 1];
+      const long long size = this->WorkOffsets[phase] - cBegin;
+      const int first = cBegin + static_cast<int>(size * b / blocks);
+      const int last = cBegin + static_cast<int>(size * (b + 1) / blocks);
+      for (int k = first; k < last; ++k)
+      {
+        this->UpdateVertex(this->WorkVertices[k]);
+      }
+    };
+    const auto worker = [&](vtkIdType jobBegin, vtkIdType jobEnd) {
+      for (vtkIdType job = jobBegin; job < jobEnd; ++job)
+      {
+        const int t = static_cast<int>(job);
+        for (int phase = 0; phase < phases; ++phase)
         {
-          return;
-        }
-        while (k >= chunkOffsets[color + 1])
-        {
-          ++color;
-        }
-        // Chunks are claimed in order, so chunk k's colour is never earlier than any
-        // chunk this worker did before; wait until the previous colour is complete.
-        for (; complete < color; ++complete)
-        {
-          const int need = chunkOffsets[complete + 1] - chunkOffsets[complete];
-          while (done[complete].load(std::memory_order_acquire) < need)
+          std::atomic<int>* claim = claimed.get() + phase * blocks;
+          for (int i = 0; i < blocks; ++i)
           {
-            std::this_thread::yield();
+            // Own blocks first, then the others from the far end of the region.
+            const int b = i < perThread ? t * perThread + i : (t * perThread + blocks - 1 - (i - perThread)) % blocks;
+            if (claim[b].load(std::memory_order_relaxed) == 0 && claim[b].exchange(1, std::memory_order_acquire) == 0)
+            {
+              runBlock(phase, b);
+              done[phase].fetch_add(1, std::memory_order_acq_rel);
+            }
+          }
+          int spins = 0;
+          while (done[phase].load(std::memory_order_acquire) < blocks)
+          {
+            WaitPause(spins);
           }
         }
-        const int cBegin = this->ClassOffsets[color];
-        const int cEnd = this->ClassOffsets[color + 1];
-        const int first = cBegin + (k - chunkOffsets[color]) * chunk;
-        const int last = std::min(first + chunk, cEnd);
-        for (int i = first; i < last; ++i)
-        {
-          this->UpdateVertex(this->ClassVertices[i]);
-        }
-        done[color].fetch_add(1, std::memory_order_acq_rel);
       }
     };
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads, "STDThread", false },
       [&]() { vtkSMPTools::For(0, numThreads, 1, worker); });
   }
 
-  // Serial reduction in vertex order: identical for any thread count.
+  // Serial reduction in the mesh's vertex order: identical for any thread count.
   double sum = 0, maxC = 0;
   for (int k = 0; k < total; ++k)
   {

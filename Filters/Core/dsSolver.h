@@ -8,6 +8,12 @@
 // the vertices of one colour in parallel. A vertex's update reads only points of
 // earlier colours or not yet updated ones, never one being written concurrently, so
 // the result does not depend on the number of threads (bit-identical).
+//
+// For the parallel sweep the solver keeps its own copy of the mesh in breadth-first
+// order (positions, neighbour lists, triangle fans): each thread owns one contiguous
+// share of every colour, i.e. one compact region of the surface, so the points it
+// reads were mostly written by itself and stay in its cache. The mesh's own point
+// order and all per-vertex outputs are unchanged (indexed by the mesh's ids).
 #ifndef dsSolver_h
 #define dsSolver_h
 
@@ -85,7 +91,10 @@ public:
 
 private:
   void BuildColoring();
-  /// Correct vertex v in place; records the per-vertex values.
+  /// Builds the breadth-first copy of the topology used by the sweeps.
+  void BuildLocalLayout();
+  /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
+  /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);
 
   SolverParameters Parameters;
@@ -103,6 +112,15 @@ private:
   int ColoredPoints = -1; ///< point count the colouring was built for
   std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues;
   std::vector<unsigned char> OutsideFlags;
+
+  // Local (breadth-first) layout: Original[local] = mesh id, Local[mesh id] = local id.
+  std::vector<int> Original, Local;
+  std::vector<int> LocalNeighborOffsets, LocalNeighbors;
+  std::vector<int> LocalFanOffsets;              ///< triangles around each local vertex
+  std::vector<std::array<int, 3>> LocalFan;      ///< their corners (local ids, mesh order)
+  std::vector<unsigned char> LocalLabels;
+  std::vector<Vec3> LocalPoints;                 ///< refreshed from the mesh every sweep
+  std::vector<int> WorkOffsets{ 0 }, WorkVertices; ///< colour classes in local ids, ascending
 };
 } // namespace dsurf
 
