@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <thread>
 
@@ -405,115 +406,18 @@ void Solver::UpdateVertex(int v)
 SweepStatistics Solver::Sweep()
 {
   SweepStatistics stats;
-  if (!this->Mesh)
-  {
-    return stats;
-  }
-  TriangleMesh& m = *this->Mesh;
-  const int n = m.NumberOfPoints();
-  if (static_cast<int>(m.NeighborOffsets.size()) != n + 1)
-  {
-    return stats; // no topology: nothing can move
-  }
-  if (this->ColoredPoints != n)
-  {
-    this->BuildColoring();
-    if (this->ColoredPoints != n)
-    {
-      return stats; // no labels yet: nothing was coloured
-    }
-  }
+  this->Sweeps(1, [&stats](const SweepStatistics& s) {
+    stats = s;
+    return true;
+  });
+  return stats;
+}
 
-  const int numColors = this->NumberOfColors();
-  const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
+SweepStatistics Solver::Statistics() const
+{
+  // Serial, in the mesh's vertex order: identical for any thread count.
+  SweepStatistics stats;
   const int total = this->ClassOffsets.back();
-  // The caller may have moved points (or relabelled them) since the last sweep.
-  const auto refresh = [&](int first, int last) {
-    for (int l = first; l < last; ++l)
-    {
-      const int v = this->Original[l];
-      this->LocalPoints[l] = m.Points[v];
-      this->LocalLabels[l] = m.Labels[v];
-    }
-  };
-  if (numThreads <= 1 || total < 256)
-  {
-    refresh(0, n);
-    for (int k = 0; k < total; ++k)
-    {
-      this->UpdateVertex(this->WorkVertices[k]);
-    }
-  }
-  else
-  {
-    // One parallel region per sweep: VTK 9.2's STDThread backend starts its threads on
-    // every For, which costs about as much as a colour's work. Phase 0 copies the mesh
-    // into the local layout, phase 1 + c sweeps colour c. Each phase is cut into
-    // blocks, `perThread` consecutive ones per thread: thread t first does its own
-    // blocks (the same surface region every phase and every sweep, so its points stay
-    // in its cache), then takes any block nobody has claimed, then waits for the phase
-    // to finish. A thread waits only for blocks a running thread has claimed, so this
-    // cannot deadlock even if the backend ran the jobs one after another, and a thread
-    // that is descheduled on a busy machine has its share taken over.
-    constexpr int perThread = 4;
-    const int blocks = numThreads * perThread;
-    const int phases = numColors + 1;
-    std::unique_ptr<std::atomic<int>[]> claimed(new std::atomic<int>[phases * blocks]);
-    std::unique_ptr<std::atomic<int>[]> done(new std::atomic<int>[phases]);
-    for (int i = 0; i < phases * blocks; ++i)
-    {
-      claimed[i].store(0, std::memory_order_relaxed);
-    }
-    for (int p = 0; p < phases; ++p)
-    {
-      done[p].store(0, std::memory_order_relaxed);
-    }
-    const auto runBlock = [&](int phase, int b) {
-      if (phase == 0)
-      {
-        refresh(static_cast<int>(static_cast<long long>(n) * b / blocks),
-          static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
-        return;
-      }
-      const int cBegin = this->WorkOffsets[phase - 1];
-      const long long size = this->WorkOffsets[phase] - cBegin;
-      const int first = cBegin + static_cast<int>(size * b / blocks);
-      const int last = cBegin + static_cast<int>(size * (b + 1) / blocks);
-      for (int k = first; k < last; ++k)
-      {
-        this->UpdateVertex(this->WorkVertices[k]);
-      }
-    };
-    const auto worker = [&](vtkIdType jobBegin, vtkIdType jobEnd) {
-      for (vtkIdType job = jobBegin; job < jobEnd; ++job)
-      {
-        const int t = static_cast<int>(job);
-        for (int phase = 0; phase < phases; ++phase)
-        {
-          std::atomic<int>* claim = claimed.get() + phase * blocks;
-          for (int i = 0; i < blocks; ++i)
-          {
-            // Own blocks first, then the others from the far end of the region.
-            const int b = i < perThread ? t * perThread + i : (t * perThread + blocks - 1 - (i - perThread)) % blocks;
-            if (claim[b].load(std::memory_order_relaxed) == 0 && claim[b].exchange(1, std::memory_order_acquire) == 0)
-            {
-              runBlock(phase, b);
-              done[phase].fetch_add(1, std::memory_order_acq_rel);
-            }
-          }
-          int spins = 0;
-          while (done[phase].load(std::memory_order_acquire) < blocks)
-          {
-            WaitPause(spins);
-          }
-        }
-      }
-    };
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads, "STDThread", false },
-      [&]() { vtkSMPTools::For(0, numThreads, 1, worker); });
-  }
-
-  // Serial reduction in the mesh's vertex order: identical for any thread count.
   double sum = 0, maxC = 0;
   for (int k = 0; k < total; ++k)
   {
@@ -527,5 +431,142 @@ SweepStatistics Solver::Sweep()
   stats.MeanCorrection = total > 0 ? sum / total : 0.0;
   stats.MaxCorrection = maxC;
   return stats;
+}
+
+int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+{
+  if (!this->Mesh || maxSweeps <= 0)
+  {
+    return 0;
+  }
+  TriangleMesh& m = *this->Mesh;
+  const int n = m.NumberOfPoints();
+  if (static_cast<int>(m.NeighborOffsets.size()) != n + 1)
+  {
+    return 0; // no topology: nothing can move
+  }
+  if (this->ColoredPoints != n)
+  {
+    this->BuildColoring();
+    if (this->ColoredPoints != n)
+    {
+      return 0; // no labels yet: nothing was coloured
+    }
+  }
+
+  const int numColors = this->NumberOfColors();
+  const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
+  const int total = this->ClassOffsets.back();
+  // The caller may have moved points (or relabelled them) since the last call.
+  const auto refresh = [&](int first, int last) {
+    for (int l = first; l < last; ++l)
+    {
+      const int v = this->Original[l];
+      this->LocalPoints[l] = m.Points[v];
+      this->LocalLabels[l] = m.Labels[v];
+    }
+  };
+  if (numThreads <= 1 || total < 256)
+  {
+    refresh(0, n);
+    for (int sweep = 0; sweep < maxSweeps;)
+    {
+      for (int k = 0; k < total; ++k)
+      {
+        this->UpdateVertex(this->WorkVertices[k]);
+      }
+      ++sweep;
+      if (!afterSweep(this->Statistics()))
+      {
+        return sweep;
+      }
+    }
+    return maxSweeps;
+  }
+
+  // One parallel region for all the sweeps: VTK 9.2's STDThread backend starts its
+  // threads on every For, which costs about as much as several colours' work. The
+  // region is a sequence of steps: the copy of the mesh into the local layout, then
+  // per sweep one step per colour and one for the statistics. Each step is cut into
+  // blocks, `perThread` consecutive ones per thread: thread t first does its own blocks
+  // (the same surface region in every step and sweep, so its points stay in its
+  // cache), then takes any block nobody has claimed, then waits for the step to
+  // finish. A thread waits only for blocks a running thread has claimed, so this cannot
+  // deadlock even if the backend ran the jobs one after another, and a thread that is
+  // descheduled on a busy machine has its share taken over.
+  constexpr int perThread = 4;
+  const int blocks = numThreads * perThread;
+  const int stepsPerSweep = numColors + 1;
+  std::unique_ptr<std::atomic<long long>[]> claimed(new std::atomic<long long>[blocks]);
+  for (int b = 0; b < blocks; ++b)
+  {
+    claimed[b].store(-1, std::memory_order_relaxed); // the last step that claimed it
+  }
+  std::atomic<long long> finishedBlocks{ 0 };
+  std::atomic<bool> stop{ false };
+  std::atomic<int> sweepsDone{ 0 };
+
+  const auto runBlock = [&](long long step, int b) {
+    if (step == 0)
+    {
+      refresh(static_cast<int>(static_cast<long long>(n) * b / blocks),
+        static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
+      return;
+    }
+    const int phase = static_cast<int>((step - 1) % stepsPerSweep);
+    if (phase == numColors)
+    {
+      if (b == 0) // the statistics, once, after every colour of the sweep
+      {
+        const int done = sweepsDone.load(std::memory_order_relaxed) + 1;
+        sweepsDone.store(done, std::memory_order_relaxed);
+        if (!afterSweep(this->Statistics()) || done >= maxSweeps)
+        {
+          stop.store(true, std::memory_order_relaxed);
+        }
+      }
+      return;
+    }
+    const int cBegin = this->WorkOffsets[phase];
+    const long long size = this->WorkOffsets[phase + 1] - cBegin;
+    const int first = cBegin + static_cast<int>(size * b / blocks);
+    const int last = cBegin + static_cast<int>(size * (b + 1) / blocks);
+    for (int k = first; k < last; ++k)
+    {
+      this->UpdateVertex(this->WorkVertices[k]);
+    }
+  };
+  const auto worker = [&](vtkIdType jobBegin, vtkIdType jobEnd) {
+    for (vtkIdType job = jobBegin; job < jobEnd; ++job)
+    {
+      const int t = static_cast<int>(job);
+      for (long long step = 0;; ++step)
+      {
+        for (int i = 0; i < blocks; ++i)
+        {
+          // Own blocks first, then the others from the far end of the region.
+          const int b = i < perThread ? t * perThread + i : (t * perThread + blocks - 1 - (i - perThread)) % blocks;
+          long long last = claimed[b].load(std::memory_order_relaxed);
+          if (last < step && claimed[b].compare_exchange_strong(last, step, std::memory_order_acquire))
+          {
+            runBlock(step, b);
+            finishedBlocks.fetch_add(1, std::memory_order_acq_rel);
+          }
+        }
+        int spins = 0;
+        while (finishedBlocks.load(std::memory_order_acquire) < (step + 1) * blocks)
+        {
+          WaitPause(spins);
+        }
+        if (step > 0 && (step - 1) % stepsPerSweep == numColors && stop.load(std::memory_order_relaxed))
+        {
+          break;
+        }
+      }
+    }
+  };
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads, "STDThread", false },
+    [&]() { vtkSMPTools::For(0, numThreads, 1, worker); });
+  return sweepsDone.load();
 }
 } // namespace dsurf

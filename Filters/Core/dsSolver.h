@@ -21,6 +21,7 @@
 #include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
+#include <functional>
 #include <vector>
 
 namespace dsurf
@@ -71,6 +72,13 @@ public:
   /// in place: c = gamma (tau c1 + (1 - tau) alpha c2 + F_projected), p <- p + c.
   SweepStatistics Sweep();
 
+  /// Up to maxSweeps sweeps in one parallel region (starting threads once instead of
+  /// per sweep), exactly the same results as as many Sweep() calls. After each sweep,
+  /// afterSweep(statistics of that sweep) is called on one of the solver's threads
+  /// while the others wait; it returns false to stop. It must not change the mesh.
+  /// Returns the number of sweeps done.
+  int Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+
   /// Per vertex, from the last sweep (0 for fixed vertices):
   /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (SPEC §6.2),
   /// in the same units as Displacement().
@@ -91,6 +99,8 @@ public:
 
 private:
   void BuildColoring();
+  /// The statistics of the last sweep, from the per-vertex values.
+  SweepStatistics Statistics() const;
   /// Builds the breadth-first copy of the topology used by the sweeps.
   void BuildLocalLayout();
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
