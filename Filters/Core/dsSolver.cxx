@@ -413,23 +413,46 @@ SweepStatistics Solver::Sweep()
   return stats;
 }
 
-SweepStatistics Solver::Statistics() const
+namespace
 {
-  // Serial, in the mesh's vertex order: identical for any thread count.
-  SweepStatistics stats;
+/// The statistics are summed per chunk of the colour-ordered vertex list, then over the
+/// chunks in order: the chunks do not depend on the number of threads, so neither does
+/// the rounding, and the chunks can be summed in parallel.
+constexpr int StatisticsChunk = 256;
+}
+
+void Solver::ChunkStatistics(int chunk, ChunkSums& out) const
+{
   const int total = this->ClassOffsets.back();
+  const int first = chunk * StatisticsChunk, last = std::min(first + StatisticsChunk, total);
   double sum = 0, maxC = 0;
-  for (int k = 0; k < total; ++k)
+  int outside = 0;
+  for (int k = first; k < last; ++k)
   {
     const int v = this->ClassVertices[k];
     const double d = this->DisplacementValues[v];
     sum += d;
     maxC = std::max(maxC, d);
-    stats.OutsideVertices += this->OutsideFlags[v];
+    outside += this->OutsideFlags[v];
+  }
+  out.Sum = sum;
+  out.Max = maxC;
+  out.Outside = outside;
+}
+
+SweepStatistics Solver::CombineStatistics(const std::vector<ChunkSums>& chunks) const
+{
+  SweepStatistics stats;
+  const int total = this->ClassOffsets.back();
+  double sum = 0;
+  for (const ChunkSums& c : chunks)
+  {
+    sum += c.Sum;
+    stats.MaxCorrection = std::max(stats.MaxCorrection, c.Max);
+    stats.OutsideVertices += c.Outside;
   }
   stats.MovedVertices = total;
   stats.MeanCorrection = total > 0 ? sum / total : 0.0;
-  stats.MaxCorrection = maxC;
   return stats;
 }
 
@@ -457,6 +480,8 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   const int numColors = this->NumberOfColors();
   const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
   const int total = this->ClassOffsets.back();
+  const int numChunks = (total + StatisticsChunk - 1) / StatisticsChunk;
+  std::vector<ChunkSums> chunks(numChunks);
   // The caller may have moved points (or relabelled them) since the last call.
   const auto refresh = [&](int first, int last) {
     for (int l = first; l < last; ++l)
@@ -475,8 +500,12 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
       {
         this->UpdateVertex(this->WorkVertices[k]);
       }
+      for (int c = 0; c < numChunks; ++c)
+      {
+        this->ChunkStatistics(c, chunks[c]);
+      }
       ++sweep;
-      if (!afterSweep(this->Statistics()))
+      if (!afterSweep(this->CombineStatistics(chunks)))
       {
         return sweep;
       }
@@ -485,47 +514,60 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   }
 
   // One parallel region for all the sweeps: VTK 9.2's STDThread backend starts its
-  // threads on every For, which costs about as much as several colours' work. The
-  // region is a sequence of steps: the copy of the mesh into the local layout, then
-  // per sweep one step per colour and one for the statistics. Each step is cut into
-  // blocks, `perThread` consecutive ones per thread: thread t first does its own blocks
-  // (the same surface region in every step and sweep, so its points stay in its
-  // cache), then takes any block nobody has claimed, then waits for the step to
-  // finish. A thread waits only for blocks a running thread has claimed, so this cannot
-  // deadlock even if the backend ran the jobs one after another, and a thread that is
-  // descheduled on a busy machine has its share taken over.
-  constexpr int perThread = 4;
+  // threads on every For, which costs about as much as a quarter of a sweep of 12 288
+  // triangles. The region is a sequence of steps: the copy of the mesh into the local
+  // layout, then per sweep one step per colour and one for the statistics. Each step
+  // is cut into blocks, `perThread` consecutive ones per thread (its region): thread t
+  // first takes the blocks of its own region (the same part of the surface in every
+  // step and sweep, so its points stay in its cache), then blocks left in the other
+  // regions, then waits for the step to finish. A thread waits only for blocks a
+  // running thread has taken, so this cannot deadlock even if the backend ran the jobs
+  // one after another, and the share of a thread descheduled on a busy machine is
+  // taken over. Counters live on their own cache lines: a thread touches another's
+  // only to take over its work or to see whether the step is done.
+  constexpr int perThread = 8;
   const int blocks = numThreads * perThread;
   const int stepsPerSweep = numColors + 1;
-  std::unique_ptr<std::atomic<long long>[]> claimed(new std::atomic<long long>[blocks]);
-  for (int b = 0; b < blocks; ++b)
+  struct alignas(64) ThreadSlot
   {
-    claimed[b].store(-1, std::memory_order_relaxed); // the last step that claimed it
-  }
-  std::atomic<long long> finishedBlocks{ 0 };
+    std::atomic<long long> Next{ 0 };     ///< blocks of this region taken, over all steps
+    std::atomic<long long> Finished{ 0 }; ///< blocks this thread completed, over all steps
+  };
+  std::unique_ptr<ThreadSlot[]> slots(new ThreadSlot[numThreads]);
+  alignas(64) std::atomic<long long> statisticsBlocks{ 0 };
   std::atomic<bool> stop{ false };
-  std::atomic<int> sweepsDone{ 0 };
+  int sweepsDone = 0; // written by the thread that completes a sweep's statistics
 
-  const auto runBlock = [&](long long step, int b) {
+  // Runs block b of a step; returns false if the block's completion was already
+  // counted (the last statistics block, which counts only after the callback).
+  const auto runBlock = [&](long long step, int b, ThreadSlot& mine) {
     if (step == 0)
     {
       refresh(static_cast<int>(static_cast<long long>(n) * b / blocks),
         static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
-      return;
+      return true;
     }
     const int phase = static_cast<int>((step - 1) % stepsPerSweep);
     if (phase == numColors)
     {
-      if (b == 0) // the statistics, once, after every colour of the sweep
+      for (int c = static_cast<int>(static_cast<long long>(numChunks) * b / blocks);
+           c < static_cast<long long>(numChunks) * (b + 1) / blocks; ++c)
       {
-        const int done = sweepsDone.load(std::memory_order_relaxed) + 1;
-        sweepsDone.store(done, std::memory_order_relaxed);
-        if (!afterSweep(this->Statistics()) || done >= maxSweeps)
+        this->ChunkStatistics(c, chunks[c]);
+      }
+      const long long sweepIndex = (step - 1) / stepsPerSweep;
+      if (statisticsBlocks.fetch_add(1, std::memory_order_acq_rel) + 1 == (sweepIndex + 1) * blocks)
+      {
+        // Every chunk is summed: combine, report, then let the others go on.
+        ++sweepsDone;
+        if (!afterSweep(this->CombineStatistics(chunks)) || sweepsDone >= maxSweeps)
         {
           stop.store(true, std::memory_order_relaxed);
         }
+        mine.Finished.fetch_add(1, std::memory_order_release);
+        return false;
       }
-      return;
+      return true;
     }
     const int cBegin = this->WorkOffsets[phase];
     const long long size = this->WorkOffsets[phase + 1] - cBegin;
@@ -535,27 +577,51 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
     {
       this->UpdateVertex(this->WorkVertices[k]);
     }
+    return true;
+  };
+  const auto take = [&](int region, long long step) {
+    ThreadSlot& slot = slots[region];
+    long long k = slot.Next.load(std::memory_order_relaxed);
+    while (k < (step + 1) * perThread)
+    {
+      if (slot.Next.compare_exchange_weak(k, k + 1, std::memory_order_acquire))
+      {
+        return region * perThread + static_cast<int>(k - step * perThread);
+      }
+    }
+    return -1;
   };
   const auto worker = [&](vtkIdType jobBegin, vtkIdType jobEnd) {
     for (vtkIdType job = jobBegin; job < jobEnd; ++job)
     {
       const int t = static_cast<int>(job);
+      ThreadSlot& mine = slots[t];
       for (long long step = 0;; ++step)
       {
-        for (int i = 0; i < blocks; ++i)
+        for (int r = 0; r < numThreads; ++r)
         {
-          // Own blocks first, then the others from the far end of the region.
-          const int b = i < perThread ? t * perThread + i : (t * perThread + blocks - 1 - (i - perThread)) % blocks;
-          long long last = claimed[b].load(std::memory_order_relaxed);
-          if (last < step && claimed[b].compare_exchange_strong(last, step, std::memory_order_acquire))
+          const int region = (t + r) % numThreads;
+          for (int b = take(region, step); b >= 0; b = take(region, step))
           {
-            runBlock(step, b);
-            finishedBlocks.fetch_add(1, std::memory_order_acq_rel);
+            if (runBlock(step, b, mine))
+            {
+              mine.Finished.fetch_add(1, std::memory_order_release);
+            }
           }
         }
+        const long long target = (step + 1) * blocks;
         int spins = 0;
-        while (finishedBlocks.load(std::memory_order_acquire) < (step + 1) * blocks)
+        for (;;)
         {
+          long long finished = 0;
+          for (int r = 0; r < numThreads; ++r)
+          {
+            finished += slots[r].Finished.load(std::memory_order_acquire);
+          }
+          if (finished >= target)
+          {
+            break;
+          }
           WaitPause(spins);
         }
         if (step > 0 && (step - 1) % stepsPerSweep == numColors && stop.load(std::memory_order_relaxed))
@@ -567,6 +633,6 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   };
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads, "STDThread", false },
     [&]() { vtkSMPTools::For(0, numThreads, 1, worker); });
-  return sweepsDone.load();
+  return sweepsDone;
 }
 } // namespace dsurf

@@ -99,8 +99,14 @@ public:
 
 private:
   void BuildColoring();
-  /// The statistics of the last sweep, from the per-vertex values.
-  SweepStatistics Statistics() const;
+  /// Partial statistics of the last sweep over one chunk of ClassVertices.
+  struct ChunkSums
+  {
+    double Sum = 0, Max = 0;
+    int Outside = 0;
+  };
+  void ChunkStatistics(int chunk, ChunkSums& out) const;
+  SweepStatistics CombineStatistics(const std::vector<ChunkSums>& chunks) const;
   /// Builds the breadth-first copy of the topology used by the sweeps.
   void BuildLocalLayout();
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
