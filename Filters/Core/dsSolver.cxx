@@ -292,7 +292,7 @@ void Solver::BuildLocalLayout()
   this->ErrorIndicatorValues.assign(n, 0.0);
   this->DisplacementValues.assign(n, 0.0);
   this->ForceValues.assign(n, 0.0);
-  this->OutsideFlags.assign(n, 0);
+  this->LocalResults.assign(n, VertexResult());
 }
 
 Vec3 Solver::Umbrella(int v) const
@@ -313,7 +313,6 @@ void Solver::UpdateVertex(int v)
     this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau, gamma = this->Parameters.Gamma;
-  const int original = this->Original[v];
 
   // U(p), U^2(p) and alpha (SPEC §3 with the §6.4 weights).
   Vec3 u, u2acc{ 0, 0, 0 };
@@ -351,7 +350,7 @@ void Solver::UpdateVertex(int v)
   // tangentially over each other.
   Vec3 force{ 0, 0, 0 };
   Vec3 applied{ 0, 0, 0 };
-  unsigned char outside = 0;
+  int outside = 0;
   Vec3* points = this->LocalPoints.data();
   if (this->Field && this->Sampler)
   {
@@ -395,12 +394,25 @@ void Solver::UpdateVertex(int v)
 
   const Vec3 c = gamma * (internal + applied);
   points[v] = points[v] + c;
-  // The mesh is only written during a sweep (all reads go to the local copy).
-  this->Mesh->Points[original] = points[v];
-  this->OutsideFlags[original] = outside;
-  this->ErrorIndicatorValues[original] = gamma * Norm(internal);
-  this->DisplacementValues[original] = Norm(c);
-  this->ForceValues[original] = Norm(force);
+  VertexResult& result = this->LocalResults[v];
+  result.Outside = outside;
+  result.ErrorIndicator = gamma * Norm(internal);
+  result.Displacement = Norm(c);
+  result.Force = Norm(force);
+}
+
+void Solver::CopyOut(int first, int last)
+{
+  TriangleMesh& m = *this->Mesh;
+  for (int l = first; l < last; ++l)
+  {
+    const int v = this->Original[l];
+    const VertexResult& result = this->LocalResults[l];
+    m.Points[v] = this->LocalPoints[l];
+    this->ErrorIndicatorValues[v] = result.ErrorIndicator;
+    this->DisplacementValues[v] = result.Displacement;
+    this->ForceValues[v] = result.Force;
+  }
 }
 
 SweepStatistics Solver::Sweep()
@@ -415,7 +427,7 @@ SweepStatistics Solver::Sweep()
 
 namespace
 {
-/// The statistics are summed per chunk of the colour-ordered vertex list, then over the
+/// The statistics are summed per chunk of the colour-ordered (local) vertex list, then over the
 /// chunks in order: the chunks do not depend on the number of threads, so neither does
 /// the rounding, and the chunks can be summed in parallel.
 constexpr int StatisticsChunk = 256;
@@ -429,11 +441,10 @@ void Solver::ChunkStatistics(int chunk, ChunkSums& out) const
   int outside = 0;
   for (int k = first; k < last; ++k)
   {
-    const int v = this->ClassVertices[k];
-    const double d = this->DisplacementValues[v];
-    sum += d;
-    maxC = std::max(maxC, d);
-    outside += this->OutsideFlags[v];
+    const VertexResult& result = this->LocalResults[this->WorkVertices[k]];
+    sum += result.Displacement;
+    maxC = std::max(maxC, result.Displacement);
+    outside += result.Outside;
   }
   out.Sum = sum;
   out.Max = maxC;
@@ -505,18 +516,19 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
         this->ChunkStatistics(c, chunks[c]);
       }
       ++sweep;
-      if (!afterSweep(this->CombineStatistics(chunks)))
+      if (!afterSweep(this->CombineStatistics(chunks)) || sweep == maxSweeps)
       {
+        this->CopyOut(0, n);
         return sweep;
       }
     }
-    return maxSweeps;
   }
 
   // One parallel region for all the sweeps: VTK 9.2's STDThread backend starts its
   // threads on every For, which costs about as much as a quarter of a sweep of 12 288
   // triangles. The region is a sequence of steps: the copy of the mesh into the local
-  // layout, then per sweep one step per colour and one for the statistics. Each step
+  // layout, then per sweep one step per colour and one for the statistics, and last the
+  // copy of the results back to the mesh. Each step
   // is cut into blocks, `perThread` consecutive ones per thread (its region): thread t
   // first takes the blocks of its own region (the same part of the surface in every
   // step and sweep, so its points stay in its cache), then blocks left in the other
@@ -540,7 +552,13 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
 
   // Runs block b of a step; returns false if the block's completion was already
   // counted (the last statistics block, which counts only after the callback).
-  const auto runBlock = [&](long long step, int b, ThreadSlot& mine) {
+  const auto runBlock = [&](long long step, int b, ThreadSlot& mine, bool copyOut) {
+    if (copyOut)
+    {
+      this->CopyOut(static_cast<int>(static_cast<long long>(n) * b / blocks),
+        static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
+      return true;
+    }
     if (step == 0)
     {
       refresh(static_cast<int>(static_cast<long long>(n) * b / blocks),
@@ -596,6 +614,7 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
     {
       const int t = static_cast<int>(job);
       ThreadSlot& mine = slots[t];
+      bool copyOut = false; // the last step: write the results back to the mesh
       for (long long step = 0;; ++step)
       {
         for (int r = 0; r < numThreads; ++r)
@@ -603,11 +622,15 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
           const int region = (t + r) % numThreads;
           for (int b = take(region, step); b >= 0; b = take(region, step))
           {
-            if (runBlock(step, b, mine))
+            if (runBlock(step, b, mine, copyOut))
             {
               mine.Finished.fetch_add(1, std::memory_order_release);
             }
           }
+        }
+        if (copyOut)
+        {
+          break; // the For returns when every block is done
         }
         const long long target = (step + 1) * blocks;
         int spins = 0;
@@ -624,10 +647,7 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
           }
           WaitPause(spins);
         }
-        if (step > 0 && (step - 1) % stepsPerSweep == numColors && stop.load(std::memory_order_relaxed))
-        {
-          break;
-        }
+        copyOut = step > 0 && (step - 1) % stepsPerSweep == numColors && stop.load(std::memory_order_relaxed);
       }
     }
   };

@@ -12,8 +12,10 @@
 // For the parallel sweep the solver keeps its own copy of the mesh in breadth-first
 // order (positions, neighbour lists, triangle fans): each thread owns one contiguous
 // share of every colour, i.e. one compact region of the surface, so the points it
-// reads were mostly written by itself and stay in its cache. The mesh's own point
-// order and all per-vertex outputs are unchanged (indexed by the mesh's ids).
+// reads were mostly written by itself and stay in its cache. Results are written back
+// to the mesh (its own point order) and the per-vertex outputs (indexed by the mesh's
+// ids) at the end of a call, not per vertex: scattered writes from two threads to
+// shared cache lines would cost more than the arithmetic.
 #ifndef dsSolver_h
 #define dsSolver_h
 
@@ -75,7 +77,9 @@ public:
   /// Up to maxSweeps sweeps in one parallel region (starting threads once instead of
   /// per sweep), exactly the same results as as many Sweep() calls. After each sweep,
   /// afterSweep(statistics of that sweep) is called on one of the solver's threads
-  /// while the others wait; it returns false to stop. It must not change the mesh.
+  /// while the others wait; it returns false to stop. The mesh's points and the
+  /// per-vertex outputs are written when Sweeps returns (the callback sees the
+  /// points of before the call) and must not be changed by the callback.
   /// Returns the number of sweeps done.
   int Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
 
@@ -99,7 +103,9 @@ public:
 
 private:
   void BuildColoring();
-  /// Partial statistics of the last sweep over one chunk of ClassVertices.
+  /// Writes local points and results [first, last) back to the mesh and the outputs.
+  void CopyOut(int first, int last);
+  /// Partial statistics of the last sweep over one chunk of WorkVertices.
   struct ChunkSums
   {
     double Sum = 0, Max = 0;
@@ -126,8 +132,7 @@ private:
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
   std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
   int ColoredPoints = -1; ///< point count the colouring was built for
-  std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues;
-  std::vector<unsigned char> OutsideFlags;
+  std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues; ///< mesh order
 
   // Local (breadth-first) layout: Original[local] = mesh id, Local[mesh id] = local id.
   std::vector<int> Original, Local;
@@ -135,7 +140,13 @@ private:
   std::vector<int> LocalFanOffsets;              ///< triangles around each local vertex
   std::vector<std::array<int, 3>> LocalFan;      ///< their corners (local ids, mesh order)
   std::vector<unsigned char> LocalLabels;
-  std::vector<Vec3> LocalPoints;                 ///< refreshed from the mesh every sweep
+  std::vector<Vec3> LocalPoints;                 ///< refreshed from the mesh by every call
+  struct VertexResult
+  {
+    double ErrorIndicator = 0, Displacement = 0, Force = 0;
+    int Outside = 0;
+  };
+  std::vector<VertexResult> LocalResults;        ///< copied to the mesh order after a call
   std::vector<int> WorkOffsets{ 0 }, WorkVertices; ///< colour classes in local ids, ascending
 };
 } // namespace dsurf

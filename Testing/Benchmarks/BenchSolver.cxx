@@ -60,46 +60,48 @@ int main(int argc, char* argv[])
     {
       for (int batch : { 1, 20, sweeps })
       {
-      double single = 0;
-      for (int threads : { 1, 2 })
-      {
-        dsurf::TriangleMesh mesh = dstest::MakeCubeSurface(level, 30, { 63.5, 63.5, 63.5 });
-        std::string err;
-        mesh.BuildTopology(&err);
-        dsurf::Solver solver;
-        dsurf::SolverParameters p;
-        p.NumberOfThreads = threads;
-        solver.SetParameters(p);
-        solver.SetMesh(&mesh);
-        solver.SetForceField(withForce ? &field : nullptr, 1.0);
-        for (int w = 0; w < 5; ++w)
+        double single = 0;
+        for (int threads : { 1, 2 })
         {
-          solver.Sweep(); // warm-up
-        }
-        const std::clock_t c0 = std::clock();
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int s = 0; s < sweeps; s += batch)
-        {
-          if (batch == 1)
+          dsurf::TriangleMesh mesh = dstest::MakeCubeSurface(level, 30, { 63.5, 63.5, 63.5 });
+          std::string err;
+          mesh.BuildTopology(&err);
+          dsurf::Solver solver;
+          dsurf::SolverParameters p;
+          p.NumberOfThreads = threads;
+          solver.SetParameters(p);
+          solver.SetMesh(&mesh);
+          solver.SetForceField(withForce ? &field : nullptr, 1.0);
+          for (int w = 0; w < 5; ++w)
           {
-            solver.Sweep();
+            solver.Sweep(); // warm-up
           }
-          else
+          const std::clock_t c0 = std::clock();
+          const auto t0 = std::chrono::steady_clock::now();
+          for (int s = 0; s < sweeps; s += batch)
           {
-            solver.Sweeps(std::min(batch, sweeps - s), [](const dsurf::SweepStatistics&) { return true; });
+            if (batch == 1)
+            {
+              solver.Sweep();
+            }
+            else
+            {
+              solver.Sweeps(std::min(batch, sweeps - s), [](const dsurf::SweepStatistics&) { return true; });
+            }
           }
+          const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / sweeps;
+          const double cpuMs = 1000.0 * (std::clock() - c0) / CLOCKS_PER_SEC / sweeps;
+          if (threads == 1)
+          {
+            single = ms;
+          }
+          const char* call = batch == 1 ? "Sweep" : (batch == sweeps ? "Sweeps(all)" : "Sweeps(20)");
+          std::printf("%-10d %-9d %-8s %-6d %-12s %-8d %-12.3f %-14.1f %-10.2f %-10.3f %-8s\n",
+            mesh.NumberOfTriangles(), mesh.NumberOfPoints(), withForce ? "yes" : "no", threads, call,
+            solver.NumberOfColors(), ms, 1e6 * ms / mesh.NumberOfPoints(), single / ms, cpuMs,
+            level == 5 ? "1.4" : "5.9");
         }
-        const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / sweeps;
-        const double cpuMs = 1000.0 * (std::clock() - c0) / CLOCKS_PER_SEC / sweeps;
-        if (threads == 1)
-        {
-          single = ms;
-        }
-        std::printf("%-10d %-9d %-8s %-6d %-12s %-8d %-12.3f %-14.1f %-10.2f %-10.3f %-8s\n", mesh.NumberOfTriangles(),
-          mesh.NumberOfPoints(), withForce ? "yes" : "no", threads, batch == 1 ? "Sweep" : (batch == sweeps ? "Sweeps(all)" : "Sweeps(20)"), solver.NumberOfColors(), ms,
-          1e6 * ms / mesh.NumberOfPoints(), single / ms, cpuMs, level == 5 ? "1.4" : "5.9");
-      }
       }
     }
   }
