@@ -8,6 +8,14 @@
 // the vertices of one colour in parallel. A vertex's update reads only points of
 // earlier colours or not yet updated ones, never one being written concurrently, so
 // the result does not depend on the number of threads (bit-identical).
+//
+// For the parallel sweep the solver keeps its own copy of the mesh in breadth-first
+// order (positions, neighbour lists, triangle fans): each thread owns one contiguous
+// share of every colour, i.e. one compact region of the surface, so the points it
+// reads were mostly written by itself and stay in its cache. Results are written back
+// to the mesh (its own point order) and the per-vertex outputs (indexed by the mesh's
+// ids) at the end of a call, not per vertex: scattered writes from two threads to
+// shared cache lines would cost more than the arithmetic.
 #ifndef dsSolver_h
 #define dsSolver_h
 
@@ -15,6 +23,7 @@
 #include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
+#include <functional>
 #include <vector>
 
 namespace dsurf
@@ -69,6 +78,15 @@ public:
   /// in place: c = gamma (tau c1 + (1 - tau) alpha c2 + F_projected), p <- p + c.
   SweepStatistics Sweep();
 
+  /// Up to maxSweeps sweeps in one parallel region (starting threads once instead of
+  /// per sweep), exactly the same results as as many Sweep() calls. After each sweep,
+  /// afterSweep(statistics of that sweep) is called on one of the solver's threads
+  /// while the others wait; it returns false to stop. The mesh's points and the
+  /// per-vertex outputs are written when Sweeps returns (the callback sees the
+  /// points of before the call) and must not be changed by the callback.
+  /// Returns the number of sweeps done.
+  int Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+
   /// Per vertex, from the last sweep (0 for fixed vertices):
   /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (SPEC §6.2),
   /// in the same units as Displacement().
@@ -89,7 +107,20 @@ public:
 
 private:
   void BuildColoring();
-  /// Correct vertex v in place; records the per-vertex values.
+  /// Writes local points and results [first, last) back to the mesh and the outputs.
+  void CopyOut(int first, int last);
+  /// Partial statistics of the last sweep over one chunk of WorkVertices.
+  struct ChunkSums
+  {
+    double Sum = 0, Max = 0;
+    int Outside = 0;
+  };
+  void ChunkStatistics(int chunk, ChunkSums& out) const;
+  SweepStatistics CombineStatistics(const std::vector<ChunkSums>& chunks) const;
+  /// Builds the breadth-first copy of the topology used by the sweeps.
+  void BuildLocalLayout();
+  /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
+  /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);
 
   SolverParameters Parameters;
@@ -105,8 +136,22 @@ private:
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
   std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
   int ColoredPoints = -1; ///< point count the colouring was built for
-  std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues;
-  std::vector<unsigned char> OutsideFlags;
+  std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues; ///< mesh order
+
+  // Local (breadth-first) layout: Original[local] = mesh id, Local[mesh id] = local id.
+  std::vector<int> Original, Local;
+  std::vector<int> LocalNeighborOffsets, LocalNeighbors;
+  std::vector<int> LocalFanOffsets;              ///< triangles around each local vertex
+  std::vector<std::array<int, 3>> LocalFan;      ///< their corners (local ids, mesh order)
+  std::vector<unsigned char> LocalLabels;
+  std::vector<Vec3> LocalPoints;                 ///< refreshed from the mesh by every call
+  struct VertexResult
+  {
+    double ErrorIndicator = 0, Displacement = 0, Force = 0;
+    int Outside = 0;
+  };
+  std::vector<VertexResult> LocalResults;        ///< copied to the mesh order after a call
+  std::vector<int> WorkOffsets{ 0 }, WorkVertices; ///< colour classes in local ids, ascending
 };
 } // namespace dsurf
 

@@ -268,6 +268,45 @@ int TestSolver(int, char*[])
     }
     DS_CHECK_LE(differing, 0, "points differing between 1 and 2 threads");
     DS_CHECK(meanA == meanB, "mean correction identical for 1 and 2 threads");
+
+    // Sweeps(): the batched form (one parallel region) gives the same points and
+    // statistics as single sweeps, and stops when the callback says so.
+    for (int threads : { 1, 2 })
+    {
+      TriangleMesh c = b;
+      Solver sc;
+      SolverParameters pc;
+      pc.NumberOfThreads = threads;
+      sc.SetParameters(pc);
+      sc.SetMesh(&c);
+      sc.SetForceField(&field, 1.0);
+      std::vector<double> means;
+      const int done = sc.Sweeps(100, [&](const SweepStatistics& st) {
+        means.push_back(st.MeanCorrection);
+        return means.size() < 7;
+      });
+      for (int i = 0; i < 7; ++i)
+      {
+        sb.Sweep();
+      }
+      // 30 + 7 sweeps on b against 30 + 7 on c (c started from b after 30).
+      const double meanLast = sb.Sweep().MeanCorrection;
+      const int done2 = sc.Sweeps(1, [&](const SweepStatistics& st) {
+        means.push_back(st.MeanCorrection);
+        return true;
+      });
+      int differ = 0;
+      for (int v = 0; v < b.NumberOfPoints(); ++v)
+      {
+        differ += b.Points[v] != c.Points[v];
+      }
+      const std::string label = "Sweeps() with " + std::to_string(threads) + " thread(s)";
+      DS_CHECK(done == 7 && done2 == 1 && means.size() == 8, label + ": stops when the callback returns false");
+      DS_CHECK_LE(differ, 0, label + ": points differing from single sweeps");
+      DS_CHECK(means.back() == meanLast, label + ": statistics identical to single sweeps");
+      b = c; // continue the comparison from the same state
+      sb.SetMesh(&b);
+    }
   }
 
   // --- open surface: boundary vertices stay fixed ---

@@ -1,0 +1,258 @@
+// End to end (issue 5): picked points -> vtkDelaunaySeedSurface -> vtkDeformableSurfaceFilter.
+//
+// 1. Torus phantom 128^3 (R = 32, r = 12.8 voxels, a one-voxel partial-volume ramp so the
+//    edge sits on the true surface). A user picks 40 points on its boundary on four slices
+//    through the torus axis (every 45 degrees, so 8 tube cross-sections, 5 picks on each, a
+//    little jitter, just inside the visible edge). The Delaunay complex fills the hole; the
+//    image (IntensityRange) removes the hole's tetrahedra; TargetEdgeLength gives a few
+//    thousand vertices. The deformed surface must lie on the torus: mean |distance| <= 0.3
+//    voxel, genus 1 (closed, manifold, Euler characteristic 0), no self-intersections.
+// 2. Two objects in one volume (a ball and a cube), picks around the ball only: only the ball
+//    is extracted (every vertex within 1 voxel of the ball's boundary, none near the cube).
+#include "TestDelaunaySeedUtils.h"
+#include "vtkDeformableSurfaceFilter.h"
+#include "vtkDelaunaySeedSurface.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+
+namespace
+{
+const int N = 128;
+const double centre[3] = { 64.0, 64.0, 64.0 };
+const double R = 32.0, r = 12.8;
+
+// Deterministic jitter in [-0.5, 0.5).
+double Jitter(std::uint32_t& state)
+{
+  state = state * 1664525u + 1013904223u;
+  return (state >> 8) / double(1u << 24) - 0.5;
+}
+
+double TorusSignedDistance(const double x[3])
+{
+  const double dx = x[0] - centre[0], dy = x[1] - centre[1], dz = x[2] - centre[2];
+  const double rho = std::sqrt(dx * dx + dy * dy);
+  return std::sqrt((rho - R) * (rho - R) + dz * dz) - r;
+}
+
+/// Value 1 inside, 0 outside, linear over one voxel across the surface (partial volume).
+vtkSmartPointer<vtkImageData> Phantom(const std::function<double(const double*)>& signedDistance)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(N, N, N);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("density");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    double x[3];
+    image->GetPoint(i, x);
+    values->SetValue(i, static_cast<float>(std::min(1.0, std::max(0.0, 0.5 - signedDistance(x)))));
+  }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+struct Deformed
+{
+  vtkSmartPointer<vtkPolyData> Surface;
+  int Sweeps = 0;
+  int SelfIntersections = -1;
+  double Seconds = 0;
+};
+
+Deformed Deform(vtkImageData* image, vtkPolyData* seed)
+{
+  vtkNew<vtkDeformableSurfaceFilter> filter;
+  vtkNew<dsseedtest::MessageCounter> messages;
+  filter->AddObserver(vtkCommand::ErrorEvent, messages);
+  filter->SetInputData(0, image);
+  filter->SetInitialSurfaceData(seed);
+  filter->SetSigma(2.0);
+  filter->SetMaxLevels(0); // single level, constant sigma, also once the hierarchy exists
+  filter->SetMaxSweepsPerLevel(3000);
+  filter->SetConvergenceTolerance(1e-4);
+  const auto t0 = std::chrono::steady_clock::now();
+  filter->Update();
+  Deformed d;
+  d.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  d.Surface = filter->GetOutput();
+  DS_CHECK(messages->Errors == 0, "deformable surface: no errors");
+  vtkFieldData* fd = d.Surface->GetFieldData();
+  if (fd->GetArray("Sweeps") && fd->GetArray("SelfIntersections"))
+  {
+    d.Sweeps = static_cast<int>(fd->GetArray("Sweeps")->GetTuple1(0));
+    d.SelfIntersections = static_cast<int>(fd->GetArray("SelfIntersections")->GetTuple1(0));
+  }
+  std::cout << "  deformed: " << d.Surface->GetNumberOfPoints() << " vertices, " << d.Sweeps << " sweeps, "
+            << d.Seconds << " s, " << d.SelfIntersections << " self-intersections" << std::endl;
+  return d;
+}
+
+struct DistanceStats
+{
+  double Mean = 0, Max = 0, MeanSigned = 0;
+};
+
+DistanceStats Distances(vtkPolyData* surface, const std::function<double(const double*)>& signedDistance)
+{
+  DistanceStats s;
+  const vtkIdType n = surface->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double x[3];
+    surface->GetPoint(i, x);
+    const double d = signedDistance(x);
+    s.Mean += std::abs(d);
+    s.MeanSigned += d;
+    s.Max = std::max(s.Max, std::abs(d));
+  }
+  s.Mean /= std::max<vtkIdType>(n, 1);
+  s.MeanSigned /= std::max<vtkIdType>(n, 1);
+  return s;
+}
+
+void TorusCase()
+{
+  std::cout << "Torus R = " << R << ", r = " << r << " voxels, 128^3:" << std::endl;
+  auto image = Phantom(TorusSignedDistance);
+
+  // Four slices through the axis, every 45 degrees: 8 cross-sections of the tube, 5 picks
+  // each (rotated from section to section, as a user would not pick the same angles), 0.3
+  // voxel inside the edge with +-0.25 voxel jitter.
+  vtkNew<vtkPoints> picks;
+  std::uint32_t state = 2024u;
+  for (int section = 0; section < 8; ++section)
+  {
+    const double u = 2.0 * vtkMath::Pi() * section / 8 + 0.02 * Jitter(state);
+    for (int k = 0; k < 5; ++k)
+    {
+      const double v = 2.0 * vtkMath::Pi() * (k + 0.5 * (section % 2) + 0.2 * Jitter(state)) / 5;
+      const double rr = r - 0.3 + 0.5 * Jitter(state);
+      picks->InsertNextPoint(centre[0] + (R + rr * std::cos(v)) * std::cos(u),
+        centre[1] + (R + rr * std::cos(v)) * std::sin(u), centre[2] + rr * std::sin(v));
+    }
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(picks);
+
+  vtkNew<vtkDelaunaySeedSurface> seed;
+  vtkNew<dsseedtest::MessageCounter> messages;
+  seed->AddObserver(vtkCommand::ErrorEvent, messages);
+  seed->AddObserver(vtkCommand::WarningEvent, messages);
+  seed->SetInputData(cloud);
+  seed->SetImageData(image);
+  seed->UseIntensityRangeOn();
+  seed->SetIntensityRange(0.5, 10.0); // keep tetrahedra whose centroid is inside the object
+  seed->SetTargetEdgeLength(2.5);
+  seed->Update();
+  std::cout << "  " << picks->GetNumberOfPoints() << " picks; seed:" << std::endl;
+  const auto seedFacts = dsseedtest::Measure(seed->GetOutput());
+  dsseedtest::CheckClosedManifold(seedFacts, seed->GetOutput()->GetNumberOfPoints(), 0);
+  const DistanceStats before = Distances(seed->GetOutput(), TorusSignedDistance);
+  std::cout << "  seed distance to the torus: mean |d| " << before.Mean << ", max " << before.Max << std::endl;
+  DS_CHECK(messages->Errors == 0, "seed: no errors");
+  DS_CHECK_GE(seed->GetOutput()->GetNumberOfPoints(), 1000, "seed vertices after TargetEdgeLength");
+
+  const Deformed result = Deform(image, seed->GetOutput());
+  const auto facts = dsseedtest::Measure(result.Surface);
+  dsseedtest::CheckClosedManifold(facts, result.Surface->GetNumberOfPoints(), 0);
+  const DistanceStats after = Distances(result.Surface, TorusSignedDistance);
+  std::cout << "  distance to the torus: mean |d| " << after.Mean << " voxel, max " << after.Max
+            << ", mean signed " << after.MeanSigned << std::endl;
+  DS_CHECK_LE(after.Mean, 0.3, "torus: mean |distance| to the true torus (voxels)");
+  DS_CHECK_LE(after.Max, 1.5, "torus: max |distance| to the true torus (voxels)");
+  DS_CHECK(result.SelfIntersections == 0, "torus: 0 self-intersections");
+}
+
+void TwoObjectsCase()
+{
+  const double ballCentre[3] = { 42.0, 64.0, 64.0 }, ballRadius = 16.0;
+  const double cubeCentre[3] = { 92.0, 63.0, 65.0 }, cubeHalf = 14.0; // faces 18 voxels from the ball
+  auto ballDistance = [&](const double* x) {
+    return std::sqrt(vtkMath::Distance2BetweenPoints(x, ballCentre)) - ballRadius;
+  };
+  auto cubeDistance = [&](const double* x) {
+    double outside = 0, inside = -1e300;
+    for (int d = 0; d < 3; ++d)
+    {
+      const double q = std::abs(x[d] - cubeCentre[d]) - cubeHalf;
+      outside += q > 0 ? q * q : 0;
+      inside = std::max(inside, q);
+    }
+    return outside > 0 ? std::sqrt(outside) : inside;
+  };
+  std::cout << "Ball (radius " << ballRadius << ") and cube (half side " << cubeHalf
+            << "), picks around the ball:" << std::endl;
+  auto image = Phantom([&](const double* x) { return std::min(ballDistance(x), cubeDistance(x)); });
+
+  // 24 picks roughly around the ball, 2-4 voxels outside it (Fibonacci sphere, jittered).
+  vtkNew<vtkPoints> picks;
+  std::uint32_t state = 77u;
+  const int n = 24;
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - (2.0 * i + 1.0) / n, rho = std::sqrt(1.0 - z * z);
+    const double phi = i * vtkMath::Pi() * (3.0 - std::sqrt(5.0));
+    const double rr = ballRadius + 3.0 + 2.0 * Jitter(state);
+    picks->InsertNextPoint(ballCentre[0] + rr * rho * std::cos(phi), ballCentre[1] + rr * rho * std::sin(phi),
+      ballCentre[2] + rr * z);
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(picks);
+  vtkNew<vtkDelaunaySeedSurface> seed;
+  seed->SetInputData(cloud);
+  seed->SetTargetEdgeLength(2.5);
+  seed->Update();
+  const auto seedFacts = dsseedtest::Measure(seed->GetOutput());
+  dsseedtest::CheckClosedManifold(seedFacts, seed->GetOutput()->GetNumberOfPoints(), 2);
+
+  const Deformed result = Deform(image, seed->GetOutput());
+  const auto facts = dsseedtest::Measure(result.Surface);
+  dsseedtest::CheckClosedManifold(facts, result.Surface->GetNumberOfPoints(), 2);
+  const DistanceStats toBall = Distances(result.Surface, ballDistance);
+  double nearestToCube = 1e300, centroid[3] = { 0, 0, 0 };
+  const vtkIdType nv = result.Surface->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < nv; ++i)
+  {
+    double x[3];
+    result.Surface->GetPoint(i, x);
+    nearestToCube = std::min(nearestToCube, cubeDistance(x));
+    for (int d = 0; d < 3; ++d)
+    {
+      centroid[d] += x[d] / std::max<vtkIdType>(nv, 1);
+    }
+  }
+  const double centroidOff = std::sqrt(vtkMath::Distance2BetweenPoints(centroid, ballCentre));
+  std::cout << "  distance to the ball: mean |d| " << toBall.Mean << ", max " << toBall.Max
+            << "; centroid " << centroidOff << " voxel from the ball centre; nearest vertex to the cube "
+            << nearestToCube << " voxels" << std::endl;
+  DS_CHECK_LE(toBall.Max, 1.0, "two objects: every vertex within 1 voxel of the ball's boundary");
+  DS_CHECK_LE(centroidOff, 0.5, "two objects: vertex centroid at the ball centre (voxels)");
+  DS_CHECK_GE(nearestToCube, 10.0, "two objects: no vertex near the cube (voxels)");
+  DS_CHECK(result.SelfIntersections == 0, "two objects: 0 self-intersections");
+}
+} // namespace
+
+int main()
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  TorusCase();
+  TwoObjectsCase();
+  std::cout << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s"
+            << std::endl;
+  return dstest::Result("TestDelaunaySeedEndToEnd");
+}
