@@ -151,37 +151,49 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     rec.Triangles = mesh.NumberOfTriangles();
     rec.MeanEdgeLength = h;
     bool stop = false;
-    for (int s = 0; s < cap; ++s)
+    // Sweeps run in batches inside one parallel region (threads start once per batch, not
+    // per sweep); convergence is tested after every sweep, progress and abort between
+    // batches, and the sweep records are handed on after each batch.
+    const int batchSize = std::max(1, P.SweepBatch);
+    std::vector<SweepStatistics> batchStats;
+    for (int s = 0; s < cap && !stop && !rec.Converged;)
     {
-      const SweepStatistics st = solver.Sweep();
-      ++sweepCounter;
-      ++rec.Sweeps;
-      SweepRecord sr;
-      sr.Sweep = sweepCounter;
-      sr.Level = level;
-      sr.Sigma = sigma;
-      sr.Vertices = mesh.NumberOfPoints();
-      sr.Triangles = mesh.NumberOfTriangles();
-      sr.MeanCorrection = st.MeanCorrection;
-      sr.MaxCorrection = st.MaxCorrection;
-      this->Sweeps.push_back(sr);
-      this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
-      if (this->OnSweep && !this->OnSweep(sr, mesh))
+      batchStats.clear();
+      solver.Sweeps(std::min(batchSize, cap - s), [&](const SweepStatistics& st) {
+        batchStats.push_back(st);
+        if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * h)
+        {
+          rec.Converged = true;
+          return false;
+        }
+        return true;
+      });
+      for (const SweepStatistics& st : batchStats)
       {
-        stop = true;
-        break;
+        ++s;
+        ++sweepCounter;
+        ++rec.Sweeps;
+        SweepRecord sr;
+        sr.Sweep = sweepCounter;
+        sr.Level = level;
+        sr.Sigma = sigma;
+        sr.Vertices = mesh.NumberOfPoints();
+        sr.Triangles = mesh.NumberOfTriangles();
+        sr.MeanCorrection = st.MeanCorrection;
+        sr.MaxCorrection = st.MaxCorrection;
+        this->Sweeps.push_back(sr);
+        this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
+        if (this->OnSweep && !this->OnSweep(sr, mesh))
+        {
+          stop = true;
+          break;
+        }
       }
-      if (this->Progress && (s % 8 == 0) &&
-        !this->Progress((level + std::min(1.0, double(s + 1) / std::min(cap, 400))) / (maxLevels + 1)))
+      if (!stop && !rec.Converged && this->Progress &&
+        !this->Progress((level + std::min(1.0, double(s) / std::min(cap, 400))) / (maxLevels + 1)))
       {
         this->Aborted = true;
         stop = true;
-        break;
-      }
-      if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * h)
-      {
-        rec.Converged = true;
-        break;
       }
     }
     this->ErrorIndicator = solver.ErrorIndicator();

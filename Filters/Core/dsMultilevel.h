@@ -49,6 +49,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
   int MaxLevels = 4;             ///< refinement steps (levels 0..MaxLevels are solved)
   int MaxSweepsPerLevel = 2000;  ///< cap per level (the phantom tests need <= ~130)
+  /// Sweeps per parallel region (Solver::Sweeps): progress, abort and the sweep callback
+  /// come after each batch, so the callback sees the mesh as of the end of its batch; 1
+  /// hands over every sweep's mesh (slower on several threads: threads start per sweep).
+  int SweepBatch = 16;
   double Tolerance = 1e-3;       ///< stop a level when mean |c| < Tolerance * mean edge length
   double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;
@@ -97,7 +101,7 @@ class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
 public:
   /// Progress in [0, 1]; return false to abort (the surface stays valid).
   using ProgressCallback = std::function<bool(double)>;
-  /// Called after every sweep (after the points moved); return false to stop the run.
+  /// Called once per sweep, after the sweep's batch (see SweepBatch); return false to stop.
   using SweepCallback = std::function<bool(const SweepRecord&, const TriangleMesh&)>;
 
   void SetParameters(const MultilevelParameters& p) { this->Parameters = p; }

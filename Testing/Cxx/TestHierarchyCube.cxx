@@ -29,6 +29,7 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p)
   Outcome o;
   o.Mesh = dsphantom::EnclosingBox(N, 2);
   p.CheckInvariants = true; // topology invariants after every level
+  p.SweepBatch = 1;         // the callback measures the mesh after every sweep
   MultilevelSolver s;
   s.SetParameters(p);
   auto dist = [](const Vec3& x) { return dsphantom::CubeDistance(x, N, Half); };
