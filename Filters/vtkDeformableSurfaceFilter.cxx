@@ -448,11 +448,16 @@ int vtkDeformableSurfaceFilter::RequestData(
   {
     vtkWarningMacro(<< w);
   }
-  if (solver.GetMaxOutsideVertices() > 0)
+  // Vertices that only pass outside on the way (a start box at the image bounds bulges
+  // out for a few sweeps) are harmless; the ones that end outside never met the image.
+  if (solver.GetFinalOutsideVertices() > 0)
   {
-    vtkWarningMacro(<< solver.GetMaxOutsideVertices()
-                    << " vertices lay outside the image and felt no external force.");
+    vtkWarningMacro(<< solver.GetFinalOutsideVertices()
+                    << " vertices ended outside the image, where they feel no external force: "
+                       "the initial surface may reach beyond the volume.");
   }
+  vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()
+                << " vertices lay outside the image during a sweep.");
 
   // --- outputs ---
   FillOutput(mesh, solver, output);

@@ -8,6 +8,6 @@ out="${1:-$root/out}"
 "$root/scripts/build.sh"
 mkdir -p "$out"
 export PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
-xvfb-run -a pvbatch "$root/Examples/demo.py" \
+"$root/scripts/with_xvfb.sh" pvbatch "$root/Examples/demo.py" \
   --plugin "$build/lib/paraview-5.11/plugins/DeformableSurface/DeformableSurface.so" \
   --output "$out"

@@ -50,6 +50,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   this->Displacement.clear();
   this->ExternalForce.clear();
   this->MaxOutsideVertices = 0;
+  this->FinalOutsideVertices = 0;
   this->InitialSubdivisions = 0;
   this->Aborted = false;
   auto fail = [error](const std::string& msg) {
@@ -183,6 +184,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
         sr.MaxCorrection = st.MaxCorrection;
         this->Sweeps.push_back(sr);
         this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
+        this->FinalOutsideVertices = st.OutsideVertices;
         if (this->OnSweep && !this->OnSweep(sr, mesh))
         {
           stop = true;

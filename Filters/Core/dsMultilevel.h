@@ -127,6 +127,8 @@ public:
   const std::vector<double>& GetExternalForce() const { return this->ExternalForce; }
   /// Most vertices that lay outside the volume (no external force) in one sweep.
   int GetMaxOutsideVertices() const { return this->MaxOutsideVertices; }
+  /// Vertices outside the volume in the last sweep (where the surface came to rest).
+  int GetFinalOutsideVertices() const { return this->FinalOutsideVertices; }
   double GetFinalMeanCorrection() const { return this->Sweeps.empty() ? 0.0 : this->Sweeps.back().MeanCorrection; }
   /// Sigma of the last level solved.
   double GetFinalSigma() const { return this->Levels.empty() ? 0.0 : this->Levels.back().Sigma; }
@@ -146,6 +148,7 @@ private:
   std::vector<std::string> Warnings;
   std::vector<double> ErrorIndicator, Displacement, ExternalForce;
   int MaxOutsideVertices = 0;
+  int FinalOutsideVertices = 0;
   int InitialSubdivisions = 0;
   bool Aborted = false;
 };

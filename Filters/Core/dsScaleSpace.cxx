@@ -56,7 +56,10 @@ bool LocateCell(const ImageGeometry& g, const double x[3], Cell& c)
 {
   double ijk[3];
   g.WorldToIndex(x, ijk);
-  const double tol = 1e-9;
+  // A voxel covers half a spacing around its centre, so the volume reaches half a voxel
+  // beyond the outermost centres (the image bounds); there the border value is used. A
+  // start box at the image bounds thus feels the force at every vertex.
+  const double tol = 0.5;
   long long stride = 1;
   c.Base = 0;
   for (int a = 0; a < 3; ++a)

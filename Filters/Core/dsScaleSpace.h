@@ -65,7 +65,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 
   bool Empty() const { return this->Potential.empty(); }
   /// Trilinear sample of the force at world point x. Returns false (and f = 0)
-  /// when x lies outside the volume.
+  /// when x lies outside the volume: more than half a voxel beyond the outermost voxel
+  /// centres (within that half voxel the border value is used).
   bool SampleForce(const double x[3], double f[3]) const;
   /// Trilinear sample of the potential (0 outside).
   double SamplePotential(const double x[3]) const;

@@ -6,6 +6,8 @@
 #include "dsMultilevel.h"
 #include "dsSelfIntersection.h"
 
+#include <algorithm>
+
 using namespace dsurf;
 
 namespace
@@ -13,7 +15,15 @@ namespace
 const int N = 128;
 const double R = 32.0;
 
-int Solve(const std::vector<float>& volume, MultilevelParameters p, TriangleMesh& mesh, const std::string& name)
+struct Outcome
+{
+  int Sweeps = 0;
+  /// Mean over the refined levels of the first sweep's mean correction in edge lengths:
+  /// how far the new vertices' start values are from where the solver wants them.
+  double FirstCorrection = 0;
+};
+
+Outcome Solve(const std::vector<float>& volume, MultilevelParameters p, TriangleMesh& mesh, const std::string& name)
 {
   mesh = dsphantom::EnclosingBox(N, 2);
   p.CheckInvariants = true;
@@ -27,8 +37,29 @@ int Solve(const std::vector<float>& volume, MultilevelParameters p, TriangleMesh
     std::cout << " " << l.Sweeps << (l.Converged ? "" : "(cap)");
     DS_CHECK(l.Converged, name + ": every level converges below the cap");
   }
-  std::cout << " = " << s.GetTotalSweeps() << ", triangles " << mesh.NumberOfTriangles() << std::endl;
-  return s.GetTotalSweeps();
+  Outcome o;
+  o.Sweeps = s.GetTotalSweeps();
+  int refined = 0;
+  for (const auto& l : s.GetLevels())
+  {
+    if (l.Level == 0)
+    {
+      continue;
+    }
+    for (const auto& r : s.GetSweeps())
+    {
+      if (r.Level == l.Level)
+      {
+        o.FirstCorrection += r.MeanCorrection / l.MeanEdgeLength;
+        ++refined;
+        break;
+      }
+    }
+  }
+  o.FirstCorrection /= std::max(1, refined);
+  std::cout << " = " << o.Sweeps << ", triangles " << mesh.NumberOfTriangles()
+            << ", first-sweep correction after refinement " << o.FirstCorrection << " edge" << std::endl;
+  return o;
 }
 } // namespace
 
@@ -55,18 +86,26 @@ int TestHierarchySphere(int, char*[])
   }
   DS_CHECK(labelled > 0 && levelled > 0, "red-green labels and level-4 vertices present");
 
-  // Butterfly vs linear prolongation, uniform refinement (same meshes, only the start
-  // values of new vertices differ) and adaptive.
+  // Butterfly vs linear prolongation. Butterfly puts new vertices nearer to where the
+  // solver wants them: the first sweep after each refinement corrects less, in both modes.
+  // With uniform refinement (the same meshes, only the start values differ) that also
+  // saves sweeps; adaptively the two runs mark different triangles, so their sweep counts
+  // are not comparable (measured: butterfly 198, linear 189 on different meshes).
   for (int uniform = 1; uniform >= 0; --uniform)
   {
     MultilevelParameters q;
     q.UniformRefinement = uniform != 0;
     TriangleMesh mb, ml;
     const std::string kind = uniform ? "uniform" : "adaptive";
-    const int sb = Solve(volume, q, mb, kind + ", butterfly");
+    const Outcome ob = Solve(volume, q, mb, kind + ", butterfly");
     q.ProlongationMode = Prolongation::Linear;
-    const int sl = Solve(volume, q, ml, kind + ", linear");
-    DS_CHECK_GE(sl - sb, 1, kind + ": sweeps saved by butterfly prolongation (linear - butterfly)");
+    const Outcome ol = Solve(volume, q, ml, kind + ", linear");
+    DS_CHECK_LE(ob.FirstCorrection / ol.FirstCorrection, 0.9,
+      kind + ": first-sweep correction after refinement, butterfly / linear");
+    if (uniform)
+    {
+      DS_CHECK_GE(ol.Sweeps - ob.Sweeps, 1, kind + ": sweeps saved by butterfly prolongation (linear - butterfly)");
+    }
   }
   return dstest::Result("TestHierarchySphere");
 }

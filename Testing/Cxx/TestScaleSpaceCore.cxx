@@ -157,7 +157,16 @@ int TestScaleSpaceCore(int, char*[])
       }
     }
     DS_CHECK_LE(worst, 1e-5, "trilinear sampling and index round trip, max error");
-    const double ijkOut[3] = { 4.2, 1, 1 };
+    // Within half a voxel beyond the outermost centre the border value is used; beyond
+    // that the point is outside.
+    const double ijkBorder[3] = { 4.4, 1, 1 }, ijkAtBorder[3] = { 4, 1, 1 };
+    double xBorder[3], xAtBorder[3], fb[3], fa[3];
+    g.IndexToWorld(ijkBorder, xBorder);
+    g.IndexToWorld(ijkAtBorder, xAtBorder);
+    DS_CHECK(field.SampleForce(xBorder, fb) && field.SampleForce(xAtBorder, fa) && fb[0] == fa[0] &&
+        fb[1] == fa[1] && fb[2] == fa[2],
+      "0.4 voxel beyond the last centre -> the border value");
+    const double ijkOut[3] = { 4.6, 1, 1 };
     double xOut[3], f[3];
     g.IndexToWorld(ijkOut, xOut);
     DS_CHECK(!field.SampleForce(xOut, f) && f[0] == 0 && f[1] == 0 && f[2] == 0,
