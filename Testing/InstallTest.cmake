@@ -21,3 +21,22 @@ execute_process(COMMAND "${WORK_DIR}/app/ds_app" RESULT_VARIABLE rc)
 if (rc)
   message(FATAL_ERROR "the app failed: ${rc}")
 endif ()
+
+# The installed plugin loads in ParaView and the installed Python package imports with
+# plain vtkmodules (their RUNPATHs find the installed library).
+if (PYTHON)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${WORK_DIR}/prefix/lib/python3/dist-packages"
+    "${PYTHON}" -c "from deformablesurface import vtkDeformableSurfaceFilter; vtkDeformableSurfaceFilter()"
+    RESULT_VARIABLE rc)
+  if (rc)
+    message(FATAL_ERROR "the installed Python package does not import: ${rc}")
+  endif ()
+endif ()
+if (PVPYTHON)
+  execute_process(COMMAND "${PVPYTHON}" --force-offscreen-rendering -c
+    "import paraview.simple as s; s.LoadPlugin('${WORK_DIR}/prefix/lib/paraview-5.11/plugins/DeformableSurface/DeformableSurface.so'); s.DeformableSurface(); s.ScaleSpaceGradient(); s.DelaunaySeedSurface()"
+    RESULT_VARIABLE rc)
+  if (rc)
+    message(FATAL_ERROR "the installed plugin does not load in ParaView: ${rc}")
+  endif ()
+endif ()
