@@ -130,6 +130,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   const int maxLevels = std::max(0, P.MaxLevels);
   const int cap = std::max(1, P.MaxSweepsPerLevel);
   int sweepCounter = 0;
+  bool budgetWarned = false;
   for (int level = 0; level <= maxLevels; ++level)
   {
     // Force field at this level's sigma (rebuilt only when sigma changed).
@@ -240,34 +241,48 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
         }
       }
     }
-    if (rec.MarkedTriangles == 0)
+    bool refine = rec.MarkedTriangles > 0;
+    if (refine &&
+      static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) > P.MaxVertices)
     {
-      this->Levels.push_back(rec);
-      break;
-    }
-    if (static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) > P.MaxVertices)
-    {
-      this->Warnings.push_back("refinement stopped at level " + std::to_string(level) + ": the next step would exceed MaxVertices (" +
-        std::to_string(P.MaxVertices) + ")");
+      if (!budgetWarned)
+      {
+        this->Warnings.push_back("refinement stopped at level " + std::to_string(level) +
+          ": the next step would exceed MaxVertices (" + std::to_string(P.MaxVertices) +
+          "); the remaining levels only decrease sigma");
+        budgetWarned = true;
+      }
+      refine = false;
       rec.MarkedTriangles = 0;
-      this->Levels.push_back(rec);
+    }
+    this->Levels.push_back(rec);
+    if (refine)
+    {
+      this->Levels.back().Refinement = refiner.Refine(mesh, marks, P.ProlongationMode);
+      const RefinementCounts& rc = this->Levels.back().Refinement;
+      if (!rc.Ok)
+      {
+        return fail("refinement failed: " + rc.Error);
+      }
+      if (checkInvariants &&
+        (!CheckTopologyInvariants(mesh, eulerStart, closedStart, &msg) || refiner.CountTVertices(mesh) != 0))
+      {
+        return fail("refinement broke a topology invariant at level " + std::to_string(level + 1) + ": " +
+          (msg.empty() ? std::string("T-vertex") : msg));
+      }
+    }
+    // The next level's sigma. Even when nothing was refined (nothing marked, the marked
+    // triangles already below a voxel, or the vertex budget reached) the schedule goes on
+    // with a smaller sigma: otherwise the surface would rest where the coarse, blurred
+    // edge lies, voxels off the boundary. Sigma stops at half a voxel, below which the
+    // image has nothing more to show; a level that would change neither mesh nor sigma
+    // ends the run.
+    const double nextSigma = P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * voxel)) : sigma;
+    if (!refine && !(nextSigma < sigma))
+    {
       break;
     }
-    rec.Refinement = refiner.Refine(mesh, marks, P.ProlongationMode);
-    this->Levels.push_back(rec);
-    if (!rec.Refinement.Ok)
-    {
-      return fail("refinement failed: " + rec.Refinement.Error);
-    }
-    if (checkInvariants && (!CheckTopologyInvariants(mesh, eulerStart, closedStart, &msg) || refiner.CountTVertices(mesh) != 0))
-    {
-      return fail("refinement broke a topology invariant at level " + std::to_string(level + 1) + ": " +
-        (msg.empty() ? std::string("T-vertex") : msg));
-    }
-    if (P.HierarchicalSigma)
-    {
-      sigma *= 0.5;
-    }
+    sigma = nextSigma;
   }
   if (this->Progress)
   {

@@ -17,10 +17,14 @@
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
-//      sigma: it is 4 sigma in the recursive Gaussian), else sigma stays.
-// It stops after MaxLevels refinements, when no triangle is marked, when the next step
-// would exceed MaxVertices (a warning), or when the progress callback asks to abort
-// (the surface is valid at every moment).
+//      sigma: it is 4 sigma in the recursive Gaussian), else sigma stays; never below half
+//      a voxel (mean spacing), where the image shows nothing finer.
+// A level with nothing to refine (nothing marked, the marked triangles all below a voxel,
+// or the next step over MaxVertices: a warning, once) still goes on to the next, smaller
+// sigma with the same mesh, so the surface always ends at the fine scale rather than on
+// the blurred edge of a coarse sigma. The run ends after MaxLevels levels past the first,
+// when a level would change neither the mesh nor sigma, or when the progress callback
+// asks to abort (the surface is valid at every moment).
 #ifndef dsMultilevel_h
 #define dsMultilevel_h
 

@@ -86,8 +86,9 @@ int TestHierarchyFilter(int, char*[])
   }
 
   // A start finer than the voxels (ParaView's Sphere, radius 30, 320 x 320: edges <= 0.85
-  // voxel) is not refined further: the image has no detail for smaller triangles, so the
-  // adaptive hierarchy stops after the first level instead of multiplying the mesh.
+  // voxel) is not refined further -- the image has no detail for smaller triangles -- but
+  // sigma still halves level by level down to half a voxel (2 -> 1 -> 0.5: three levels),
+  // so the surface ends on the fine-scale boundary, not on the blurred one of sigma 2.
   {
     vtkNew<vtkSphereSource> fine;
     fine->SetCenter(0.5 * (n - 1), 0.5 * (n - 1), 0.5 * (n - 1));
@@ -101,12 +102,22 @@ int TestHierarchyFilter(int, char*[])
     filter->Update();
     vtkPolyData* out = filter->GetOutput();
     const int levels = static_cast<int>(out->GetFieldData()->GetArray("Levels")->GetTuple1(0));
+    const double finalSigma = out->GetFieldData()->GetArray("Sigma")->GetTuple1(0);
     fine->Update();
+    double sum = 0;
+    for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      out->GetPoint(i, p);
+      sum += dsphantom::SphereDistance({ p[0], p[1], p[2] }, n, 32.0);
+    }
     std::cout << "  fine start: " << fine->GetOutput()->GetNumberOfPoints() << " input points -> "
-              << out->GetNumberOfPoints() << " output points, " << levels << " level(s)" << std::endl;
-    DS_CHECK(levels == 1, "a sub-voxel start is not refined (one level)");
+              << out->GetNumberOfPoints() << " output points, " << levels << " level(s), final sigma "
+              << finalSigma << std::endl;
+    DS_CHECK(levels == 3 && finalSigma == 0.5, "sigma halves to half a voxel: three levels");
     DS_CHECK_LE(out->GetNumberOfPoints(), fine->GetOutput()->GetNumberOfPoints(),
-      "output points of a sub-voxel start (merged seams: at most the input's)");
+      "output points of a sub-voxel start (not refined: at most the input's)");
+    DS_CHECK_LE(sum / out->GetNumberOfPoints(), 0.15, "fine start: mean |distance| (voxels)");
   }
   return dstest::Result("TestHierarchyFilter");
 }
