@@ -53,8 +53,10 @@
  * voxel); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
- * It stops after MaxLevels refinements, when nothing is marked, or before exceeding
- * MaxVertices (a warning).
+ * Sigma never goes below half a voxel. Refinement stops when nothing is marked or before
+ * a step would exceed MaxVertices (a warning; the red-green closure can add some more);
+ * the remaining levels up to MaxLevels still halve sigma on the same mesh, so the surface
+ * always ends on the fine-scale boundary.
  *
  * Distributed input (pvbatch/pvserver under MPI): the solve is global (every vertex sees the
  * whole force field and its neighbours), so process 0 does it alone. Each process asks for
