@@ -381,6 +381,13 @@ int vtkDeformableSurfaceFilter::RequestData(
     return 1;
   }
   const dsurf::ImageGeometry& geometry = volume.Geometry;
+  double range[2];
+  this->GetInputArrayToProcess(0, inputVector)->GetRange(range, 0);
+  if (range[0] == range[1])
+  {
+    vtkErrorMacro("The image is constant (" << range[0] << "): it has no boundary to find.");
+    return 1;
+  }
 
   // --- the initial surface ---
   dsurf::TriangleMesh mesh;

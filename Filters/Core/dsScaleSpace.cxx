@@ -516,6 +516,21 @@ bool Validate(const ImageGeometry& g, double sigma, std::string* error)
   {
     return fail("sigma must be finite and >= 0");
   }
+  // World <-> index uses the transpose as the inverse of the direction matrix, and the
+  // gradient is turned by it: a shear or a scale would silently give wrong forces.
+  const double* D = g.Direction;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double dot = D[r] * D[c] + D[3 + r] * D[3 + c] + D[6 + r] * D[6 + c];
+      if (!(std::fabs(dot - (r == c ? 1.0 : 0.0)) <= 1e-6))
+      {
+        return fail("the image's direction matrix must be a rotation (orthonormal); put scale "
+                    "into the spacing and resample sheared images first");
+      }
+    }
+  }
   return true;
 }
 
@@ -636,6 +651,25 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
       *error = "the weights must be finite";
     }
     return false;
+  }
+  {
+    // One NaN or Inf would spread along every line of the recursive filter and turn the
+    // whole field into NaN.
+    const long long n = geometry.NumberOfVoxels();
+    long long bad = 0;
+    for (long long i = 0; i < n; ++i)
+    {
+      bad += std::isfinite(scalars[i]) ? 0 : 1;
+    }
+    if (bad > 0)
+    {
+      if (error)
+      {
+        *error = "the image has " + std::to_string(bad) +
+          " non-finite values (NaN or Inf); replace them first (e.g. with a Calculator or Threshold)";
+      }
+      return false;
+    }
   }
   const int* dims = geometry.Dimensions;
   const int nx = dims[0], ny = dims[1], nz = dims[2];

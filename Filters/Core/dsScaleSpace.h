@@ -24,7 +24,8 @@
 namespace dsurf
 {
 /// Where the voxels are: world = Origin + Direction * (Spacing .* ijk).
-/// Direction is row-major 3x3 and orthonormal (VTK's vtkImageData direction matrix).
+/// Direction is row-major 3x3 and must be orthonormal (VTK's vtkImageData direction
+/// matrix; ComputeScaleSpaceForce rejects anything else).
 struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
 {
   int Dimensions[3] = { 0, 0, 0 };

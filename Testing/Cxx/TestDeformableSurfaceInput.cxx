@@ -4,6 +4,8 @@
 // a non-manifold edge and a missing surface give an error and an empty output,
 // Gamma is clamped, vertices outside the image are warned about.
 #include "DSTestHelpers.h"
+
+#include <cmath>
 #include "TestSolverMeshes.h"
 
 #include "vtkDeformableSurfaceFilter.h"
@@ -296,6 +298,32 @@ int TestDeformableSurfaceInput(int, char*[])
     std::cout << "(an error message about a surface without polygons is expected next)" << std::endl;
     const Result e = Deform(image, pointsOnly);
     DS_CHECK(e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
+  }
+
+  // --- bad images: one NaN voxel, a constant image, a sheared direction matrix ---
+  {
+    auto sphere = Sphere(20, 11);
+    vtkNew<vtkImageData> nan;
+    nan->DeepCopy(image);
+    vtkDataArray* values = nan->GetPointData()->GetScalars();
+    values->SetTuple1(values->GetNumberOfTuples() / 3, std::nan(""));
+    std::cout << "(an error message about non-finite values is expected next)" << std::endl;
+    const Result a = Deform(nan, sphere);
+    DS_CHECK(a.Errors == 1 && a.Surface->GetNumberOfPoints() == 0, "a NaN voxel: error, empty output");
+
+    vtkNew<vtkImageData> flat;
+    flat->DeepCopy(image);
+    flat->GetPointData()->GetScalars()->Fill(7.0);
+    std::cout << "(an error message about a constant image is expected next)" << std::endl;
+    const Result b = Deform(flat, sphere);
+    DS_CHECK(b.Errors == 1 && b.Surface->GetNumberOfPoints() == 0, "a constant image: error, empty output");
+
+    vtkNew<vtkImageData> sheared;
+    sheared->DeepCopy(image);
+    sheared->SetDirectionMatrix(1, 0.5, 0, 0, 1, 0, 0, 0, 1);
+    std::cout << "(an error message about the direction matrix is expected next)" << std::endl;
+    const Result c = Deform(sheared, sphere);
+    DS_CHECK(c.Errors == 1 && c.Surface->GetNumberOfPoints() == 0, "a sheared direction: error, empty output");
   }
 
   // --- Gamma clamped with a warning; vertices outside the image warned about once ---

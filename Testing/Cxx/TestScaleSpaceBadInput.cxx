@@ -2,6 +2,8 @@
 // a 3-component array. Each must raise a vtkErrorMacro (counted through an
 // ErrorEvent observer) and leave an empty output; a good image afterwards works.
 #include "DSTestHelpers.h"
+
+#include <cmath>
 #include "ScaleSpaceTestUtils.h"
 
 #include "dsScaleSpace.h"
@@ -67,6 +69,15 @@ int TestScaleSpaceBadInput(int, char*[])
   v3->Fill(1.0);
   vec->GetPointData()->SetScalars(v3);
   Expect("3-component scalars", vec);
+
+  // One NaN voxel would spread along every recursive-filter line: rejected.
+  auto withNaN = sstest::MakeImage(ext, spacing, origin, identity, ramp);
+  withNaN->GetPointData()->GetScalars()->SetTuple1(123, std::nan(""));
+  Expect("a NaN voxel", withNaN);
+
+  // A shear (or scale) in the direction matrix: world coordinates would be wrong.
+  const double shear[9] = { 1, 0.5, 0, 0, 1, 0, 0, 0, 1 };
+  Expect("sheared direction matrix", sstest::MakeImage(ext, spacing, origin, shear, ramp));
 
   // The core rejects the same, and non-finite sigma, without touching the output.
   {
