@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
+#include <array>
 
 namespace dsurf
 {
@@ -210,6 +210,217 @@ bool SharedVertexTrianglesOverlap(
   return sa != 0 && sa == sb;
 }
 
+namespace
+{
+/// Axis-aligned box of a triangle or of a BVH node: lo[0..2], hi[3..5].
+using Box = std::array<double, 6>;
+
+inline bool Overlap(const Box& a, const Box& b)
+{
+  return !(a[3] < b[0] || b[3] < a[0] || a[4] < b[1] || b[4] < a[1] || a[5] < b[2] || b[5] < a[2]);
+}
+
+/// Bounding-volume hierarchy over triangle boxes, split at the median centroid of the
+/// widest axis. Unlike a uniform grid its size does not depend on how the triangle
+/// sizes are mixed: n triangles give < 2n/LeafSize nodes whatever their extent.
+class TriangleBVH
+{
+public:
+  static constexpr int LeafSize = 8;
+  struct Node
+  {
+    Box Bounds;
+    int First = 0, Count = 0; ///< range of Order / Boxes (leaves only)
+    int Left = -1, Right = -1;
+    bool IsLeaf() const { return this->Left < 0; }
+  };
+
+  TriangleBVH(const std::vector<Box>& triBoxes)
+  {
+    const int n = static_cast<int>(triBoxes.size());
+    // Centres and ids together, so the median splits move contiguous data.
+    std::vector<Item> items(n);
+    for (int t = 0; t < n; ++t)
+    {
+      const Box& b = triBoxes[t];
+      items[t] = { { 0.5 * (b[0] + b[3]), 0.5 * (b[1] + b[4]), 0.5 * (b[2] + b[5]) }, t };
+    }
+    this->Nodes.reserve(2 * (n / LeafSize + 1));
+    this->Build(items, 0, n);
+    this->Order.resize(n);
+    this->Boxes.resize(n);
+    for (int k = 0; k < n; ++k)
+    {
+      this->Order[k] = items[k].Id;
+      this->Boxes[k] = triBoxes[items[k].Id];
+    }
+    this->Fit(0);
+  }
+
+  std::vector<Node> Nodes; ///< Nodes[0] is the root
+  std::vector<int> Order;  ///< triangle ids in leaf order
+  std::vector<Box> Boxes;  ///< their boxes, same order
+
+private:
+  struct Item
+  {
+    double Center[3];
+    int Id;
+  };
+
+  int Build(std::vector<Item>& items, int begin, int end)
+  {
+    const int id = static_cast<int>(this->Nodes.size());
+    this->Nodes.emplace_back();
+    if (end - begin <= LeafSize)
+    {
+      this->Nodes[id].First = begin;
+      this->Nodes[id].Count = end - begin;
+      return id;
+    }
+    double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+    for (int k = begin; k < end; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], items[k].Center[a]);
+        hi[a] = std::max(hi[a], items[k].Center[a]);
+      }
+    }
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+    {
+      if (hi[a] - lo[a] > hi[axis] - lo[axis])
+      {
+        axis = a;
+      }
+    }
+    // The median by position keeps the depth at log2(n / LeafSize) even when all
+    // centres coincide.
+    const int mid = begin + (end - begin) / 2;
+    std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+      [axis](const Item& x, const Item& y) { return x.Center[axis] < y.Center[axis]; });
+    const int left = this->Build(items, begin, mid);
+    const int right = this->Build(items, mid, end);
+    this->Nodes[id].Left = left;
+    this->Nodes[id].Right = right;
+    return id;
+  }
+
+  /// Bounds bottom-up: leaves from their triangles, inner nodes from their children.
+  const Box& Fit(int id)
+  {
+    Node& nd = this->Nodes[id];
+    Box bounds = { 1e300, 1e300, 1e300, -1e300, -1e300, -1e300 };
+    auto grow = [&bounds](const Box& b) {
+      for (int a = 0; a < 3; ++a)
+      {
+        bounds[a] = std::min(bounds[a], b[a]);
+        bounds[a + 3] = std::max(bounds[a + 3], b[a + 3]);
+      }
+    };
+    if (nd.IsLeaf())
+    {
+      for (int k = nd.First; k < nd.First + nd.Count; ++k)
+      {
+        grow(this->Boxes[k]);
+      }
+    }
+    else
+    {
+      const int left = nd.Left, right = nd.Right;
+      grow(this->Fit(left));
+      grow(this->Fit(right));
+    }
+    this->Nodes[id].Bounds = bounds;
+    return this->Nodes[id].Bounds;
+  }
+};
+
+/// Visits every pair of triangles whose boxes overlap exactly once (Test(t1, t2)):
+/// pairs inside a node are those inside each child plus those across the children,
+/// and a cross pair of nodes is descended only while the nodes' boxes overlap.
+template <typename PairTest>
+class SelfTraversal
+{
+public:
+  SelfTraversal(const TriangleBVH& bvh, PairTest& test)
+    : Bvh(bvh)
+    , Test(test)
+  {
+  }
+
+  void Self(int node)
+  {
+    const auto& nd = this->Bvh.Nodes[node];
+    if (nd.IsLeaf())
+    {
+      for (int x = nd.First; x < nd.First + nd.Count; ++x)
+      {
+        for (int y = x + 1; y < nd.First + nd.Count; ++y)
+        {
+          if (Overlap(this->Bvh.Boxes[x], this->Bvh.Boxes[y]))
+          {
+            this->Test(this->Bvh.Order[x], this->Bvh.Order[y]);
+          }
+        }
+      }
+      return;
+    }
+    this->Self(nd.Left);
+    this->Self(nd.Right);
+    this->Cross(nd.Left, nd.Right);
+  }
+
+  void Cross(int a, int b)
+  {
+    const auto &na = this->Bvh.Nodes[a], &nb = this->Bvh.Nodes[b];
+    if (!Overlap(na.Bounds, nb.Bounds))
+    {
+      return;
+    }
+    if (na.IsLeaf() && nb.IsLeaf())
+    {
+      for (int x = na.First; x < na.First + na.Count; ++x)
+      {
+        // A big triangle makes its leaf's box big: check each box against the other
+        // leaf first so its small neighbours in the leaf stay cheap.
+        const Box& bx = this->Bvh.Boxes[x];
+        if (!Overlap(bx, nb.Bounds))
+        {
+          continue;
+        }
+        for (int y = nb.First; y < nb.First + nb.Count; ++y)
+        {
+          if (Overlap(bx, this->Bvh.Boxes[y]))
+          {
+            this->Test(this->Bvh.Order[x], this->Bvh.Order[y]);
+          }
+        }
+      }
+      return;
+    }
+    // Descend the larger node (a leaf cannot be split).
+    if (nb.IsLeaf() || (!na.IsLeaf() && Size(na.Bounds) >= Size(nb.Bounds)))
+    {
+      this->Cross(na.Left, b);
+      this->Cross(na.Right, b);
+    }
+    else
+    {
+      this->Cross(a, nb.Left);
+      this->Cross(a, nb.Right);
+    }
+  }
+
+private:
+  static double Size(const Box& b) { return (b[3] - b[0]) + (b[4] - b[1]) + (b[5] - b[2]); }
+
+  const TriangleBVH& Bvh;
+  PairTest& Test;
+};
+} // namespace
+
 int CountSelfIntersections(const TriangleMesh& mesh, std::vector<std::pair<int, int>>* pairs)
 {
   const int nTri = mesh.NumberOfTriangles();
@@ -222,9 +433,7 @@ int CountSelfIntersections(const TriangleMesh& mesh, std::vector<std::pair<int, 
     return 0;
   }
   const auto& P = mesh.Points;
-  std::vector<std::array<double, 6>> boxes(nTri);
-  double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
-  double meanSize = 0;
+  std::vector<Box> boxes(nTri);
   for (int t = 0; t < nTri; ++t)
   {
     auto& b = boxes[t];
@@ -233,114 +442,51 @@ int CountSelfIntersections(const TriangleMesh& mesh, std::vector<std::pair<int, 
     {
       b[a] = std::min({ P[tri[0]][a], P[tri[1]][a], P[tri[2]][a] });
       b[a + 3] = std::max({ P[tri[0]][a], P[tri[1]][a], P[tri[2]][a] });
-      lo[a] = std::min(lo[a], b[a]);
-      hi[a] = std::max(hi[a], b[a + 3]);
     }
-    meanSize += std::max({ b[3] - b[0], b[4] - b[1], b[5] - b[2] });
   }
-  meanSize /= nTri;
-  // Cells about the size of a triangle; coarser if that would make the grid huge.
-  double cell = meanSize > 0 ? meanSize : 1.0;
-  const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
-  cell = std::max(cell, extent / 1024.0);
-  int dims[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    dims[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / cell) + 1);
-  }
-  auto cellOf = [&](double x, int a) {
-    return std::min(dims[a] - 1, std::max(0, static_cast<int>((x - lo[a]) / cell)));
-  };
-
-  // (cell key, triangle) pairs, sorted: each run of equal keys is one occupied cell.
-  std::vector<std::pair<std::uint64_t, int>> entries;
-  entries.reserve(static_cast<size_t>(nTri) * 4);
-  std::vector<std::array<int, 6>> ranges(nTri);
-  for (int t = 0; t < nTri; ++t)
-  {
-    auto& r = ranges[t];
-    for (int a = 0; a < 3; ++a)
-    {
-      r[a] = cellOf(boxes[t][a], a);
-      r[a + 3] = cellOf(boxes[t][a + 3], a);
-    }
-    for (int k = r[2]; k <= r[5]; ++k)
-      for (int j = r[1]; j <= r[4]; ++j)
-        for (int i = r[0]; i <= r[3]; ++i)
-        {
-          const std::uint64_t key = (static_cast<std::uint64_t>(k) * dims[1] + j) * dims[0] + i;
-          entries.emplace_back(key, t);
-        }
-  }
-  std::sort(entries.begin(), entries.end());
+  // A BVH rather than a uniform grid: a grid sized for the typical triangle puts one
+  // huge triangle into (size/cell)^3 cells, and a grid sized for the extent puts a
+  // small dense part into one cell; the BVH is O(n) memory and near O(n log n) time for
+  // any mix of sizes (more only when many boxes really overlap).
+  const TriangleBVH bvh(boxes);
 
   int count = 0;
-  size_t begin = 0;
-  while (begin < entries.size())
-  {
-    size_t end = begin;
-    while (end < entries.size() && entries[end].first == entries[begin].first)
+  auto test = [&](int t1, int t2) {
+    const auto &A = mesh.Triangles[t1], &B = mesh.Triangles[t2];
+    int shared = 0, sa = -1, sb = -1;
+    for (int i = 0; i < 3; ++i)
     {
-      ++end;
-    }
-    const std::uint64_t key = entries[begin].first;
-    const int ci = static_cast<int>(key % dims[0]);
-    const int cj = static_cast<int>((key / dims[0]) % dims[1]);
-    const int ck = static_cast<int>(key / (static_cast<std::uint64_t>(dims[0]) * dims[1]));
-    for (size_t x = begin; x < end; ++x)
-    {
-      const int t1 = entries[x].second;
-      for (size_t y = x + 1; y < end; ++y)
+      for (int j = 0; j < 3; ++j)
       {
-        const int t2 = entries[y].second;
-        const auto &r1 = ranges[t1], &r2 = ranges[t2];
-        // Test each pair once: in the lowest cell their cell ranges share.
-        if (std::max(r1[0], r2[0]) != ci || std::max(r1[1], r2[1]) != cj || std::max(r1[2], r2[2]) != ck)
+        if (A[i] == B[j])
         {
-          continue;
-        }
-        const auto &b1 = boxes[t1], &b2 = boxes[t2];
-        if (b1[3] < b2[0] || b2[3] < b1[0] || b1[4] < b2[1] || b2[4] < b1[1] || b1[5] < b2[2] ||
-          b2[5] < b1[2])
-        {
-          continue;
-        }
-        const auto &A = mesh.Triangles[t1], &B = mesh.Triangles[t2];
-        int shared = 0, sa = -1, sb = -1;
-        for (int i = 0; i < 3; ++i)
-        {
-          for (int j = 0; j < 3; ++j)
-          {
-            if (A[i] == B[j])
-            {
-              ++shared;
-              sa = i;
-              sb = j;
-            }
-          }
-        }
-        bool hit = false;
-        if (shared == 0)
-        {
-          hit = TrianglesIntersect(P[A[0]], P[A[1]], P[A[2]], P[B[0]], P[B[1]], P[B[2]]);
-        }
-        else if (shared == 1)
-        {
-          hit = SharedVertexTrianglesOverlap(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
-            P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
-        }
-        if (hit)
-        {
-          ++count;
-          if (pairs)
-          {
-            pairs->emplace_back(std::min(t1, t2), std::max(t1, t2));
-          }
+          ++shared;
+          sa = i;
+          sb = j;
         }
       }
     }
-    begin = end;
-  }
+    bool hit = false;
+    if (shared == 0)
+    {
+      hit = TrianglesIntersect(P[A[0]], P[A[1]], P[A[2]], P[B[0]], P[B[1]], P[B[2]]);
+    }
+    else if (shared == 1)
+    {
+      hit = SharedVertexTrianglesOverlap(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
+        P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
+    }
+    if (hit)
+    {
+      ++count;
+      if (pairs)
+      {
+        pairs->emplace_back(std::min(t1, t2), std::max(t1, t2));
+      }
+    }
+  };
+  SelfTraversal<decltype(test)> traversal(bvh, test);
+  traversal.Self(0);
   if (pairs)
   {
     std::sort(pairs->begin(), pairs->end());

@@ -1,6 +1,7 @@
-// Counting self-intersections of a triangle mesh (SPEC.md §5, ours): a uniform grid
-// over the triangles' bounding boxes finds candidate pairs (not O(n^2)), Moeller's
-// interval test decides each pair. Plain C++, no pipeline types.
+// Counting self-intersections of a triangle mesh (SPEC.md §5, ours): a bounding-volume
+// hierarchy over the triangles' bounding boxes finds candidate pairs (not O(n^2), and
+// bounded memory for any mix of triangle sizes), Moeller's interval test decides each
+// pair. Plain C++, no pipeline types.
 #ifndef dsSelfIntersection_h
 #define dsSelfIntersection_h
 

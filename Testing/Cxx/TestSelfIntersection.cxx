@@ -1,14 +1,88 @@
 // Unit test of the self-intersection count (dsSelfIntersection): the tri-tri test on
 // hand-made pairs, a clean icosphere, an icosphere with one vertex pushed through the
-// opposite side, a fold at a shared vertex, and the grid against brute force.
+// opposite side, a fold at a shared vertex, and the search against brute force, also on
+// meshes mixing tiny and huge triangles (which once made a uniform grid run out of memory).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
 #include "dsSelfIntersection.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <random>
+#include <vector>
 
 using namespace dsurf;
+
+namespace
+{
+/// All intersecting pairs (a < b), by testing every pair. With `skipDisjointBoxes` pairs
+/// whose bounding boxes are apart are skipped first (exact, and fast enough for 20k
+/// triangles).
+std::vector<std::pair<int, int>> BruteForcePairs(const TriangleMesh& m, bool skipDisjointBoxes)
+{
+  const auto& P = m.Points;
+  const int n = m.NumberOfTriangles();
+  std::vector<std::array<double, 6>> box(n);
+  for (int t = 0; t < n; ++t)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      box[t][a] = std::min({ P[m.Triangles[t][0]][a], P[m.Triangles[t][1]][a], P[m.Triangles[t][2]][a] });
+      box[t][a + 3] =
+        std::max({ P[m.Triangles[t][0]][a], P[m.Triangles[t][1]][a], P[m.Triangles[t][2]][a] });
+    }
+  }
+  std::vector<std::pair<int, int>> brute;
+  for (int a = 0; a < n; ++a)
+  {
+    for (int b = a + 1; b < n; ++b)
+    {
+      if (skipDisjointBoxes &&
+        (box[a][3] < box[b][0] || box[b][3] < box[a][0] || box[a][4] < box[b][1] ||
+          box[b][4] < box[a][1] || box[a][5] < box[b][2] || box[b][5] < box[a][2]))
+      {
+        continue;
+      }
+      const auto &A = m.Triangles[a], &B = m.Triangles[b];
+      int shared = 0, sa = -1, sb = -1;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          if (A[i] == B[j])
+          {
+            ++shared;
+            sa = i;
+            sb = j;
+          }
+      bool hit = false;
+      if (shared == 0)
+      {
+        hit = TrianglesIntersect(P[A[0]], P[A[1]], P[A[2]], P[B[0]], P[B[1]], P[B[2]]);
+      }
+      else if (shared == 1)
+      {
+        hit = SharedVertexTrianglesOverlap(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
+          P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
+      }
+      if (hit)
+      {
+        brute.emplace_back(a, b);
+      }
+    }
+  }
+  return brute;
+}
+
+void AddTriangle(TriangleMesh& m, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  const int base = m.NumberOfPoints();
+  m.Points.push_back(a);
+  m.Points.push_back(b);
+  m.Points.push_back(c);
+  m.Triangles.push_back({ base, base + 1, base + 2 });
+}
+} // namespace
 
 int TestSelfIntersection(int, char*[])
 {
@@ -79,40 +153,9 @@ int TestSelfIntersection(int, char*[])
     DS_CHECK_GE(pushed, 5, "self-intersections after pushing one vertex through the sphere");
 
     // Brute force over all pairs gives the same set.
-    std::vector<std::pair<int, int>> brute;
-    for (int a = 0; a < m.NumberOfTriangles(); ++a)
-    {
-      for (int b = a + 1; b < m.NumberOfTriangles(); ++b)
-      {
-        const auto &A = m.Triangles[a], &B = m.Triangles[b];
-        int shared = 0, sa = -1, sb = -1;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j)
-            if (A[i] == B[j])
-            {
-              ++shared;
-              sa = i;
-              sb = j;
-            }
-        const auto& P = m.Points;
-        bool hit = false;
-        if (shared == 0)
-        {
-          hit = TrianglesIntersect(P[A[0]], P[A[1]], P[A[2]], P[B[0]], P[B[1]], P[B[2]]);
-        }
-        else if (shared == 1)
-        {
-          hit = SharedVertexTrianglesOverlap(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
-            P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
-        }
-        if (hit)
-        {
-          brute.emplace_back(a, b);
-        }
-      }
-    }
-    std::cout << "  grid pairs " << pairs.size() << ", brute-force pairs " << brute.size() << std::endl;
-    DS_CHECK(pairs == brute, "grid search finds exactly the brute-force pairs");
+    const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, false);
+    std::cout << "  BVH pairs " << pairs.size() << ", brute-force pairs " << brute.size() << std::endl;
+    DS_CHECK(pairs == brute, "BVH search finds exactly the brute-force pairs");
   }
 
   // --- random triangle soup: grid = brute force ---
@@ -134,9 +177,93 @@ int TestSelfIntersection(int, char*[])
       for (int b = a + 1; b < 600; ++b)
         brute += TrianglesIntersect(m.Points[3 * a], m.Points[3 * a + 1], m.Points[3 * a + 2],
           m.Points[3 * b], m.Points[3 * b + 1], m.Points[3 * b + 2]);
-    const int grid = CountSelfIntersections(m);
-    std::cout << "  soup: grid " << grid << ", brute force " << brute << std::endl;
-    DS_CHECK(grid == brute && brute > 0, "grid count equals brute force on a random soup");
+    const int found = CountSelfIntersections(m);
+    std::cout << "  soup: BVH " << found << ", brute force " << brute << std::endl;
+    DS_CHECK(found == brute && brute > 0, "BVH count equals brute force on a random soup");
+  }
+
+  // --- a fine sphere and a few huge slanted triangles: exact, and no blow-up ---
+  // (A uniform grid with cells of the typical triangle size put each huge triangle into
+  // ~(size/cell)^3 cells: 100 s for one triangle of size 50, std::bad_alloc for three.)
+  {
+    TriangleMesh m = dstest::MakeIcosphere(5, 1, { 0, 0, 0 }); // 20480 triangles, edge ~0.03
+    const int nSphere = m.NumberOfTriangles();
+    // Through the centre (centroid at the origin): crosses the sphere along a great circle.
+    AddTriangle(m, { -25, -20, -25 }, { 25, -5, 20 }, { 0, 25, 5 });
+    // Size 100, also through the centre, slanted the other way: crosses the sphere and
+    // the first one.
+    AddTriangle(m, { -60, 10, 40 }, { 50, -45, -20 }, { 10, 35, -20 });
+    // Size 100 in the plane x + y + z = 6 (3.5 from the centre): its box holds the whole
+    // sphere, but it misses it.
+    AddTriangle(m, { -50, 30, 26 }, { 50, -50, 6 }, { 10, 50, -54 });
+    // A long needle of length 160 through the sphere near its axis.
+    AddTriangle(m, { -80, 0.1, 0.05 }, { 80, -0.1, 0.02 }, { 80, 0.1, -0.03 });
+    // Huge and far away: overlaps nothing.
+    AddTriangle(m, { 300, 300, 300 }, { 400, 320, 310 }, { 350, 420, 390 });
+
+    std::vector<std::pair<int, int>> pairs;
+    const int found = CountSelfIntersections(m, &pairs);
+    const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, true);
+    int hugeHuge = 0, missing = 0, needle = 0;
+    for (const auto& pr : brute)
+    {
+      hugeHuge += pr.first >= nSphere;
+      missing += pr.first == nSphere + 2 || pr.second == nSphere + 2;
+      needle += pr.first < nSphere && pr.second == nSphere + 3;
+    }
+    std::cout << "  sphere + huge triangles: BVH " << found << ", brute force " << brute.size()
+              << " (huge-huge " << hugeHuge << ", needle-sphere " << needle
+              << ", with the missing plane " << missing << ")" << std::endl;
+    DS_CHECK(pairs == brute, "BVH pairs equal brute force on a sphere with huge triangles");
+    DS_CHECK(found == static_cast<int>(brute.size()), "count equals the number of pairs");
+    // The two triangles through the centre cross each other, and the needle (which
+    // pierces both); each great circle crosses a few hundred sphere triangles.
+    DS_CHECK_GE(hugeHuge, 3, "pairs among the huge triangles");
+    DS_CHECK_GE(needle, 2, "sphere triangles pierced by the needle");
+    DS_CHECK_GE(static_cast<int>(brute.size()), 400, "pairs on the sphere with huge triangles");
+  }
+
+  // --- random soup of tiny and huge triangles, plus a dense far cluster: = brute force ---
+  {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 10), unit(-1, 1), logSize(-3, 1.6);
+    TriangleMesh m;
+    for (int t = 0; t < 1500; ++t)
+    {
+      // Sizes from 0.001 to 40 (log-uniform): most tiny, a few spanning everything.
+      const double size = std::pow(10.0, logSize(rng));
+      const Vec3 c{ u(rng), u(rng), u(rng) };
+      Vec3 v[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        v[k] = { c[0] + size * unit(rng), c[1] + size * unit(rng), c[2] + size * unit(rng) };
+      }
+      AddTriangle(m, v[0], v[1], v[2]);
+    }
+    // 300 triangles of size 0.01 packed into a 0.02 cube far away (they cross a lot).
+    for (int t = 0; t < 300; ++t)
+    {
+      const Vec3 c{ 1000 + 0.01 * unit(rng), 1000 + 0.01 * unit(rng), 1000 + 0.01 * unit(rng) };
+      Vec3 v[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        v[k] = { c[0] + 0.01 * unit(rng), c[1] + 0.01 * unit(rng), c[2] + 0.01 * unit(rng) };
+      }
+      AddTriangle(m, v[0], v[1], v[2]);
+    }
+    std::vector<std::pair<int, int>> pairs;
+    const int found = CountSelfIntersections(m, &pairs);
+    const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, false);
+    int cluster = 0;
+    for (const auto& pr : brute)
+    {
+      cluster += pr.first >= 1500;
+    }
+    std::cout << "  mixed soup: BVH " << found << ", brute force " << brute.size()
+              << " (in the far cluster " << cluster << ")" << std::endl;
+    DS_CHECK(pairs == brute, "BVH pairs equal brute force on a soup of tiny and huge triangles");
+    DS_CHECK(cluster > 0 && static_cast<int>(brute.size()) > cluster,
+      "the mixed soup has crossings in both parts");
   }
 
   return dstest::Result("TestSelfIntersection");
