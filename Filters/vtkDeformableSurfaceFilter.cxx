@@ -398,8 +398,11 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
   if (!mesh.IsConsistentlyOriented())
   {
-    vtkWarningMacro("The initial surface is not consistently oriented; vertex normals "
-                    "(used to project the external force) may be poor.");
+    // Normals (the projection direction) and the refinement's invariants need neighbours
+    // to agree; each piece keeps the orientation most of its triangles had.
+    const int flipped = mesh.OrientConsistently();
+    vtkWarningMacro("The initial surface was not consistently oriented: " << flipped
+                                                                          << " triangle(s) flipped to agree with their neighbours.");
   }
   vtkDebugMacro("Initial surface: " << mesh.NumberOfPoints() << " points, "
                                     << mesh.NumberOfTriangles() << " triangles, signed volume "

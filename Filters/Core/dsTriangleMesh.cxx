@@ -175,6 +175,73 @@ bool TriangleMesh::IsConsistentlyOriented() const
   return true;
 }
 
+int TriangleMesh::OrientConsistently()
+{
+  const int nTri = this->NumberOfTriangles();
+  // +1 when triangle t traverses edge e from Edges[e][0] to Edges[e][1].
+  auto direction = [this](int t, int e) {
+    const auto& tri = this->Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] == this->Edges[e][0] && tri[(k + 1) % 3] == this->Edges[e][1])
+      {
+        return 1;
+      }
+    }
+    return -1;
+  };
+  std::vector<signed char> flip(nTri, -1); // -1 unvisited, 0 keep, 1 flip
+  std::vector<int> piece, queue;
+  int flipped = 0;
+  for (int seed = 0; seed < nTri; ++seed)
+  {
+    if (flip[seed] != -1)
+    {
+      continue;
+    }
+    piece.clear();
+    queue.assign(1, seed);
+    flip[seed] = 0;
+    for (size_t head = 0; head < queue.size(); ++head)
+    {
+      const int t = queue[head];
+      piece.push_back(t);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int e = this->TriangleEdges[t][k];
+        const int other = this->EdgeTriangles[e][0] == t ? this->EdgeTriangles[e][1] : this->EdgeTriangles[e][0];
+        if (other < 0 || flip[other] != -1)
+        {
+          continue;
+        }
+        // After the flips, the two must traverse e in opposite directions.
+        const bool same = direction(t, e) == direction(other, e);
+        flip[other] = static_cast<signed char>(flip[t] ^ (same ? 1 : 0));
+        queue.push_back(other);
+      }
+    }
+    int count = 0;
+    for (int t : piece)
+    {
+      count += flip[t];
+    }
+    const bool invert = 2 * count > static_cast<int>(piece.size()); // keep the majority
+    for (int t : piece)
+    {
+      if ((flip[t] != 0) != invert)
+      {
+        std::swap(this->Triangles[t][1], this->Triangles[t][2]);
+        ++flipped;
+      }
+    }
+  }
+  if (flipped > 0)
+  {
+    this->BuildTopology(nullptr);
+  }
+  return flipped;
+}
+
 int TriangleMesh::CountNonManifoldVertices() const
 {
   // Walk each vertex's triangles across shared edges; more than one connected

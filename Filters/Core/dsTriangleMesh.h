@@ -99,6 +99,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   // --- invariants (need BuildTopology()) ---
   bool IsClosed() const;                ///< every edge has two triangles
   bool IsConsistentlyOriented() const;  ///< neighbours traverse shared edges oppositely
+  /// Flip triangles so that neighbours traverse shared edges oppositely; each connected
+  /// piece keeps the orientation most of its triangles had. Rebuilds the topology and
+  /// returns the number of triangles flipped (a non-orientable piece stays as it is
+  /// where the walk meets itself).
+  int OrientConsistently();
   int CountNonManifoldVertices() const; ///< vertices whose triangles form more than one fan
   int EulerCharacteristic() const { return this->NumberOfPoints() - static_cast<int>(this->Edges.size()) + this->NumberOfTriangles(); }
   /// Closed volume by the divergence theorem (positive when oriented outward).

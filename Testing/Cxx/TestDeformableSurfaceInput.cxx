@@ -300,6 +300,43 @@ int TestDeformableSurfaceInput(int, char*[])
     DS_CHECK(e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
   }
 
+  // --- an inconsistently oriented start (one triangle reversed) is mended with a warning,
+  // and the hierarchy's topology checks then pass ---
+  {
+    vtkNew<vtkTriangleFilter> tri;
+    tri->SetInputData(Sphere(20, 11));
+    tri->Update();
+    vtkNew<vtkPolyData> oneFlipped;
+    oneFlipped->DeepCopy(tri->GetOutput());
+    vtkNew<vtkCellArray> polys;
+    vtkCellArray* in = oneFlipped->GetPolys();
+    in->InitTraversal();
+    vtkIdType npts;
+    const vtkIdType* ids;
+    bool first = true;
+    while (in->GetNextCell(npts, ids))
+    {
+      const vtkIdType reversed[3] = { ids[0], ids[2], ids[1] };
+      polys->InsertNextCell(3, first ? reversed : ids);
+      first = false;
+    }
+    oneFlipped->SetPolys(polys);
+    vtkNew<vtkDeformableSurfaceFilter> filter;
+    vtkNew<EventCounter> errors, warnings;
+    filter->AddObserver(vtkCommand::ErrorEvent, errors);
+    filter->AddObserver(vtkCommand::WarningEvent, warnings);
+    filter->SetInputData(0, image);
+    filter->SetInitialSurfaceData(oneFlipped);
+    filter->SetMaxLevels(1);
+    filter->SetCheckTopology(true);
+    filter->Update();
+    std::cout << "one reversed triangle: " << errors->Count << " error(s), " << warnings->Count
+              << " warning(s), " << filter->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
+    DS_CHECK(errors->Count == 0 && filter->GetOutput()->GetNumberOfPoints() > 0,
+      "one reversed triangle: no error, a surface");
+    DS_CHECK(warnings->Count >= 1, "one reversed triangle: a warning says it was mended");
+  }
+
   // --- bad images: one NaN voxel, a constant image, a sheared direction matrix ---
   {
     auto sphere = Sphere(20, 11);

@@ -35,6 +35,20 @@ int TestTriangleMesh(int, char*[])
     std::swap(m.Triangles[0][1], m.Triangles[0][2]); // flip one face
     DS_CHECK(m.BuildTopology(&err), err);
     DS_CHECK(!m.IsConsistentlyOriented(), "a flipped face is detected");
+    DS_CHECK(m.OrientConsistently() == 1, "one triangle flipped back (the majority wins)");
+    DS_CHECK(m.IsConsistentlyOriented(), "consistent after OrientConsistently");
+    DS_CHECK_LE(std::abs(m.SignedVolume() - 4.0 / 3.0), 1e-12, "|volume - 4/3| after re-orienting");
+  }
+  {
+    // Five of eight faces flipped: the majority is now inward, and it is kept.
+    TriangleMesh m = Octahedron();
+    for (int t : { 0, 1, 2, 3, 4 })
+    {
+      std::swap(m.Triangles[t][1], m.Triangles[t][2]);
+    }
+    DS_CHECK(m.BuildTopology(&err), err);
+    DS_CHECK(m.OrientConsistently() == 3, "the three minority faces flipped");
+    DS_CHECK(m.IsConsistentlyOriented() && m.SignedVolume() < 0, "consistent, inward like the majority");
   }
   {
     TriangleMesh m = Octahedron();
