@@ -23,8 +23,9 @@ struct MeshView
 };
 
 /// Weight sum of vertex v and the normalised weight it gives neighbour slot i.
-/// Uniform fallback when the label weights of v sum to zero (an M vertex whose only
-/// neighbours are M cannot occur in a valid red-green mesh, but must not divide by 0).
+/// Uniform fallback when the label weights of v sum to zero: an M vertex whose only
+/// neighbours are M, which red-green cascades do produce now and then (review: 19 times
+/// in 300 random multi-level runs; SPEC §6.4 lets rare cascading cases be ignored).
 struct RingWeights
 {
   double InvW = 0;   ///< 1 / sum of weights
