@@ -123,6 +123,284 @@ bool GatherOnProcessZero(vtkMultiProcessController* controller, vtkIdType number
   }
   return true;
 }
+
+// Copies the input's finite, non-ghost points with their point data and records each one's
+// input index in inputId. Delaunay3D's bounds and locator break on non-finite points; a ghost
+// copy of another process's point is dropped because that process contributes the point itself.
+vtkSmartPointer<vtkPolyData> CleanPoints(
+  vtkObject* self, vtkPointSet* input, std::vector<vtkIdType>& inputId)
+{
+  const vtkIdType nIn = input->GetNumberOfPoints();
+  vtkSmartPointer<vtkPolyData> finite = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> finitePoints;
+  finitePoints->SetDataTypeToDouble();
+  vtkDataArray* ghosts = input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  finite->GetPointData()->CopyAllocate(input->GetPointData(), nIn);
+  vtkIdType nonFinite = 0;
+  for (vtkIdType i = 0; i < nIn; ++i)
+  {
+    if (ghosts &&
+      (static_cast<int>(ghosts->GetTuple1(i)) &
+        (vtkDataSetAttributes::DUPLICATEPOINT | vtkDataSetAttributes::HIDDENPOINT)))
+    {
+      continue;
+    }
+    double x[3];
+    input->GetPoint(i, x);
+    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    {
+      finite->GetPointData()->CopyData(input->GetPointData(), i, finitePoints->InsertNextPoint(x));
+      inputId.push_back(i);
+    }
+    else
+    {
+      ++nonFinite;
+    }
+  }
+  finite->SetPoints(finitePoints);
+  finite->GetPointData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  if (nonFinite > 0)
+  {
+    vtkWarningWithObjectMacro(
+      self, "Ignored " << nonFinite << " point(s) with NaN or infinite coordinates.");
+  }
+  return finite;
+}
+
+// The full tetrahedrisation in the core's terms, with what the removal rules and outputs need.
+struct SeedComplex
+{
+  vtkSmartPointer<vtkUnstructuredGrid> Grid; // vtkDelaunay3D's output (points, point data)
+  std::vector<dsurf::SeedPoint> Points;
+  std::vector<dsurf::SeedTet> Tets; // the VTK_TETRA cells in order: the index is the TetraId
+  std::vector<double> Radius;       // circumradius of each tetrahedron
+  double FlatVolume = 0.0;          // |volume| at or below which a tetrahedron counts as flat
+  bool AnySolid = false;            // at least one tetrahedron is not flat
+};
+
+// Tetrahedrises all points with vtkDelaunay3D and measures every tetrahedron. Flatness is
+// relative to the bounding-box diagonal so it does not depend on the data's units.
+SeedComplex Tetrahedralize(vtkPolyData* finite, double tolerance)
+{
+  vtkNew<vtkDelaunay3D> delaunay;
+  delaunay->SetInputData(finite);
+  delaunay->SetAlpha(0.0); // our own Alpha rule keeps the tetrahedron IDs stable
+  delaunay->SetTolerance(tolerance);
+  delaunay->Update();
+  SeedComplex complex;
+  complex.Grid = delaunay->GetOutput();
+  vtkUnstructuredGrid* grid = complex.Grid;
+
+  auto& points = complex.Points;
+  auto& tets = complex.Tets;
+  points.resize(static_cast<std::size_t>(grid->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    grid->GetPoint(i, points[i].data());
+  }
+  vtkNew<vtkIdList> cellPoints;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    if (grid->GetCellType(c) == VTK_TETRA)
+    {
+      grid->GetCellPoints(c, cellPoints);
+      tets.push_back({ cellPoints->GetId(0), cellPoints->GetId(1), cellPoints->GetId(2), cellPoints->GetId(3) });
+    }
+  }
+
+  double bounds[6];
+  finite->GetBounds(bounds);
+  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  complex.FlatVolume = 1e-10 * diagonal * diagonal * diagonal;
+  complex.Radius.resize(tets.size());
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    const auto& c = tets[t];
+    complex.Radius[t] =
+      dsurf::SeedTetCircumradius(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
+    complex.AnySolid = complex.AnySolid ||
+      std::abs(dsurf::SeedTetSignedVolume(points[c[0]], points[c[1]], points[c[2]], points[c[3]])) >
+        complex.FlatVolume;
+  }
+  return complex;
+}
+
+// Rule 1: the user's tetrahedron IDs. IDs outside this tetrahedrisation (stale after the points
+// changed) are ignored with one warning.
+void RemoveById(
+  vtkObject* self, const std::vector<vtkIdType>& removedIds, std::vector<unsigned char>& status)
+{
+  const vtkIdType nTets = static_cast<vtkIdType>(status.size());
+  vtkIdType outOfRange = 0;
+  for (vtkIdType id : removedIds)
+  {
+    if (id >= 0 && id < nTets)
+    {
+      status[id] = dsurf::SeedRemovedById;
+    }
+    else
+    {
+      ++outOfRange;
+    }
+  }
+  if (outOfRange > 0)
+  {
+    vtkWarningWithObjectMacro(self, << outOfRange << " RemovedTetrahedra ID(s) are not in [0, "
+                                    << nTets << "): ignored.");
+  }
+}
+
+// Rule 2: circumsphere radius above alpha (only tetrahedra no earlier rule removed).
+void RemoveByAlpha(
+  const std::vector<double>& radius, double alpha, std::vector<unsigned char>& status)
+{
+  for (std::size_t t = 0; t < status.size(); ++t)
+  {
+    if (status[t] == dsurf::SeedKept && radius[t] > alpha)
+    {
+      status[t] = dsurf::SeedRemovedByAlpha;
+    }
+  }
+}
+
+// Rule 3: image value at the centroid outside [range[0], range[1]], or centroid outside the
+// image. Returns every tetrahedron's centroid value (NaN outside) for the output, or nothing
+// when there is no image with point scalars (then the rule is skipped with a warning).
+std::vector<double> RemoveByIntensity(vtkObject* self, vtkImageData* image, const double range[2],
+  const SeedComplex& complex, std::vector<unsigned char>& status)
+{
+  std::vector<double> centroidValue;
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  if (image && !scalars && image->GetPointData()->GetNumberOfArrays() > 0)
+  {
+    scalars = image->GetPointData()->GetArray(0);
+  }
+  if (!scalars)
+  {
+    vtkWarningWithObjectMacro(self,
+      "UseIntensityRange is on but no image with point scalars is connected to "
+      "port 1 (Image): the intensity rule is skipped.");
+    return centroidValue;
+  }
+  const auto& points = complex.Points;
+  centroidValue.assign(complex.Tets.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t t = 0; t < complex.Tets.size(); ++t)
+  {
+    const auto& c = complex.Tets[t];
+    double centroid[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      centroid[d] = 0.25 * (points[c[0]][d] + points[c[1]][d] + points[c[2]][d] + points[c[3]][d]);
+    }
+    double value;
+    const bool inside = SampleImage(image, scalars, centroid, value);
+    if (inside)
+    {
+      centroidValue[t] = value;
+    }
+    if (status[t] == dsurf::SeedKept && (!inside || value < range[0] || value > range[1]))
+    {
+      status[t] = dsurf::SeedRemovedByIntensity;
+    }
+  }
+  return centroidValue;
+}
+
+// The boundary of the kept tetrahedra, with pinches and flat tetrahedra resolved by the core
+// (which may mark more tetrahedra in status), subdivided to the target edge length.
+dsurf::SeedSurface ExtractSurface(vtkObject* self, const SeedComplex& complex,
+  std::vector<unsigned char>& status, double targetEdgeLength)
+{
+  dsurf::SeedBoundaryReport report;
+  dsurf::SeedSurface surface =
+    dsurf::ExtractSeedBoundary(complex.Points, complex.Tets, status, complex.FlatVolume, report);
+  if (surface.Triangles.empty())
+  {
+    vtkWarningWithObjectMacro(self, "Every one of the " << static_cast<vtkIdType>(complex.Tets.size())
+                                                        << " tetrahedra was removed: the surface is empty.");
+  }
+  else
+  {
+    const std::string summary = report.Summary();
+    if (!summary.empty())
+    {
+      vtkWarningWithObjectMacro(self, "Seed surface: " << summary << ".");
+    }
+    dsurf::SubdivideSeedSurface(surface, targetEdgeLength);
+  }
+  return surface;
+}
+
+// Output 0: the surface, each point with the input point it came from (-1 for new points).
+void BuildSurfaceOutput(
+  const dsurf::SeedSurface& surface, const std::vector<vtkIdType>& inputId, vtkPolyData* surfaceOut)
+{
+  vtkNew<vtkPoints> outPoints;
+  outPoints->SetDataTypeToDouble();
+  outPoints->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
+  vtkNew<vtkIdTypeArray> seedId;
+  seedId->SetName("SeedPointId");
+  seedId->SetNumberOfTuples(static_cast<vtkIdType>(surface.Points.size()));
+  for (std::size_t p = 0; p < surface.Points.size(); ++p)
+  {
+    outPoints->SetPoint(static_cast<vtkIdType>(p), surface.Points[p].data());
+    const std::int64_t source = surface.SourcePoint[p];
+    seedId->SetValue(static_cast<vtkIdType>(p), source >= 0 ? inputId[source] : -1);
+  }
+  vtkNew<vtkCellArray> triangles;
+  triangles->AllocateExact(static_cast<vtkIdType>(surface.Triangles.size()), 3 * surface.Triangles.size());
+  for (const auto& tri : surface.Triangles)
+  {
+    const vtkIdType ids[3] = { tri[0], tri[1], tri[2] };
+    triangles->InsertNextCell(3, ids);
+  }
+  surfaceOut->SetPoints(outPoints);
+  surfaceOut->SetPolys(triangles);
+  surfaceOut->GetPointData()->AddArray(seedId);
+}
+
+// Output 1: every tetrahedron with its stable ID and why it was removed.
+void BuildTetrahedraOutput(const SeedComplex& complex, const std::vector<unsigned char>& status,
+  const std::vector<double>& centroidValue, vtkUnstructuredGrid* tetsOut)
+{
+  const auto& tets = complex.Tets;
+  const vtkIdType nTets = static_cast<vtkIdType>(tets.size());
+  vtkNew<vtkCellArray> tetCells;
+  tetCells->AllocateExact(nTets, 4 * nTets);
+  vtkNew<vtkIdTypeArray> tetraId;
+  tetraId->SetName("TetraId");
+  vtkNew<vtkUnsignedCharArray> removed;
+  removed->SetName("Removed");
+  vtkNew<vtkDoubleArray> circumradius;
+  circumradius->SetName("Circumradius");
+  for (vtkIdType t = 0; t < nTets; ++t)
+  {
+    const vtkIdType ids[4] = { tets[t][0], tets[t][1], tets[t][2], tets[t][3] };
+    tetCells->InsertNextCell(4, ids);
+    tetraId->InsertNextValue(t);
+    removed->InsertNextValue(status[t]);
+    circumradius->InsertNextValue(complex.Radius[t]);
+  }
+  tetsOut->SetPoints(complex.Grid->GetPoints());
+  tetsOut->GetPointData()->ShallowCopy(complex.Grid->GetPointData());
+  tetsOut->SetCells(VTK_TETRA, tetCells);
+  tetsOut->GetCellData()->AddArray(tetraId);
+  tetsOut->GetCellData()->AddArray(removed);
+  tetsOut->GetCellData()->AddArray(circumradius);
+  tetsOut->GetCellData()->SetActiveScalars("Removed");
+  if (!centroidValue.empty())
+  {
+    vtkNew<vtkDoubleArray> values;
+    values->SetName("CentroidValue");
+    values->SetNumberOfTuples(nTets);
+    for (vtkIdType t = 0; t < nTets; ++t)
+    {
+      values->SetValue(t, centroidValue[t]);
+    }
+    tetsOut->GetCellData()->AddArray(values);
+  }
+}
 } // namespace
 
 vtkDelaunaySeedSurface::vtkDelaunaySeedSurface()
@@ -233,47 +511,13 @@ int vtkDelaunaySeedSurface::RequestData(
   surfaceOut->Initialize();
   tetsOut->Initialize();
 
-  // Drop non-finite points: Delaunay3D's bounds and locator break on them. Ghost copies of
-  // another process's points are dropped too (that process contributes the point itself).
-  const vtkIdType nIn = input->GetNumberOfPoints();
-  vtkSmartPointer<vtkPolyData> finite = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> finitePoints;
-  finitePoints->SetDataTypeToDouble();
   std::vector<vtkIdType> inputId;
-  vtkDataArray* ghosts = input->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
-  finite->GetPointData()->CopyAllocate(input->GetPointData(), nIn);
-  vtkIdType nonFinite = 0;
-  for (vtkIdType i = 0; i < nIn; ++i)
-  {
-    if (ghosts &&
-      (static_cast<int>(ghosts->GetTuple1(i)) &
-        (vtkDataSetAttributes::DUPLICATEPOINT | vtkDataSetAttributes::HIDDENPOINT)))
-    {
-      continue;
-    }
-    double x[3];
-    input->GetPoint(i, x);
-    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
-    {
-      finite->GetPointData()->CopyData(input->GetPointData(), i, finitePoints->InsertNextPoint(x));
-      inputId.push_back(i);
-    }
-    else
-    {
-      ++nonFinite;
-    }
-  }
-  finite->SetPoints(finitePoints);
-  finite->GetPointData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
-  if (nonFinite > 0)
-  {
-    vtkWarningMacro("Ignored " << nonFinite << " point(s) with NaN or infinite coordinates.");
-  }
-
+  vtkSmartPointer<vtkPolyData> finite = CleanPoints(this, input, inputId);
   // Distributed input: one process tetrahedrises all points, the others output nothing, so
-  // the seed is the one of the whole point set and is not duplicated downstream.
+  // the seed is the one of the whole point set and is not duplicated downstream. The gather is
+  // collective, so no process may return before it.
   if (vtkDSPolyDataGather::IsDistributed(this->Controller) &&
-    !GatherOnProcessZero(this->Controller, nIn, finite, inputId))
+    !GatherOnProcessZero(this->Controller, input->GetNumberOfPoints(), finite, inputId))
   {
     return 1;
   }
@@ -284,46 +528,8 @@ int vtkDelaunaySeedSurface::RequestData(
     return 1;
   }
 
-  vtkNew<vtkDelaunay3D> delaunay;
-  delaunay->SetInputData(finite);
-  delaunay->SetAlpha(0.0); // our own Alpha rule keeps the tetrahedron IDs stable
-  delaunay->SetTolerance(this->Tolerance);
-  delaunay->Update();
-  vtkUnstructuredGrid* complex = delaunay->GetOutput();
-
-  std::vector<dsurf::SeedPoint> points(static_cast<std::size_t>(complex->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < complex->GetNumberOfPoints(); ++i)
-  {
-    complex->GetPoint(i, points[i].data());
-  }
-  std::vector<dsurf::SeedTet> tets;
-  vtkNew<vtkIdList> cellPoints;
-  for (vtkIdType c = 0; c < complex->GetNumberOfCells(); ++c)
-  {
-    if (complex->GetCellType(c) == VTK_TETRA)
-    {
-      complex->GetCellPoints(c, cellPoints);
-      tets.push_back({ cellPoints->GetId(0), cellPoints->GetId(1), cellPoints->GetId(2), cellPoints->GetId(3) });
-    }
-  }
-
-  double bounds[6];
-  finite->GetBounds(bounds);
-  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  const double flatVolume = 1e-10 * diagonal * diagonal * diagonal;
-  const vtkIdType nTets = static_cast<vtkIdType>(tets.size());
-  std::vector<unsigned char> status(tets.size(), dsurf::SeedKept);
-  std::vector<double> radius(tets.size()), centroidValue;
-  bool anySolid = false;
-  for (vtkIdType t = 0; t < nTets; ++t)
-  {
-    const auto& c = tets[t];
-    radius[t] = dsurf::SeedTetCircumradius(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
-    anySolid = anySolid ||
-      std::abs(dsurf::SeedTetSignedVolume(points[c[0]], points[c[1]], points[c[2]], points[c[3]])) > flatVolume;
-  }
-  if (!anySolid)
+  const SeedComplex complex = Tetrahedralize(finite, this->Tolerance);
+  if (!complex.AnySolid)
   {
     vtkErrorMacro("The " << inputId.size()
                          << " points span no volume (all coplanar, collinear or coincident): "
@@ -331,147 +537,23 @@ int vtkDelaunaySeedSurface::RequestData(
     return 1;
   }
 
-  vtkIdType outOfRange = 0;
-  for (vtkIdType id : this->RemovedTetrahedra)
-  {
-    if (id >= 0 && id < nTets)
-    {
-      status[id] = dsurf::SeedRemovedById;
-    }
-    else
-    {
-      ++outOfRange;
-    }
-  }
-  if (outOfRange > 0)
-  {
-    vtkWarningMacro(<< outOfRange << " RemovedTetrahedra ID(s) are not in [0, " << nTets
-                    << "): ignored.");
-  }
+  // The removal rules in order of precedence: a tetrahedron keeps the first reason it got.
+  std::vector<unsigned char> status(complex.Tets.size(), dsurf::SeedKept);
+  RemoveById(this, this->RemovedTetrahedra, status);
   if (this->Alpha > 0.0)
   {
-    for (vtkIdType t = 0; t < nTets; ++t)
-    {
-      if (status[t] == dsurf::SeedKept && radius[t] > this->Alpha)
-      {
-        status[t] = dsurf::SeedRemovedByAlpha;
-      }
-    }
+    RemoveByAlpha(complex.Radius, this->Alpha, status);
   }
+  std::vector<double> centroidValue;
   if (this->UseIntensityRange)
   {
-    vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
-    if (image && !scalars && image->GetPointData()->GetNumberOfArrays() > 0)
-    {
-      scalars = image->GetPointData()->GetArray(0);
-    }
-    if (!scalars)
-    {
-      vtkWarningMacro("UseIntensityRange is on but no image with point scalars is connected to "
-                      "port 1 (Image): the intensity rule is skipped.");
-    }
-    else
-    {
-      centroidValue.assign(tets.size(), std::numeric_limits<double>::quiet_NaN());
-      for (vtkIdType t = 0; t < nTets; ++t)
-      {
-        const auto& c = tets[t];
-        double centroid[3];
-        for (int d = 0; d < 3; ++d)
-        {
-          centroid[d] = 0.25 * (points[c[0]][d] + points[c[1]][d] + points[c[2]][d] + points[c[3]][d]);
-        }
-        double value;
-        const bool inside = SampleImage(image, scalars, centroid, value);
-        if (inside)
-        {
-          centroidValue[t] = value;
-        }
-        if (status[t] == dsurf::SeedKept &&
-          (!inside || value < this->IntensityRange[0] || value > this->IntensityRange[1]))
-        {
-          status[t] = dsurf::SeedRemovedByIntensity;
-        }
-      }
-    }
+    centroidValue = RemoveByIntensity(this, image, this->IntensityRange, complex, status);
   }
 
-  dsurf::SeedBoundaryReport report;
-  dsurf::SeedSurface surface = dsurf::ExtractSeedBoundary(points, tets, status, flatVolume, report);
-  if (surface.Triangles.empty())
-  {
-    vtkWarningMacro("Every one of the " << nTets
-                                        << " tetrahedra was removed: the surface is empty.");
-  }
-  else
-  {
-    const std::string summary = report.Summary();
-    if (!summary.empty())
-    {
-      vtkWarningMacro("Seed surface: " << summary << ".");
-    }
-    dsurf::SubdivideSeedSurface(surface, this->TargetEdgeLength);
-  }
-
-  // Output 0: the surface.
-  vtkNew<vtkPoints> outPoints;
-  outPoints->SetDataTypeToDouble();
-  outPoints->SetNumberOfPoints(static_cast<vtkIdType>(surface.Points.size()));
-  vtkNew<vtkIdTypeArray> seedId;
-  seedId->SetName("SeedPointId");
-  seedId->SetNumberOfTuples(static_cast<vtkIdType>(surface.Points.size()));
-  for (std::size_t p = 0; p < surface.Points.size(); ++p)
-  {
-    outPoints->SetPoint(static_cast<vtkIdType>(p), surface.Points[p].data());
-    const std::int64_t source = surface.SourcePoint[p];
-    seedId->SetValue(static_cast<vtkIdType>(p), source >= 0 ? inputId[source] : -1);
-  }
-  vtkNew<vtkCellArray> triangles;
-  triangles->AllocateExact(static_cast<vtkIdType>(surface.Triangles.size()), 3 * surface.Triangles.size());
-  for (const auto& tri : surface.Triangles)
-  {
-    const vtkIdType ids[3] = { tri[0], tri[1], tri[2] };
-    triangles->InsertNextCell(3, ids);
-  }
-  surfaceOut->SetPoints(outPoints);
-  surfaceOut->SetPolys(triangles);
-  surfaceOut->GetPointData()->AddArray(seedId);
-
-  // Output 1: every tetrahedron with its stable ID and why it was removed.
-  vtkNew<vtkCellArray> tetCells;
-  tetCells->AllocateExact(nTets, 4 * nTets);
-  vtkNew<vtkIdTypeArray> tetraId;
-  tetraId->SetName("TetraId");
-  vtkNew<vtkUnsignedCharArray> removed;
-  removed->SetName("Removed");
-  vtkNew<vtkDoubleArray> circumradius;
-  circumradius->SetName("Circumradius");
-  for (vtkIdType t = 0; t < nTets; ++t)
-  {
-    const vtkIdType ids[4] = { tets[t][0], tets[t][1], tets[t][2], tets[t][3] };
-    tetCells->InsertNextCell(4, ids);
-    tetraId->InsertNextValue(t);
-    removed->InsertNextValue(status[t]);
-    circumradius->InsertNextValue(radius[t]);
-  }
-  tetsOut->SetPoints(complex->GetPoints());
-  tetsOut->GetPointData()->ShallowCopy(complex->GetPointData());
-  tetsOut->SetCells(VTK_TETRA, tetCells);
-  tetsOut->GetCellData()->AddArray(tetraId);
-  tetsOut->GetCellData()->AddArray(removed);
-  tetsOut->GetCellData()->AddArray(circumradius);
-  tetsOut->GetCellData()->SetActiveScalars("Removed");
-  if (!centroidValue.empty())
-  {
-    vtkNew<vtkDoubleArray> values;
-    values->SetName("CentroidValue");
-    values->SetNumberOfTuples(nTets);
-    for (vtkIdType t = 0; t < nTets; ++t)
-    {
-      values->SetValue(t, centroidValue[t]);
-    }
-    tetsOut->GetCellData()->AddArray(values);
-  }
+  const dsurf::SeedSurface surface =
+    ExtractSurface(this, complex, status, this->TargetEdgeLength);
+  BuildSurfaceOutput(surface, inputId, surfaceOut);
+  BuildTetrahedraOutput(complex, status, centroidValue, tetsOut);
   return 1;
 }
 
