@@ -46,25 +46,6 @@ vtkSmartPointer<vtkImageData> CubePhantom(int n, double halfSide)
   return image;
 }
 
-vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
-{
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> pts;
-  for (const auto& x : m.Points)
-  {
-    pts->InsertNextPoint(x.data());
-  }
-  vtkNew<vtkCellArray> polys;
-  for (const auto& t : m.Triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    polys->InsertNextCell(3, ids);
-  }
-  pd->SetPoints(pts);
-  pd->SetPolys(polys);
-  return pd;
-}
-
 struct Quality
 {
   double MinAnglePercentile1 = 0; ///< 1st percentile of the triangles' smallest angle
@@ -148,7 +129,7 @@ int TestDeformableSurfaceRule(int, char*[])
   const double c = 0.5 * (n - 1), halfSide = 12;
   auto image = CubePhantom(n, halfSide);
   // The start: a box enclosing the cube, 4 subdivisions (3072 triangles).
-  auto start = ToPolyData(dstest::MakeCubeSurface(4, 20, { c, c, c }));
+  auto start = dstest::ToPolyData(dstest::MakeCubeSurface(4, 20, { c, c, c }));
   const Quality rule = Run(image, start, true, c, halfSide);
   const Quality raw = Run(image, start, false, c, halfSide);
 

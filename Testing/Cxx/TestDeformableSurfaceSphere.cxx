@@ -46,25 +46,6 @@ vtkSmartPointer<vtkImageData> SpherePhantom(int n, double radiusVoxels, double s
   return image;
 }
 
-vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
-{
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> pts;
-  for (const auto& x : m.Points)
-  {
-    pts->InsertNextPoint(x.data());
-  }
-  vtkNew<vtkCellArray> polys;
-  for (const auto& t : m.Triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    polys->InsertNextCell(3, ids);
-  }
-  pd->SetPoints(pts);
-  pd->SetPolys(polys);
-  return pd;
-}
-
 struct Run
 {
   vtkSmartPointer<vtkPolyData> Surface;
@@ -135,7 +116,7 @@ int TestDeformableSurfaceSphere(int, char*[])
     const double origin[3] = { 0, 0, 0 };
     auto image = SpherePhantom(n, 32, 1.0, origin);
     const double centre[3] = { 63.5, 63.5, 63.5 };
-    auto start = ToPolyData(dstest::MakeIcosphere(4, 36, { 63.5, 63.5, 63.5 }));
+    auto start = dstest::ToPolyData(dstest::MakeIcosphere(4, 36, { 63.5, 63.5, 63.5 }));
     const Run one = Deform(image, start, 2.0, 1);
     CheckSphere(one, centre, 32, 1.0, "spacing 1");
     const Run two = Deform(image, start, 2.0, 2);
@@ -157,7 +138,7 @@ int TestDeformableSurfaceSphere(int, char*[])
     const double s = 0.5;
     auto image = SpherePhantom(n, 32, s, origin);
     const double centre[3] = { origin[0] + 63.5 * s, origin[1] + 63.5 * s, origin[2] + 63.5 * s };
-    auto start = ToPolyData(dstest::MakeIcosphere(4, 36 * s, { centre[0], centre[1], centre[2] }));
+    auto start = dstest::ToPolyData(dstest::MakeIcosphere(4, 36 * s, { centre[0], centre[1], centre[2] }));
     const Run run = Deform(image, start, 2.0 * s, 0);
     CheckSphere(run, centre, 32 * s, s, "spacing 0.5, shifted origin");
   }

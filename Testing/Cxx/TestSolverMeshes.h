@@ -5,6 +5,12 @@
 
 #include "dsTriangleMesh.h"
 
+#include "vtkCellArray.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -104,6 +110,25 @@ inline dsurf::TriangleMesh MakeCubeSurface(int levels, double s, const Vec3& c)
   m.Points = p;
   m.Triangles = f;
   return m;
+}
+/// The core mesh as a vtkPolyData of triangles (a filter's initial surface).
+inline vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
+{
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  for (const auto& x : m.Points)
+  {
+    pts->InsertNextPoint(x.data());
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& t : m.Triangles)
+  {
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  pd->SetPoints(pts);
+  pd->SetPolys(polys);
+  return pd;
 }
 } // namespace dstest
 
