@@ -380,9 +380,13 @@ int vtkDeformableSurfaceFilter::RequestData(
     vtkErrorMacro(<< error << ".");
     return 1;
   }
+  if (!volume.Note.empty())
+  {
+    vtkDebugMacro(<< volume.Note << ".");
+  }
   const dsurf::ImageGeometry& geometry = volume.Geometry;
   double range[2];
-  this->GetInputArrayToProcess(0, inputVector)->GetRange(range, 0);
+  volume.Array->GetRange(range, 0);
   if (range[0] == range[1])
   {
     vtkErrorMacro("The image is constant (" << range[0] << "): it has no boundary to find.");

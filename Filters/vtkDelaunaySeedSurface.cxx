@@ -1,6 +1,7 @@
 #include "vtkDelaunaySeedSurface.h"
 
 #include "dsSeedSurface.h"
+#include "dsVTKImage.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -271,16 +272,14 @@ std::vector<double> RemoveByIntensity(vtkObject* self, vtkImageData* image, cons
   const SeedComplex& complex, std::vector<unsigned char>& status)
 {
   std::vector<double> centroidValue;
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
-  if (image && !scalars && image->GetPointData()->GetNumberOfArrays() > 0)
-  {
-    scalars = image->GetPointData()->GetArray(0);
-  }
-  if (!scalars)
+  std::string how;
+  vtkDataArray* scalars = image ? dsurf::ChooseImageScalars(image, nullptr, how) : nullptr;
+  if (!scalars || scalars->GetNumberOfComponents() != 1)
   {
     vtkWarningWithObjectMacro(self,
-      "UseIntensityRange is on but no image with point scalars is connected to "
-      "port 1 (Image): the intensity rule is skipped.");
+      "UseIntensityRange is on but no image with one-component point scalars is connected to "
+      "port 1 (Image)" << (how.empty() ? std::string() : " (" + how + ")")
+                       << ": the intensity rule is skipped.");
     return centroidValue;
   }
   const auto& points = complex.Points;

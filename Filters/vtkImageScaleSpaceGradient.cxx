@@ -76,6 +76,10 @@ int vtkImageScaleSpaceGradient::RequestData(
     vtkErrorMacro(<< error << ".");
     return 1;
   }
+  if (!volume.Note.empty())
+  {
+    vtkDebugMacro(<< volume.Note << ".");
+  }
   const dsurf::ImageGeometry& geometry = volume.Geometry;
 
   double sigma = this->Sigma;

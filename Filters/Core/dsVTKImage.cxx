@@ -6,6 +6,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
+#include "vtkPointData.h"
 
 #include <algorithm>
 
@@ -24,7 +25,55 @@ struct ToFloat
       [](typename decltype(values)::ValueType v) { return static_cast<float>(v); });
   }
 };
+
+std::string ArrayName(vtkDataArray* a)
+{
+  return a && a->GetName() ? a->GetName() : "(unnamed)";
+}
+
+/// "'A', 'B'": the point arrays with one component, the ones a user can choose.
+std::string ScalarChoices(vtkImageData* image)
+{
+  std::string names;
+  vtkPointData* pd = image->GetPointData();
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* a = pd->GetArray(i);
+    if (a && a->GetNumberOfComponents() == 1)
+    {
+      names += (names.empty() ? "'" : ", '") + ArrayName(a) + "'";
+    }
+  }
+  return names.empty() ? std::string("none") : names;
+}
 } // namespace
+
+vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, std::string& how)
+{
+  how.clear();
+  if (selected || !image)
+  {
+    return selected;
+  }
+  vtkPointData* pd = image->GetPointData();
+  if (vtkDataArray* active = pd->GetScalars())
+  {
+    how = "no array selected (or the selected one is missing): using the active point scalars '" +
+      ArrayName(active) + "'";
+    return active;
+  }
+  if (pd->GetNumberOfArrays() == 1 && pd->GetArray(0))
+  {
+    how = "no array selected (or the selected one is missing): using the only point array '" +
+      ArrayName(pd->GetArray(0)) + "'";
+    return pd->GetArray(0);
+  }
+  how = pd->GetNumberOfArrays() == 0
+    ? "The image has no point arrays to process"
+    : "No point array selected and the image has no active scalars: choose one of " +
+      ScalarChoices(image) + " (Scalars)";
+  return nullptr;
+}
 
 bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error)
 {
@@ -42,15 +91,25 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& vol
       std::to_string(g.Dimensions[2]);
     return false;
   }
+  std::string how;
+  scalars = ChooseImageScalars(image, scalars, how);
   if (!scalars)
   {
-    error = "No point scalars to process: choose a point array (Scalars)";
+    error = how;
     return false;
   }
-  if (scalars->GetNumberOfComponents() != 1 || scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
+  volume.Note = how;
+  if (scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
   {
-    error = std::string("The array '") + (scalars->GetName() ? scalars->GetName() : "(unnamed)") +
-      "' must be a point array with one component";
+    error = "The array '" + ArrayName(scalars) + "' is not a point array of the image";
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    error = "The array '" + ArrayName(scalars) + "' has " +
+      std::to_string(scalars->GetNumberOfComponents()) +
+      " components; one is needed (compute one first, e.g. its magnitude with a Calculator). "
+      "Point arrays with one component: " + ScalarChoices(image);
     return false;
   }
   image->GetSpacing(g.Spacing);
@@ -58,6 +117,7 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& vol
   image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], g.Origin);
   std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9, g.Direction);
 
+  volume.Array = scalars;
   volume.Storage.clear();
   if (vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars))
   {

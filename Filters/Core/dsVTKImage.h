@@ -20,10 +20,19 @@ struct ImageVolume
   ImageGeometry Geometry;
   const float* Values = nullptr; ///< the input's own memory for float arrays, else Storage
   std::vector<float> Storage;
+  vtkDataArray* Array = nullptr; ///< the array the values come from
+  std::string Note;              ///< how the array was chosen when it was a fallback
 };
 
+/// The point array a filter works on: `selected` (what SetInputArrayToProcess / ParaView's
+/// Scalars names) when it exists; otherwise, e.g. when the name is empty because the pvpython
+/// reader had not run yet when the filter was made, the image's active point scalars, else
+/// its only point array. nullptr when there is none; `how` then says why, and says which
+/// array was taken when it fell back (for a debug line).
+vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, std::string& how);
+
 /// Check that `image` is a 3-D image (>= 2 voxels per axis) and `scalars` one of its
-/// one-component point arrays; fill the geometry (index 0 = the first voxel of the
+/// one-component point arrays (ChooseImageScalars when `scalars` is nullptr); fill the geometry (index 0 = the first voxel of the
 /// extent; spacing, origin and direction honoured) and the values (float input is used
 /// in place, any other type converted). Returns false with a user-facing message.
 bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error);
