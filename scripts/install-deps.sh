@@ -18,6 +18,8 @@ packages=(
   xvfb xauth
   # real volumes: Colin27 T1 brain MRI (and its brain mask)
   mricron-data
+  # a second real head no one tuned on: ITK's KmeansTest T1 with its skull-stripped reference
+  insighttoolkit5-examples
 )
 
 missing=()
