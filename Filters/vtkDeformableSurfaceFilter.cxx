@@ -424,6 +424,10 @@ int vtkDeformableSurfaceFilter::RequestData(
   mp.ImageWeight = this->ImageWeight;
   mp.InitialSigma = this->Sigma;
   mp.InitialSigmaFraction = this->SigmaFraction;
+  mp.Normalization = static_cast<dsurf::EdgeNormalization>(this->EdgeNormalization);
+  mp.RegionWeight = this->RegionWeight;
+  mp.IntensityRange[0] = this->IntensityRange[0];
+  mp.IntensityRange[1] = this->IntensityRange[1];
   mp.HierarchicalSigma = this->HierarchicalSigma;
   mp.MaxLevels = this->MaxLevels;
   mp.MaxSweepsPerLevel = this->MaxSweepsPerLevel;
@@ -470,6 +474,12 @@ int vtkDeformableSurfaceFilter::RequestData(
                     << " vertices ended outside the image, where they feel no external force: "
                        "the initial surface may reach beyond the volume.");
   }
+  const dsurf::InitialSigmaChoice& choice = solver.GetInitialSigmaChoice();
+  vtkDebugMacro(<< "sigma_0 " << (solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma)
+                << (choice.SpansVolume ? ": the start spans the volume (extent / 6)" : "")
+                << (choice.Rays > 0 ? ": half the 90th-percentile distance " + std::to_string(choice.StartDistance) +
+                        " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) + " of " +
+                        std::to_string(choice.Rays) + " rays met one)" : std::string()));
   vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()
                 << " vertices lay outside the image during a sweep.");
 
@@ -482,6 +492,15 @@ int vtkDeformableSurfaceFilter::RequestData(
   AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
   AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
   AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
+  AddFieldValue<vtkDoubleArray>(fd, "InitialSigma", solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma);
+  if (this->RegionWeight > 0)
+  {
+    vtkNew<vtkDoubleArray> usedRange;
+    usedRange->SetName("IntensityRange");
+    usedRange->SetNumberOfComponents(2);
+    usedRange->InsertNextTuple(solver.GetIntensityRange());
+    fd->AddArray(usedRange);
+  }
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   columns.AddTo(table);
   this->UpdateProgress(1.0);
@@ -498,6 +517,9 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ImageWeight: " << this->ImageWeight << "\n";
   os << indent << "Sigma: " << this->Sigma << "\n";
   os << indent << "SigmaFraction: " << this->SigmaFraction << "\n";
+  os << indent << "EdgeNormalization: " << this->EdgeNormalization << "\n";
+  os << indent << "RegionWeight: " << this->RegionWeight << "\n";
+  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1] << "\n";
   os << indent << "MaxSweepsPerLevel: " << this->MaxSweepsPerLevel << "\n";
   os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
   os << indent << "MaxLevels: " << this->MaxLevels << "\n";

@@ -32,11 +32,18 @@
  * - Multithreaded (vtkSMPTools, STDThread backend, NumberOfThreads) by a distance-2
  *   colouring of the vertex graph: the result is bit-identical for any thread count.
  *
+ * Beyond the paper, for real scans (an object among neighbours, a seed near it): the first
+ * sigma follows the start (Sigma), a region force pushes the surface through the object's
+ * intensity range (RegionWeight, IntensityRange), and folds left by the forces are smoothed
+ * open after every level (dsUntangle.h).
+ *
  * Output 0: the surface (triangles, input orientation kept; point order of the merged
  * input) with point arrays Normals, Displacement (|c| of the last sweep),
- * ExternalForce (|F|), ErrorIndicator (|internal part of c| of the last sweep),
- * RefinementLevel, VertexLabel, and field data Sweeps, FinalMeanCorrection,
- * SelfIntersections (intersecting triangle pairs, from a grid search) and Sigma.
+ * ExternalForce (|F|, region force included), ErrorIndicator (|internal part of c| of the last
+ * sweep), RefinementLevel, VertexLabel, and field data Sweeps, Levels, InitialSubdivisions,
+ * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, from a bounding-volume
+ * hierarchy), InitialSigma, Sigma (the last), Converged and, with the region force,
+ * IntensityRange.
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
@@ -53,7 +60,8 @@
  * voxel); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
- * Sigma never goes below half a voxel. Refinement stops when nothing is marked or before
+ * Sigma never goes below half a voxel; the level solved there is the last (finer meshes would
+ * follow detail the image does not show). Refinement stops when nothing is marked or before
  * a step would exceed MaxVertices (a warning; the red-green closure can add some more);
  * the remaining levels up to MaxLevels still halve sigma on the same mesh, so the surface
  * always ends on the fine-scale boundary.
@@ -129,13 +137,55 @@ public:
 
   ///@{
   /**
-   * Gaussian sigma in world units; 0 (default) = SigmaFraction times the mean extent
-   * of the image (as in vtkImageScaleSpaceGradient).
+   * The first Gaussian sigma. Sigma > 0: that, in world units. Else SigmaFraction > 0: that
+   * fraction of the mean extent of the image (the paper's 1/6 = 0.1667). Both 0 (the
+   * default): chosen from the start surface (dsInitialSigma.h). A start spanning the image (a
+   * box around the whole volume) begins at the paper's extent / 6; any other start is taken to
+   * lie near its object, and sigma_0 is the 90th percentile of its distance to the nearest edge
+   * along the vertex and face normals, between one voxel and extent / 6 (field data
+   * InitialSigma).
    */
   vtkSetClampMacro(Sigma, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Sigma, double);
   vtkSetClampMacro(SigmaFraction, double, 0.0, 1.0);
   vtkGetMacro(SigmaFraction, double);
+  ///@}
+
+  enum EdgeNormalizationModes
+  {
+    GLOBAL_MAXIMUM = 0,
+    LOCAL = 1
+  };
+  ///@{
+  /**
+   * How the edge strength g = |grad(G_sigma * f)| is normalised in the potential.
+   * GLOBAL_MAXIMUM (default): g / max g, the strongest edge of the volume sets the scale.
+   * LOCAL: g / (G_2sigma * g + 0.05 max g), each edge against the edge strength around it, so
+   * a weak boundary far from a strong one is as strong as the strong one. (On the whole-head
+   * MRI the region force, not the normalisation, is what keeps the skin from muting the brain;
+   * docs/METHOD.md says what was measured.)
+   */
+  vtkSetClampMacro(EdgeNormalization, int, GLOBAL_MAXIMUM, LOCAL);
+  vtkGetMacro(EdgeNormalization, int);
+  ///@}
+
+  ///@{
+  /**
+   * The region ("balloon") force, beyond the paper (dsRegion.h): along the vertex normal,
+   * outward where the image under the vertex lies in IntensityRange, inward where it does not
+   * (speed clamp(min(I - lo, hi - I) / (0.1 (hi - lo)), -1, 1), in edge lengths, times
+   * RegionWeight, shrinking with sigma level by level), added to the edge force before the
+   * paper's projection rule. RegionWeight default 0.3; 0 turns it off. IntensityRange [lo, hi]
+   * with lo < hi is used as given. Otherwise (default [0, 0]) it is estimated from the image
+   * inside and just outside the start surface (EstimateIntensityRange), and the force is off
+   * for a start spanning the whole image (nothing outside it to compare with). The range used
+   * is in the field data IntensityRange. A range matching no voxel turns the force off with a
+   * warning. A one-click seed sphere growing to a large object needs RegionWeight ~1.
+   */
+  vtkSetClampMacro(RegionWeight, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RegionWeight, double);
+  vtkSetVector2Macro(IntensityRange, double);
+  vtkGetVector2Macro(IntensityRange, double);
   ///@}
 
   ///@{
@@ -280,7 +330,10 @@ protected:
   double EdgeWeight = 1.0;
   double ImageWeight = 0.0;
   double Sigma = 0.0;
-  double SigmaFraction = 1.0 / 6.0;
+  double SigmaFraction = 0.0;
+  int EdgeNormalization = GLOBAL_MAXIMUM;
+  double RegionWeight = 0.3;
+  double IntensityRange[2] = { 0.0, 0.0 };
   int MaxSweepsPerLevel = 2000;
   double ConvergenceTolerance = 1e-3;
   int MaxLevels = 4;

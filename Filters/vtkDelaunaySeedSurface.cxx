@@ -4,6 +4,7 @@
 #include "dsVTKImage.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkDSPolyDataGather.h"
@@ -16,9 +17,12 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLinearSubdivisionFilter.h"
+#include "vtkMath.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPlatonicSolidSource.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
@@ -400,6 +404,84 @@ void BuildTetrahedraOutput(const SeedComplex& complex, const std::vector<unsigne
     tetsOut->GetCellData()->AddArray(values);
   }
 }
+
+// One to three points: a sphere of `radius` around each (an icosahedron subdivided twice,
+// projected onto the sphere: 162 vertices, 320 well-shaped triangles), outward-oriented,
+// each sphere's vertices carrying its point's SeedPointId. Overlapping spheres are warned
+// about: their union is not a manifold surface.
+void BuildSphereSeeds(vtkObject* self, vtkPolyData* points, const std::vector<vtkIdType>& inputId,
+  double radius, vtkPolyData* output)
+{
+  vtkNew<vtkPlatonicSolidSource> icosahedron;
+  icosahedron->SetSolidTypeToIcosahedron();
+  vtkNew<vtkLinearSubdivisionFilter> subdivide;
+  subdivide->SetInputConnection(icosahedron->GetOutputPort());
+  subdivide->SetNumberOfSubdivisions(2);
+  subdivide->Update();
+  vtkPolyData* unit = subdivide->GetOutput();
+  const vtkIdType perSphere = unit->GetNumberOfPoints();
+  // Outward orientation: the first triangle's normal points away from the centre.
+  bool flip = false;
+  {
+    vtkIdType npts;
+    const vtkIdType* ids;
+    unit->GetPolys()->InitTraversal();
+    unit->GetPolys()->GetNextCell(npts, ids);
+    double a[3], b[3], c[3], ab[3], ac[3], n[3];
+    unit->GetPoint(ids[0], a);
+    unit->GetPoint(ids[1], b);
+    unit->GetPoint(ids[2], c);
+    vtkMath::Subtract(b, a, ab);
+    vtkMath::Subtract(c, a, ac);
+    vtkMath::Cross(ab, ac, n);
+    flip = vtkMath::Dot(n, a) < 0;
+  }
+
+  vtkNew<vtkPoints> outPoints;
+  outPoints->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> triangles;
+  vtkNew<vtkIdTypeArray> seedId;
+  seedId->SetName("SeedPointId");
+  const vtkIdType n = points->GetNumberOfPoints();
+  for (vtkIdType s = 0; s < n; ++s)
+  {
+    double c[3];
+    points->GetPoint(s, c);
+    for (vtkIdType t = 0; t < s; ++t)
+    {
+      double o[3];
+      points->GetPoint(t, o);
+      if (std::sqrt(vtkMath::Distance2BetweenPoints(c, o)) < 2 * radius)
+      {
+        vtkWarningWithObjectMacro(self, "Seed spheres around points " << inputId[t] << " and " << inputId[s]
+                                                                      << " overlap (SeedRadius " << radius
+                                                                      << "): pick farther apart or use a smaller SeedRadius.");
+      }
+    }
+    for (vtkIdType p = 0; p < perSphere; ++p)
+    {
+      double x[3];
+      unit->GetPoint(p, x);
+      const double len = vtkMath::Norm(x);
+      outPoints->InsertNextPoint(c[0] + radius * x[0] / len, c[1] + radius * x[1] / len, c[2] + radius * x[2] / len);
+      seedId->InsertNextValue(inputId[s]);
+    }
+    vtkCellArray* polys = unit->GetPolys();
+    auto it = vtk::TakeSmartPointer(polys->NewIterator());
+    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+    {
+      vtkIdType npts;
+      const vtkIdType* ids;
+      it->GetCurrentCell(npts, ids);
+      const vtkIdType tri[3] = { ids[0] + s * perSphere, ids[flip ? 2 : 1] + s * perSphere,
+        ids[flip ? 1 : 2] + s * perSphere };
+      triangles->InsertNextCell(3, tri);
+    }
+  }
+  output->SetPoints(outPoints);
+  output->SetPolys(triangles);
+  output->GetPointData()->AddArray(seedId);
+}
 } // namespace
 
 vtkDelaunaySeedSurface::vtkDelaunaySeedSurface()
@@ -520,10 +602,15 @@ int vtkDelaunaySeedSurface::RequestData(
   {
     return 1;
   }
+  if (inputId.empty())
+  {
+    vtkErrorMacro("No point with finite coordinates: nothing to seed from.");
+    return 1;
+  }
   if (inputId.size() < 4)
   {
-    vtkErrorMacro("Need at least 4 points with finite coordinates to build tetrahedra; got "
-      << inputId.size() << ".");
+    // Too few points for a tetrahedron: one click, a small sphere around each point.
+    BuildSphereSeeds(this, finite, inputId, this->SeedRadius, surfaceOut);
     return 1;
   }
 
@@ -558,6 +645,7 @@ int vtkDelaunaySeedSurface::RequestData(
 
 void vtkDelaunaySeedSurface::PrintSelf(ostream& os, vtkIndent indent)
 {
+  os << indent << "SeedRadius: " << this->SeedRadius << "\n";
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RemovedTetrahedra: " << this->RemovedTetrahedra.size() << " ID(s)\n";
   os << indent << "Alpha: " << this->Alpha << "\n";

@@ -34,7 +34,13 @@
  * 3 by intensity, 4 by pinch resolution, 5 flat at the boundary) and `Circumradius` (to choose
  * Alpha), plus `CentroidValue` when an image is used. Threshold or colour by `Removed`.
  *
- * Bad input (fewer than 4 finite points, all points coplanar, every tetrahedron removed) gives
+ * One click: with one to three finite points (too few for a tetrahedron) the surface is a
+ * small closed sphere of radius SeedRadius around each point (an icosahedron subdivided
+ * twice: 162 vertices, 320 triangles), each point's vertices carrying its SeedPointId, and the
+ * tetrahedra output is empty. Pick one point inside an object and run Deformable Surface with
+ * its region force (RegionWeight) to grow it to the object's boundary.
+ *
+ * Bad input (no finite point, four or more points all coplanar, every tetrahedron removed) gives
  * an error or warning and an empty surface; NaN/inf points are dropped with a warning; duplicate
  * points are merged by vtkDelaunay3D (Tolerance).
  *
@@ -108,6 +114,15 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Radius, in world units, of the sphere made around each point when only one to three
+   * points are given. Default 5 (mm in most medical scans).
+   */
+  vtkSetClampMacro(SeedRadius, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkGetMacro(SeedRadius, double);
+  ///@}
+
+  ///@{
   /// Points closer than Tolerance x (bounding-box diagonal) are merged by vtkDelaunay3D.
   vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
   vtkGetMacro(Tolerance, double);
@@ -137,6 +152,7 @@ protected:
   bool UseIntensityRange = false;
   double IntensityRange[2] = { 0.0, 1.0 };
   double TargetEdgeLength = 0.0;
+  double SeedRadius = 5.0;
   double Tolerance = 0.001;
   vtkMultiProcessController* Controller = nullptr;
 

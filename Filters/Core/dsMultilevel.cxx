@@ -1,5 +1,8 @@
 #include "dsMultilevel.h"
 
+#include "dsRegion.h"
+#include "dsUntangle.h"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
@@ -40,6 +43,74 @@ std::vector<char> MultilevelSolver::MarkTriangles(
   return marks;
 }
 
+bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geometry,
+  const TriangleMesh& mesh, double& sigma, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
+  const double paper = geometry.MeanExtent() / 6.0;
+  if (P.InitialSigma > 0)
+  {
+    sigma = P.InitialSigma;
+  }
+  else if (P.InitialSigmaFraction > 0)
+  {
+    sigma = P.InitialSigmaFraction * geometry.MeanExtent();
+  }
+  else if (!ChooseInitialSigma(scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+  {
+    return false;
+  }
+  else
+  {
+    sigma = this->SigmaChoice.Sigma;
+  }
+  if (!(sigma > 0) || !std::isfinite(sigma))
+  {
+    *error = "the initial sigma must be positive";
+    return false;
+  }
+  return true;
+}
+
+bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh)
+{
+  const MultilevelParameters& P = this->Parameters;
+  double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
+  if (!(lo < hi) && StartSpansImage(geometry, mesh))
+  {
+    // A box around the whole volume has no outside to tell its object from: without a
+    // given range the region force stays off (the paper's edge-only method).
+    return false;
+  }
+  if (!(lo < hi))
+  {
+    RangeEstimate estimate;
+    std::string msg;
+    const double outward = mesh.IsClosed() && mesh.SignedVolume() < 0 ? -1.0 : 1.0;
+    if (!EstimateIntensityRange(scalars, geometry, mesh, outward, estimate, &msg))
+    {
+      this->Warnings.push_back("the region force is off: no intensity range was given and none could be "
+                               "estimated (" + msg + ")");
+      return false;
+    }
+    lo = estimate.Range[0];
+    hi = estimate.Range[1];
+    // Without a background to compare with (a click inside one region), the range's end is
+    // not where the boundary lies: the region force only grows the surface through its
+    // region, and the edge force finds the boundary beyond.
+    this->RegionOutwardOnly = !estimate.Contrast;
+  }
+  if (CountVoxelsInRange(scalars, geometry, lo, hi) == 0)
+  {
+    this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) + ", " +
+      std::to_string(hi) + "] matches no voxel of the image");
+    return false;
+  }
+  this->UsedRange[0] = lo;
+  this->UsedRange[1] = hi;
+  return true;
+}
+
 bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
@@ -53,6 +124,9 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   this->FinalOutsideVertices = 0;
   this->InitialSubdivisions = 0;
   this->Aborted = false;
+  this->SigmaChoice = InitialSigmaChoice();
+  this->UsedRange[0] = this->UsedRange[1] = 0;
+  this->RegionOutwardOnly = false;
   auto fail = [error](const std::string& msg) {
     if (error)
     {
@@ -68,11 +142,6 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   {
     return fail("the initial surface has no triangles");
   }
-  double sigma = P.InitialSigma > 0 ? P.InitialSigma : P.InitialSigmaFraction * geometry.MeanExtent();
-  if (!(sigma > 0) || !std::isfinite(sigma))
-  {
-    return fail("the initial sigma must be positive");
-  }
 
   // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
   const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
@@ -82,6 +151,15 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   {
     return fail("the initial surface is not a manifold triangle mesh: " + msg);
   }
+  double sigma = 0;
+  if (!this->FirstSigma(scalars, geometry, mesh, sigma, &msg))
+  {
+    return fail(msg);
+  }
+  const double firstSigma = sigma;
+  const bool region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
+  // The region force pushes along the outward normal: flip it for an inward-oriented start.
+  const double regionSign = mesh.IsClosed() && mesh.SignedVolume() < 0 ? -1.0 : 1.0;
   if (P.InitialEdgeSigmaRatio > 0)
   {
     // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
@@ -125,6 +203,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   ssp.EdgeWeight = P.EdgeWeight;
   ssp.ImageWeight = P.ImageWeight;
   ssp.NormalizePotential = true;
+  ssp.Normalization = P.Normalization;
   ssp.NumberOfThreads = P.Solver.NumberOfThreads;
 
   const int maxLevels = std::max(0, P.MaxLevels);
@@ -145,6 +224,15 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     const double h = mesh.MeanEdgeLength();
     solver.SetMesh(&mesh);
     solver.SetForceField(&field, P.ForceWeight * h * sigma);
+    if (region)
+    {
+      // The balloon brings the surface to its object at the coarse scales; as sigma shrinks
+      // the edge force takes over the detail, so the region force shrinks with sigma (at full
+      // strength it presses the surface into every narrow dark gap of the object).
+      const double decay = std::min(1.0, sigma / firstSigma);
+      solver.SetRegionForce(scalars, geometry, this->UsedRange[0], this->UsedRange[1],
+        decay * regionSign * P.RegionWeight * h, this->RegionOutwardOnly);
+    }
 
     LevelRecord rec;
     rec.Level = level;
@@ -199,10 +287,17 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
         stop = true;
       }
     }
+    // Folds the forces left (two parts of the surface pushed together) are smoothed open
+    // before the level's estimator is read and the mesh is refined (dsUntangle.h).
+    rec.Folds = Untangle(mesh);
     this->ErrorIndicator = solver.ErrorIndicator();
     this->Displacement = solver.Displacement();
     this->ExternalForce = solver.ExternalForceMagnitude();
-    if (stop || level == maxLevels)
+    // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
+    // last: further levels would only refine the mesh for detail the image does not show
+    // (a start near its object reaches the floor after a few halvings).
+    const bool atFloor = P.HierarchicalSigma && !(sigma > 0.5 * voxel * (1 + 1e-9));
+    if (stop || level == maxLevels || atFloor)
     {
       this->Levels.push_back(rec);
       break;

@@ -23,16 +23,23 @@
 // or the next step over MaxVertices: a warning, once) still goes on to the next, smaller
 // sigma with the same mesh, so the surface always ends at the fine scale rather than on
 // the blurred edge of a coarse sigma. The run ends after MaxLevels levels past the first,
-// when a level would change neither the mesh nor sigma, or when the progress callback
-// asks to abort (the surface is valid at every moment).
+// after the level solved at sigma's floor (half a voxel; hierarchical sigma only), when a
+// level would change neither the mesh nor sigma, or when the progress callback asks to abort
+// (the surface is valid at every moment).
+//
+// Beyond the paper (docs/METHOD.md §9): sigma_0 can follow the start (dsInitialSigma.h); a
+// region force (dsRegion.h), RegionWeight * h * min(1, sigma_l / sigma_0) * speed * normal,
+// joins the edge force; after each level's sweeps, folds are smoothed open (dsUntangle.h).
 #ifndef dsMultilevel_h
 #define dsMultilevel_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsInitialSigma.h"
 #include "dsRedGreen.h"
 #include "dsScaleSpace.h"
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
+#include "dsUntangle.h"
 
 #include <functional>
 #include <string>
@@ -46,10 +53,19 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double EdgeWeight = 1.0;      ///< w_edge of the potential
   double ImageWeight = 0.0;     ///< w_image of the potential
   double ForceWeight = 1.0;     ///< multiplies h * sigma * (-grad P)
-  /// sigma_0 = InitialSigmaFraction * mean extent of the volume (SPEC §6.6: 1/6) unless
-  /// InitialSigma > 0 (physical units), which wins.
-  double InitialSigmaFraction = 1.0 / 6.0;
+  /// sigma_0: InitialSigma (physical units) when > 0; else InitialSigmaFraction * the mean
+  /// extent of the volume when > 0 (the paper's 1/6); else (0, the default) chosen from the
+  /// start (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, about
+  /// half the start's distance to its nearest edges for any other.
+  double InitialSigmaFraction = 0.0;
   double InitialSigma = 0.0;
+  /// How the edge strength is normalised in the potential (dsScaleSpace.h).
+  EdgeNormalization Normalization = EdgeNormalization::GlobalMaximum;
+  /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. Its range is
+  /// IntensityRange when IntensityRange[0] < IntensityRange[1], else estimated from the image
+  /// inside the start surface (EstimateIntensityRange).
+  double RegionWeight = 0.0;
+  double IntensityRange[2] = { 0.0, 0.0 };
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
   int MaxLevels = 4;             ///< refinement steps (levels 0..MaxLevels are solved)
   int MaxSweepsPerLevel = 2000;  ///< cap per level (the phantom tests need <= ~130)
@@ -98,6 +114,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   double MeanEdgeLength = 0;
   int MarkedTriangles = 0; ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
+  UntangleResult Folds;        ///< intersecting triangle pairs after the sweeps, and after smoothing
 };
 
 class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
@@ -138,6 +155,10 @@ public:
   double GetFinalSigma() const { return this->Levels.empty() ? 0.0 : this->Levels.back().Sigma; }
   bool GetLastLevelConverged() const { return !this->Levels.empty() && this->Levels.back().Converged; }
   int GetTotalSweeps() const { return static_cast<int>(this->Sweeps.size()); }
+  /// How sigma_0 was chosen (Rays 0 when it was given or the start spans the volume).
+  const InitialSigmaChoice& GetInitialSigmaChoice() const { return this->SigmaChoice; }
+  /// The intensity range the region force used (estimated or given); both 0 when it was off.
+  const double* GetIntensityRange() const { return this->UsedRange; }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
   static std::vector<char> MarkTriangles(const TriangleMesh& mesh, const std::vector<double>& estimator,
@@ -155,6 +176,14 @@ private:
   int FinalOutsideVertices = 0;
   int InitialSubdivisions = 0;
   bool Aborted = false;
+  InitialSigmaChoice SigmaChoice;
+  double UsedRange[2] = { 0, 0 };
+  bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
+  /// sigma_0 by the rule of InitialSigma / InitialSigmaFraction / the start.
+  bool FirstSigma(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
+    double& sigma, std::string* error);
+  /// The region force's range (given or estimated); false = no region force (a warning says why).
+  bool RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh);
 };
 } // namespace dsurf
 

@@ -108,22 +108,32 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
   return true;
 }
 
-double ForceField::SamplePotential(const double x[3]) const
+double SampleVolume(const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
 {
   Cell c;
-  if (this->Potential.empty() || !LocateCell(this->Geometry, x, c))
+  const bool in = values && LocateCell(geometry, x, c);
+  if (inside)
+  {
+    *inside = in;
+  }
+  if (!in)
   {
     return 0.0;
   }
-  double p = 0.0;
+  double v = 0.0;
   for (int corner = 0; corner < 8; ++corner)
   {
     const int bi = corner & 1, bj = (corner >> 1) & 1, bk = (corner >> 2) & 1;
     const double w = (bi ? c.T[0] : 1.0 - c.T[0]) * (bj ? c.T[1] : 1.0 - c.T[1]) *
       (bk ? c.T[2] : 1.0 - c.T[2]);
-    p += w * this->Potential[c.Base + bi * c.Step[0] + bj * c.Step[1] + bk * c.Step[2]];
+    v += w * values[c.Base + bi * c.Step[0] + bj * c.Step[1] + bk * c.Step[2]];
   }
-  return p;
+  return v;
+}
+
+double ForceField::SamplePotential(const double x[3]) const
+{
+  return this->Potential.empty() ? 0.0 : SampleVolume(this->Potential.data(), this->Geometry, x, nullptr);
 }
 
 namespace
@@ -583,6 +593,34 @@ void ForEachVoxelSlice(const int dims[3], Body&& body)
 }
 } // namespace
 
+namespace
+{
+// g <- g / (G_2sigma * g + floor) in place (EdgeNormalization::Local); `scratch` holds one
+// volume. Returns the new maximum. A Gaussian-weighted local mean, not a local maximum: it is
+// smooth, so dividing by it adds no steps (spurious forces) to the potential. For an isolated
+// edge of any contrast the ratio peaks at ~sqrt(5) (a Gaussian ridge of width sigma over its
+// own blur at 2 sigma), so every isolated boundary ends up equally strong.
+double NormalizeEdgesLocally(
+  float* g, float* scratch, const int dims[3], const double sigmaVoxels[3], double floor)
+{
+  const double wide[3] = { 2 * sigmaVoxels[0], 2 * sigmaVoxels[1], 2 * sigmaVoxels[2] };
+  Smooth(g, scratch, dims, wide);
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  std::vector<double> maxima(dims[2], 0.0);
+  ForEachVoxelSlice(dims, [&](int k) {
+    double m = 0.0;
+    for (std::ptrdiff_t v = k * sz, e = v + sz; v < e; ++v)
+    {
+      const double r = g[v] / (std::max(0.0, static_cast<double>(scratch[v])) + floor);
+      g[v] = static_cast<float>(r);
+      m = std::max(m, r);
+    }
+    maxima[k] = m;
+  });
+  return *std::max_element(maxima.begin(), maxima.end());
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 double SmootherVariance(double sigmaVoxels)
 {
@@ -714,9 +752,15 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
     const double smax = *std::max_element(sMax.begin(), sMax.end());
 
     double ge = we, gs = wi, offset = 0.0; // P = -(ge*g + gs*s + offset)
+    double gNorm = gmax;
+    if (parameters.NormalizePotential && parameters.Normalization == EdgeNormalization::Local && gmax > 0.0)
+    {
+      gNorm = NormalizeEdgesLocally(potential, force + nx * static_cast<std::ptrdiff_t>(ny) * nz, dims, sv,
+        parameters.LocalEdgeFloor * gmax);
+    }
     if (parameters.NormalizePotential)
     {
-      ge = gmax > 0.0 ? we / gmax : 0.0;
+      ge = gNorm > 0.0 ? we / gNorm : 0.0;
       gs = smax > smin ? wi / (smax - smin) : 0.0;
       offset = -gs * smin;
     }

@@ -10,6 +10,8 @@
 //   g  = |grad s|             central differences (one-sided at the border), index
 //                             derivatives taken to world by Direction * diag(1/spacing).
 //   NormalizePotential on:    P = -(w_edge * g / max g + w_image * (s - min s) / (max s - min s))
+//                             (or with the local edge normalisation: g -> g / (G_2sigma * g +
+//                             floor), rescaled to a maximum of 1; see EdgeNormalization)
 //                             so P lies in [-(w_edge + w_image), 0]; a zero range gives 0.
 //   NormalizePotential off:   P = -(w_edge * g + w_image * s)
 //   Force = -grad P           central differences of P, to world like g.
@@ -47,12 +49,27 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
   void IndexToWorld(const double ijk[3], double x[3]) const;
 };
 
+/// How the edge strength g = |grad(G_sigma * f)| is made unit-free before it enters P.
+enum class EdgeNormalization
+{
+  /// g / max g: the strongest edge of the volume sets the scale for all (skin/air in a
+  /// head mutes the brain's own boundary).
+  GlobalMaximum = 0,
+  /// g / (G_2sigma * g + LocalEdgeFloor * max g): each edge against the edge strength around
+  /// it, so a weak boundary far (> ~2 sigma) from a strong one is as strong as the strong one;
+  /// the floor keeps flat, noisy regions at ~0. Then divided by its maximum, so P in [-1, 0].
+  Local = 1
+};
+
 struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
 {
   double Sigma = 1.0;          ///< physical units (isotropic in world space); 0 = no smoothing
   double EdgeWeight = 1.0;     ///< w_edge
   double ImageWeight = 0.0;    ///< w_image
   bool NormalizePotential = true;
+  /// With NormalizePotential: how g is normalised (see EdgeNormalization).
+  EdgeNormalization Normalization = EdgeNormalization::GlobalMaximum;
+  double LocalEdgeFloor = 0.05; ///< Local: the denominator's floor, a fraction of max g
   int NumberOfThreads = 0;     ///< 0 = all the machine has (vtkSMPTools STDThread)
 };
 
@@ -72,6 +89,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
   /// Trilinear sample of the potential (0 outside).
   double SamplePotential(const double x[3]) const;
 };
+
+/// Trilinear sample of a one-value-per-voxel volume at world point x, with the same reach as
+/// ForceField::SampleForce (half a voxel past the outermost centres); 0 and *inside = false
+/// outside.
+DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
+  const float* values, const ImageGeometry& geometry, const double x[3], bool* inside);
 
 /// Compute P = -(w_edge * g + w_image * f) with g = |grad(G_sigma * f)| (normalised
 /// as documented in vtkImageScaleSpaceGradient.h when NormalizePotential), and

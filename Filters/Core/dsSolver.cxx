@@ -1,5 +1,7 @@
 #include "dsSolver.h"
 
+#include "dsRegion.h"
+
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -364,6 +366,22 @@ void Solver::UpdateVertex(int v)
     {
       outside = 1;
     }
+  }
+  if (this->RegionScalars)
+  {
+    bool inside = false;
+    const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, points[v].data(), &inside);
+    const Vec3 n = this->FanNormal(v);
+    const double nn = Norm(n);
+    if (inside && nn > 0)
+    {
+      double speed = RegionSpeed(intensity, this->RegionLow, this->RegionHigh);
+      speed = this->RegionOutwardOnly ? std::max(speed, 0.0) : speed;
+      force = force + (this->RegionScale * speed / nn) * n;
+    }
+  }
+  if ((this->Field && this->Sampler) || this->RegionScalars)
+  {
     if (!this->Parameters.ProjectExternalForce)
     {
       applied = force;
@@ -377,13 +395,7 @@ void Solver::UpdateVertex(int v)
       }
       else
       {
-        // The area-weighted normal, as TriangleMesh::AreaWeightedNormal on the local copy.
-        Vec3 nrm{ 0, 0, 0 };
-        for (int i = this->LocalFanOffsets[v]; i < this->LocalFanOffsets[v + 1]; ++i)
-        {
-          const auto& tri = this->LocalFan[i];
-          nrm = nrm + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
-        }
+        const Vec3 nrm = this->FanNormal(v);
         const double nn = Dot(nrm, nrm);
         if (nn > 0)
         {
@@ -400,6 +412,19 @@ void Solver::UpdateVertex(int v)
   result.ErrorIndicator = gamma * Norm(internal);
   result.Displacement = Norm(c);
   result.Force = Norm(force);
+}
+
+Vec3 Solver::FanNormal(int v) const
+{
+  // As TriangleMesh::AreaWeightedNormal, on the local copy.
+  const Vec3* points = this->LocalPoints.data();
+  Vec3 nrm{ 0, 0, 0 };
+  for (int i = this->LocalFanOffsets[v]; i < this->LocalFanOffsets[v + 1]; ++i)
+  {
+    const auto& tri = this->LocalFan[i];
+    nrm = nrm + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+  }
+  return nrm;
 }
 
 void Solver::CopyOut(int first, int last)

@@ -74,6 +74,22 @@ public:
     this->Sampler = field ? &Solver::SampleField : nullptr;
   }
 
+  /// The region force (dsRegion.h): scale * RegionSpeed(I(x), low, high) * n at every vertex,
+  /// I sampled trilinearly in `scalars` (one float per voxel of `geometry`, not copied), n the
+  /// unit area-weighted normal (scale < 0 for an inward-oriented surface). It is added to the
+  /// edge force before the projection rule. scale 0 or no scalars: none. outwardOnly: the
+  /// negative speeds are dropped (grow inside the range, leave the rest to the edge force).
+  void SetRegionForce(const float* scalars, const ImageGeometry& geometry, double low, double high, double scale,
+    bool outwardOnly = false)
+  {
+    this->RegionOutwardOnly = outwardOnly;
+    this->RegionScalars = scale != 0.0 ? scalars : nullptr;
+    this->RegionGeometry = geometry;
+    this->RegionLow = low;
+    this->RegionHigh = high;
+    this->RegionScale = scale;
+  }
+
   /// One Gauss-Seidel sweep: every vertex not on an open boundary is corrected once,
   /// in place: c = gamma (tau c1 + (1 - tau) alpha c2 + F_projected), p <- p + c.
   SweepStatistics Sweep();
@@ -133,6 +149,12 @@ private:
   const ForceField* Field = nullptr;
   bool (*Sampler)(const ForceField*, const double*, double*) = nullptr;
   double ForceScale = 1.0;
+  const float* RegionScalars = nullptr;
+  ImageGeometry RegionGeometry;
+  double RegionLow = 0, RegionHigh = 0, RegionScale = 0;
+  bool RegionOutwardOnly = false;
+  /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
+  Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
   std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
   int ColoredPoints = -1; ///< point count the colouring was built for

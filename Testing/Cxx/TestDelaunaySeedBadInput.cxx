@@ -1,5 +1,5 @@
 // Bad input must give a clear error or warning and an empty (or still valid) output, never a
-// crash: no points, 3 points, collinear, coplanar, duplicates, NaN, out-of-range IDs, every
+// crash: no points, 3 points (now a sphere around each: one click), collinear, coplanar, duplicates, NaN, out-of-range IDs, every
 // tetrahedron removed, the intensity rule without an image.
 #include "TestDelaunaySeedUtils.h"
 #include "vtkDelaunaySeedSurface.h"
@@ -23,7 +23,8 @@ struct Outcome
   vtkIdType Triangles, Tetrahedra;
 };
 
-Outcome Run(vtkPoints* points, const std::function<void(vtkDelaunaySeedSurface*)>& configure = nullptr)
+Outcome Run(vtkPoints* points, const std::function<void(vtkDelaunaySeedSurface*)>& configure = nullptr,
+  long expectedEuler = 2)
 {
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
@@ -44,7 +45,7 @@ Outcome Run(vtkPoints* points, const std::function<void(vtkDelaunaySeedSurface*)
   if (o.Triangles > 0)
   {
     const auto f = dsseedtest::Measure(seed->GetOutput());
-    dsseedtest::CheckClosedManifold(f, seed->GetOutput()->GetNumberOfPoints(), 2);
+    dsseedtest::CheckClosedManifold(f, seed->GetOutput()->GetNumberOfPoints(), expectedEuler);
   }
   return o;
 }
@@ -70,8 +71,11 @@ int main()
   three->InsertNextPoint(0, 0, 0);
   three->InsertNextPoint(1, 0, 0);
   three->InsertNextPoint(0, 1, 0);
-  o = Run(three);
-  DS_CHECK(o.Errors == 1 && o.Triangles == 0 && o.Tetrahedra == 0, "3 points -> error, empty");
+  o = Run(three, [](vtkDelaunaySeedSurface* s) { s->SetSeedRadius(0.4); }, 6);
+  DS_CHECK(o.Errors == 0 && o.Warnings == 0 && o.Triangles == 3 * 320 && o.Tetrahedra == 0,
+    "3 points -> three seed spheres (320 triangles each), no tetrahedra");
+  o = Run(three, nullptr, 6); // SeedRadius 5 around points 1 apart: the spheres overlap
+  DS_CHECK(o.Errors == 0 && o.Warnings == 3 && o.Triangles == 3 * 320, "3 close points -> a warning per overlap");
 
   std::cout << "Collinear:" << std::endl;
   vtkNew<vtkPoints> line;

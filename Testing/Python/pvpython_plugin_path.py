@@ -21,9 +21,15 @@ for cls in (vtkImageScaleSpaceGradient, vtkDeformableSurfaceFilter, vtkDelaunayS
     assert cls().GetClassName() == cls.__name__, cls
 print("deformablesurface imports in pvpython")
 
-# The GUI's defaults are the C++ defaults: SigmaFraction is exactly the paper's 1/6, so a
-# ParaView run and a VTK run with defaults give the same surface.
+# The GUI's defaults are the C++ defaults (SigmaFraction 0: sigma chosen from the start; the
+# region force's weight and range), so a ParaView run and a VTK run with defaults give the same
+# surface.
 from deformablesurface import vtkDeformableSurfaceFilter as _F  # noqa: E402
-assert simple.DeformableSurface().SigmaFraction == _F().GetSigmaFraction() == 1.0 / 6.0
+_proxy, _cpp = simple.DeformableSurface(), _F()
+assert _proxy.SigmaFraction == _cpp.GetSigmaFraction() == 0.0
+assert _proxy.RegionWeight == _cpp.GetRegionWeight()
+assert list(_proxy.IntensityRange) == list(_cpp.GetIntensityRange())
+assert _proxy.EdgeNormalization == "Global maximum" and _cpp.GetEdgeNormalization() == _F.GLOBAL_MAXIMUM
+assert simple.DelaunaySeedSurface().SeedRadius == vtkDelaunaySeedSurface().GetSeedRadius()
 assert simple.ScaleSpaceGradient().SigmaFraction == vtkImageScaleSpaceGradient().GetSigmaFraction()
 print("ParaView defaults equal the C++ defaults")

@@ -1,0 +1,50 @@
+// The first sigma of the hierarchy, chosen from the start surface (beyond the paper:
+// docs/METHOD.md §9). Plain C++, no pipeline types.
+//
+// The paper starts at sigma_0 = 1/6 of the volume's mean extent (§6.6): a Gaussian edge
+// attracts from ~2 sigma, so a surface enclosing the whole volume (its cube test) is pulled in
+// from far away. A start that already lies near its object (a Delaunay seed of picked points,
+// a user's mesh, an earlier result) would be blurred into its neighbours by that sigma and end
+// farther away than it began. So:
+//   - a start that spans the image (its bounding box covers at least 90 % of the image's along
+//     every axis: a box around the whole volume) keeps the paper's sigma_0;
+//   - any other start is near its object: along the unit normal of every vertex and triangle
+//     centre, inward and outward up to 2 * the paper's sigma_0, the nearest local maximum of the
+//     edge strength (at a probe sigma of 1 voxel, locally normalised, at least 0.2 of the
+//     strongest) is found; D is the 90th percentile of those distances (2 * the paper's sigma_0
+//     where no edge was met), and sigma_0 = D, between one voxel and the paper's sigma_0.
+// sigma_0 = D leaves a factor of two to the basin (~2 sigma): the nearest edge is not always the
+// object's (the skull's lies as near to a seed around a brain as the brain's own).
+#ifndef dsInitialSigma_h
+#define dsInitialSigma_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsScaleSpace.h"
+#include "dsTriangleMesh.h"
+
+#include <string>
+
+namespace dsurf
+{
+struct DEFORMABLESURFACEFILTERS_EXPORT InitialSigmaChoice
+{
+  double Sigma = 0;          ///< the chosen sigma_0 (world units)
+  bool SpansVolume = false;  ///< the start spans the image: the paper's sigma_0
+  double StartDistance = 0;  ///< D, the 90th percentile distance to the nearest edge
+  int Rays = 0;              ///< rays cast (0 when the start spans the volume)
+  int RaysWithEdge = 0;      ///< rays that met an edge within reach
+};
+
+/// True when the start's bounding box covers at least 90 % of the image's along every axis
+/// (a box around the whole volume).
+DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(const ImageGeometry& geometry, const TriangleMesh& mesh);
+
+/// Chooses sigma_0 for `mesh` (topology built) as described above; paperSigma is the paper's
+/// extent / 6 (or the fraction the caller uses). False with a message when the probe field
+/// cannot be computed.
+DEFORMABLESURFACEFILTERS_EXPORT bool ChooseInitialSigma(const float* scalars,
+  const ImageGeometry& geometry, const TriangleMesh& mesh, double paperSigma, int numberOfThreads,
+  InitialSigmaChoice& choice, std::string* error);
+} // namespace dsurf
+
+#endif

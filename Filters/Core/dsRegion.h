@@ -1,0 +1,71 @@
+// The region ("balloon") force of the deformable surface: beyond the paper, docs/METHOD.md
+// §9. Plain C++, no pipeline types.
+//
+// A vertex standing where the image lies inside the object's intensity range is pushed out
+// along its normal, one standing outside the range is pulled in: Cohen's balloon (CVGIP:IU 53,
+// 1991, the paper's reference [3]) with the sign taken from the image as in BET (Smith 2002)
+// and ITK-SNAP's thresholding speed image (Yushkevich et al. 2006). The speed is
+//   s(I) = clamp(min(I - lo, hi - I) / w, -1, 1),   w = RegionTransition * (hi - lo),
+// +1 well inside [lo, hi], -1 well outside, 0 on the range's ends: the surface stops where the
+// image crosses lo (or hi). The solver adds RegionWeight * h * s * n (h the level's mean edge
+// length, n the outward unit normal) to the edge force before the paper's projection rule, so
+// it cannot fold the surface either.
+#ifndef dsRegion_h
+#define dsRegion_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsScaleSpace.h"
+#include "dsTriangleMesh.h"
+
+#include <algorithm>
+#include <string>
+
+namespace dsurf
+{
+/// Transition width of the speed, as a fraction of the range's width.
+constexpr double RegionTransition = 0.1;
+
+/// The thresholding speed in [-1, 1] (see above); lo < hi.
+inline double RegionSpeed(double intensity, double lo, double hi)
+{
+  const double w = RegionTransition * (hi - lo);
+  const double s = std::min(intensity - lo, hi - intensity) / w;
+  return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : s);
+}
+
+/// What the estimate saw, for messages and tests.
+struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
+{
+  double Range[2] = { 0, 0 };
+  long long Samples = 0;        ///< voxels inside the surface (or vertices, see below)
+  long long OutsideSamples = 0; ///< samples in the shell just outside it
+  double Median = 0, Spread = 0; ///< of the inside
+  double Separation = 0;        ///< total variation between the inside and outside histograms
+  double ObjectMedian = 0, BackgroundMedian = 0;
+  bool FromVertices = false;
+  bool Contrast = false;        ///< the outside differs: one end of the range is the midpoint
+};
+
+/// The intensity range of the object the start surface lies on or in. Inside: the voxels
+/// whose centres lie inside the closed surface (scan-line parity in index space), their median
+/// m and robust spread s = 1.4826 * MAD, floored at 5 % of the image's 1st-99th percentile
+/// span; a start enclosing fewer than 16 voxel centres samples the image at its vertices
+/// instead. Outside: the image 1, 2 and 3 voxels out along the face normals (outward =
+/// `outwardSign` * the triangles' orientation), at about one sample per voxel of the surface.
+/// The intensities more frequent inside than outside are the object's, those more frequent
+/// outside the background's (256-bin histograms); the range runs from the midpoint of their
+/// levels (smoothed histogram modes) -- on the true edge for any symmetric blur -- to the object's median + 3 s on its
+/// side. When the two histograms differ by less than 0.1 in total variation the start lies
+/// inside one region (a click), and the range is m -+ 3 s: the whole of that region's class.
+/// Returns false (with a message)
+/// when there is nothing to sample.
+DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const float* scalars,
+  const ImageGeometry& geometry, const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate,
+  std::string* error);
+
+/// Voxels whose value lies in [lo, hi].
+DEFORMABLESURFACEFILTERS_EXPORT long long CountVoxelsInRange(
+  const float* scalars, const ImageGeometry& geometry, double lo, double hi);
+} // namespace dsurf
+
+#endif
