@@ -60,25 +60,35 @@ bool StartSpansImage(const ImageGeometry& g, const TriangleMesh& mesh)
 
 namespace
 {
-/// Distance along +-n from x to the nearest significant local maximum of the edge strength
-/// -P (in [0, 1]); `reach` when there is none within it.
+/// Edge strength -P (in [0, 1]) at x + t n; negative outside the image.
+double EdgeStrengthAt(const ForceField& probe, const Vec3& x, const Vec3& n, double t)
+{
+  const double p[3] = { x[0] + t * n[0], x[1] + t * n[1], x[2] + t * n[2] };
+  bool inside = false;
+  const double g = -SampleVolume(probe.Potential.data(), probe.Geometry, p, &inside);
+  return inside ? g : -1.0;
+}
+
+/// Distance along +-n from x to the nearest significant local maximum of the edge strength:
+/// 0 when x itself is one (an earlier result used as the start); else the first sample, going
+/// either way, that the strength rose to and falls after (a start on the flank of an edge
+/// has not reached it yet); `reach` when there is none within it.
 double DistanceToEdge(const ForceField& probe, const Vec3& x, const Vec3& n, double step, double reach)
 {
+  const double g0 = EdgeStrengthAt(probe, x, n, 0);
+  if (g0 >= EdgeSignificance && g0 >= EdgeStrengthAt(probe, x, n, step) &&
+    g0 >= EdgeStrengthAt(probe, x, n, -step))
+  {
+    return 0.0;
+  }
   double best = reach;
   for (double sign : { 1.0, -1.0 })
   {
-    double prev2 = -1, prev1 = -1;
-    for (double t = 0; t <= std::min(best, reach) + step; t += step)
+    double prev2 = g0, prev1 = EdgeStrengthAt(probe, x, n, sign * step);
+    for (double t = 2 * step; t <= best + step && prev1 >= 0; t += step)
     {
-      const double p[3] = { x[0] + sign * t * n[0], x[1] + sign * t * n[1], x[2] + sign * t * n[2] };
-      bool inside = false;
-      const double g = -SampleVolume(probe.Potential.data(), probe.Geometry, p, &inside);
-      if (!inside)
-      {
-        break;
-      }
-      // A maximum at t - step: rose to it, falls after it.
-      if (prev1 >= EdgeSignificance && prev1 >= prev2 && prev1 > g)
+      const double g = EdgeStrengthAt(probe, x, n, sign * t);
+      if (prev1 >= EdgeSignificance && prev1 > prev2 && prev1 >= g)
       {
         best = std::min(best, t - step);
         break;

@@ -7,13 +7,18 @@
 //    image (IntensityRange) removes the hole's tetrahedra; TargetEdgeLength gives a few
 //    thousand vertices. The deformed surface must lie on the torus: mean |distance| <= 0.3
 //    voxel, genus 1 (closed, manifold, Euler characteristic 0), no self-intersections.
-// 2. Two objects in one volume (a ball and a cube), picks around the ball only: only the ball
+// 2. The torus from picks 3 voxels outside its tube, every default (sigma_0 follows the start).
+// 3. Two objects in one volume (a ball and a cube), picks around the ball only: only the ball
 //    is extracted (every vertex within 1 voxel of the ball's boundary, none near the cube).
 #include "TestDelaunaySeedUtils.h"
 #include "vtkDeformableSurfaceFilter.h"
 #include "vtkDelaunaySeedSurface.h"
 
 #include "vtkDataArray.h"
+#include "vtkCell.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkIdList.h"
+#include "vtkCellData.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -178,6 +183,95 @@ void TorusCase()
   DS_CHECK(result.SelfIntersections == 0, "torus: 0 self-intersections");
 }
 
+// The torus from close picks with the defaults (issue: the paper's first sigma, 1/6 of the
+// extent, spans the hole): 96 picks 3 voxels outside the tube on six slices through the axis
+// (12 cross-sections of 8 picks, +-0.5 voxel jitter); the user deletes the tetrahedra lying in
+// the hole (their centroid inside the hole's cylinder, as seen on the slices). Deformable
+// Surface with every default must keep the hole and land on the tube; the paper's sigma_0 for
+// comparison does not.
+void TorusClosePicksCase()
+{
+  std::cout << "Torus from picks 3 voxels outside the tube, defaults:" << std::endl;
+  auto image = Phantom(TorusSignedDistance);
+  vtkNew<vtkPoints> picks;
+  std::uint32_t state = 99u;
+  for (int plane = 0; plane < 6; ++plane)
+  {
+    const double u = vtkMath::Pi() * plane / 6;
+    for (int side : { 1, -1 })
+    {
+      for (int k = 0; k < 8; ++k)
+      {
+        const double v = 2.0 * vtkMath::Pi() * (k + 0.5 * (side > 0)) / 8, rr = r + 3.0;
+        const double rho = R + rr * std::cos(v);
+        picks->InsertNextPoint(centre[0] + side * rho * std::cos(u) + Jitter(state),
+          centre[1] + side * rho * std::sin(u) + Jitter(state), centre[2] + rr * std::sin(v) + Jitter(state));
+      }
+    }
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(picks);
+  vtkNew<vtkDelaunaySeedSurface> seed;
+  seed->SetInputData(cloud);
+  seed->Update();
+  vtkUnstructuredGrid* tets = seed->GetTetrahedra();
+  vtkDataArray* ids = tets->GetCellData()->GetArray("TetraId");
+  for (vtkIdType t = 0; t < tets->GetNumberOfCells(); ++t)
+  {
+    double c[3] = { 0, 0, 0 };
+    vtkIdList* corners = tets->GetCell(t)->GetPointIds();
+    for (vtkIdType k = 0; k < corners->GetNumberOfIds(); ++k)
+    {
+      double p[3];
+      tets->GetPoint(corners->GetId(k), p);
+      for (int d = 0; d < 3; ++d)
+      {
+        c[d] += 0.25 * p[d];
+      }
+    }
+    if (std::hypot(c[0] - centre[0], c[1] - centre[1]) < R - r)
+    {
+      seed->AddRemovedTetrahedron(static_cast<vtkIdType>(ids->GetTuple1(t)));
+    }
+  }
+  seed->Update();
+  const auto seedFacts = dsseedtest::Measure(seed->GetOutput());
+  DS_CHECK(seedFacts.Euler == 0, "close picks: the seed has the torus's genus");
+  const DistanceStats before = Distances(seed->GetOutput(), TorusSignedDistance);
+  std::cout << "  " << picks->GetNumberOfPoints() << " picks; seed mean |d| " << before.Mean << std::endl;
+
+  for (const bool paper : { false, true })
+  {
+    vtkNew<vtkDeformableSurfaceFilter> filter;
+    filter->SetInputData(0, image);
+    filter->SetInitialSurfaceConnection(seed->GetOutputPort());
+    if (paper)
+    {
+      filter->SetSigmaFraction(1.0 / 6.0);
+    }
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    const auto facts = dsseedtest::Measure(out);
+    const DistanceStats after = Distances(out, TorusSignedDistance);
+    const double sigma0 = out->GetFieldData()->GetArray("InitialSigma")->GetTuple1(0);
+    const int selfx = static_cast<int>(out->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0));
+    std::cout << "  " << (paper ? "paper's sigma_0: " : "defaults: ") << "sigma_0 " << sigma0 << ", mean |d| "
+              << after.Mean << ", max " << after.Max << ", Euler " << facts.Euler << ", " << selfx
+              << " self-intersections" << std::endl;
+    if (!paper)
+    {
+      DS_CHECK_LE(after.Mean, 0.3, "close picks, defaults: mean |distance| to the torus (voxels)");
+      DS_CHECK(facts.Euler == 0, "close picks, defaults: Euler characteristic 0 (the hole kept)");
+      DS_CHECK(selfx == 0, "close picks, defaults: 0 self-intersections");
+      DS_CHECK_LE(sigma0, 8.0, "close picks: sigma_0 follows the start (voxels)");
+    }
+    else
+    {
+      DS_CHECK_GE(after.Mean, 1.0, "close picks, the paper's sigma_0: spans the hole (mean |d| voxels)");
+    }
+  }
+}
+
 void TwoObjectsCase()
 {
   const double ballCentre[3] = { 42.0, 64.0, 64.0 }, ballRadius = 16.0;
@@ -251,6 +345,7 @@ int main()
 {
   const auto t0 = std::chrono::steady_clock::now();
   TorusCase();
+  TorusClosePicksCase();
   TwoObjectsCase();
   std::cout << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s"
             << std::endl;

@@ -1,0 +1,192 @@
+// The region force and the start-dependent first sigma (beyond the paper, docs/METHOD.md §9),
+// through vtkDeformableSurfaceFilter with its defaults and RegionWeight 0.3, on a soft ball of radius 16 (intensity
+// 100 inside, 0 outside) in a 64^3 image:
+// - one click: vtkDelaunaySeedSurface makes a sphere of radius 3 around one point inside the
+//   ball; the region force (range estimated from the click) grows it to the boundary;
+// - a sphere of radius 26 around the ball shrinks onto it (range estimated: object vs
+//   background);
+// - an IntensityRange that matches nothing: a warning, the force off, finite coordinates and
+//   the surface where the edge force alone puts it;
+// - sigma_0: the paper's extent / 6 for a box spanning the image, about the start's distance
+//   to the boundary for a sphere 3 voxels outside it.
+#include "DSTestHelpers.h"
+
+#include "vtkCommand.h"
+#include "vtkCubeSource.h"
+#include "vtkDataArray.h"
+#include "vtkDeformableSurfaceFilter.h"
+#include "vtkDelaunaySeedSurface.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace
+{
+const int N = 64;
+const double C = 31.5, R = 16.0;
+
+class Counter : public vtkCommand
+{
+public:
+  static Counter* New() { return new Counter; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
+  int Count = 0;
+};
+
+vtkSmartPointer<vtkImageData> Ball()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(N, N, N);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("density");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+      {
+        const double d = std::sqrt((i - C) * (i - C) + (j - C) * (j - C) + (k - C) * (k - C));
+        values->SetValue(i + N * (j + N * static_cast<vtkIdType>(k)), static_cast<float>(100.0 / (1.0 + std::exp(2.0 * (d - R)))));
+      }
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+vtkSmartPointer<vtkPolyData> Sphere(double r)
+{
+  vtkNew<vtkSphereSource> s;
+  s->SetCenter(C, C, C);
+  s->SetRadius(r);
+  s->SetThetaResolution(32);
+  s->SetPhiResolution(32);
+  s->Update();
+  return s->GetOutput();
+}
+
+struct Result
+{
+  double Mean = 0, Max = 0, InitialSigma = 0;
+  int Warnings = 0, Errors = 0, SelfIntersections = -1;
+  bool Finite = true, RangeReported = false;
+};
+
+Result Deform(vtkImageData* image, vtkPolyData* start, const std::function<void(vtkDeformableSurfaceFilter*)>& configure)
+{
+  vtkNew<vtkDeformableSurfaceFilter> filter;
+  vtkNew<Counter> warnings, errors;
+  filter->AddObserver(vtkCommand::WarningEvent, warnings);
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->SetInputData(0, image);
+  filter->SetInitialSurfaceData(start);
+  filter->SetRegionWeight(0.3);
+  if (configure)
+  {
+    configure(filter);
+  }
+  filter->Update();
+  vtkPolyData* out = filter->GetOutput();
+  Result r;
+  r.Warnings = warnings->Count;
+  r.Errors = errors->Count;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    r.Finite = r.Finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+    const double d = std::abs(std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
+    r.Mean += d;
+    r.Max = std::max(r.Max, d);
+  }
+  r.Mean /= std::max<vtkIdType>(1, out->GetNumberOfPoints());
+  vtkFieldData* fd = out->GetFieldData();
+  if (vtkDataArray* a = fd->GetArray("InitialSigma"))
+  {
+    r.InitialSigma = a->GetTuple1(0);
+  }
+  if (vtkDataArray* a = fd->GetArray("SelfIntersections"))
+  {
+    r.SelfIntersections = static_cast<int>(a->GetTuple1(0));
+  }
+  if (vtkDataArray* a = fd->GetArray("IntensityRange"))
+  {
+    r.RangeReported = a->GetComponent(0, 0) < a->GetComponent(0, 1);
+  }
+  std::cout << "  " << out->GetNumberOfPoints() << " points, mean |d| " << r.Mean << ", max " << r.Max
+            << ", sigma_0 " << r.InitialSigma << ", " << r.Warnings << " warning(s)" << std::endl;
+  return r;
+}
+} // namespace
+
+int TestRegionForce(int, char*[])
+{
+  auto ball = Ball();
+
+  std::cout << "one click inside the ball, grown by the region force:" << std::endl;
+  {
+    vtkNew<vtkPoints> click;
+    click->InsertNextPoint(C + 2, C - 1, C + 1);
+    vtkNew<vtkPolyData> picked;
+    picked->SetPoints(click);
+    vtkNew<vtkDelaunaySeedSurface> seed;
+    seed->SetInputData(picked);
+    seed->SetSeedRadius(3.0);
+    seed->Update();
+    DS_CHECK(seed->GetOutput()->GetNumberOfPoints() == 162, "one click: a sphere of 162 points");
+    const Result r = Deform(ball, seed->GetOutput(), nullptr);
+    DS_CHECK_LE(r.Mean, 0.3, "click grown to the ball: mean |d| (voxels)");
+    DS_CHECK_LE(r.Max, 1.0, "click grown to the ball: max |d| (voxels)");
+    DS_CHECK(r.RangeReported, "the estimated range is in the field data");
+    DS_CHECK(r.SelfIntersections == 0, "click grown: no self-intersections");
+  }
+
+  std::cout << "a sphere of radius 26 around the ball, shrunk onto it:" << std::endl;
+  {
+    const Result r = Deform(ball, Sphere(26), nullptr);
+    DS_CHECK_LE(r.Mean, 0.3, "large sphere shrunk onto the ball: mean |d| (voxels)");
+    DS_CHECK(r.SelfIntersections == 0, "large sphere: no self-intersections");
+  }
+
+  std::cout << "an intensity range that matches nothing:" << std::endl;
+  {
+    const Result off = Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(0); });
+    const Result r = Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetIntensityRange(500, 600); });
+    DS_CHECK(r.Warnings == 1 && r.Errors == 0, "range matching nothing: one warning, no error");
+    DS_CHECK(r.Finite, "range matching nothing: finite coordinates");
+    DS_CHECK(!r.RangeReported, "range matching nothing: the force is off");
+    DS_CHECK_LE(std::abs(r.Mean - off.Mean), 1e-9, "range matching nothing: same surface as without the force");
+  }
+
+  std::cout << "sigma_0 from the start:" << std::endl;
+  {
+    vtkNew<vtkCubeSource> box; // spans the image
+    box->SetCenter(C, C, C);
+    box->SetXLength(N);
+    box->SetYLength(N);
+    box->SetZLength(N);
+    box->Update();
+    const Result spanning = Deform(ball, box->GetOutput(), nullptr);
+    DS_CHECK_LE(std::abs(spanning.InitialSigma - N / 6.0), 1e-9, "box spanning the image: sigma_0 = extent / 6");
+    DS_CHECK_LE(spanning.Mean, 0.3, "box spanning the image: mean |d| (voxels)");
+    const Result near = Deform(ball, Sphere(19), nullptr);
+    DS_CHECK_GE(near.InitialSigma, 2.0, "start 3 voxels outside: sigma_0 at least 2 voxels");
+    DS_CHECK_LE(near.InitialSigma, 4.0, "start 3 voxels outside: sigma_0 at most 4 voxels");
+    DS_CHECK_LE(near.Mean, 0.15, "start 3 voxels outside: mean |d| (voxels)");
+    const Result paper = Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetSigmaFraction(1.0 / 6.0); });
+    DS_CHECK_LE(std::abs(paper.InitialSigma - N / 6.0), 1e-9, "SigmaFraction overrides the rule");
+  }
+  return dstest::Result("TestRegionForce");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestRegionForce(argc, argv);
+}
