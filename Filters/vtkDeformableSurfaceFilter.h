@@ -19,7 +19,7 @@
  *   The input is never modified.
  * - The external force is the same code as vtkImageScaleSpaceGradient (normalised
  *   potential, world coordinates: spacing, origin and direction honoured), sampled
- *   trilinearly at every vertex. It is applied in edge lengths (SPEC §6b): F = h sigma
+ *   trilinearly at every vertex. It is applied in edge lengths (docs/METHOD.md §6b): F = h sigma
  *   (-grad P), h the mean edge length at the start of the level, so Tau and Gamma
  *   keep their meaning at any scale. Vertices outside the volume feel no external
  *   force (warned once).
@@ -53,7 +53,7 @@
  * Box of 12 triangles around the whole volume is pulled in evenly (field data
  * InitialSubdivisions).
  *
- * Hierarchy (SPEC §6, dsMultilevel.h): after a level converges, the error estimator
+ * Hierarchy (docs/METHOD.md §6, dsMultilevel.h): after a level converges, the error estimator
  * (|internal part of the correction| per vertex) marks every triangle whose corner
  * average exceeds RefinementThreshold times the level's mean (all triangles with
  * UniformRefinement; adaptively, never a triangle whose edges are all shorter than a

@@ -1,4 +1,4 @@
-// Butterfly prolongation (SPEC.md §6.5): where red-green refinement puts a new
+// Butterfly prolongation (docs/METHOD.md §6.5): where red-green refinement puts a new
 // edge midpoint. Plain C++, no pipeline types.
 //
 // Rules, chosen per edge (a, b) of the mesh *before* refinement:

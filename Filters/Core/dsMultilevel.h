@@ -1,14 +1,14 @@
-// The adaptive multilevel schedule of the deformable surface (SPEC.md §6): plain C++,
+// The adaptive multilevel schedule of the deformable surface (docs/METHOD.md §6): plain C++,
 // no pipeline types; vtkDeformableSurfaceFilter converts data and calls Run().
 //
 // Per level l = 0, 1, ...:
 //   1. external force field at sigma_l (scale space of the volume, potential normalised
 //      to [0, 1]); F = ForceWeight * h_l * sigma_l * (-grad P) with h_l the mean edge
-//      length of the level's mesh (SPEC §6b: force in edge lengths, scale-normalised);
+//      length of the level's mesh (docs/METHOD.md §6b: force in edge lengths, scale-normalised);
 //   2. Gauss-Seidel sweeps until the mean correction of a sweep is below
 //      Tolerance * h_l, or MaxSweepsPerLevel sweeps;
 //   3. unless l == MaxLevels: error estimator e(v) = |internal part of the last
-//      correction| (SPEC §6.2); a triangle is marked when the mean e of its corners
+//      correction| (docs/METHOD.md §6.2); a triangle is marked when the mean e of its corners
 //      exceeds RefinementThreshold * (mean e over all moving vertices of the level)
 //      (every triangle when UniformRefinement). The threshold is relative to the level's
 //      own statistics, so one default works whatever the data's units or the level;

@@ -1,4 +1,4 @@
-// Red-green adaptive refinement of the deformable surface (SPEC.md §6.3-6.5): plain C++,
+// Red-green adaptive refinement of the deformable surface (docs/METHOD.md §6.3-6.5): plain C++,
 // no pipeline types.
 //
 // How: the refiner remembers which current triangles are green halves, their parent
@@ -13,11 +13,11 @@
 // green pair 1 -> 2. No T-vertices remain; points are never removed or reordered
 // (new ones are appended), so per-point state of the caller stays valid.
 //
-// Labels (SPEC §6.4) are recomputed from the greens after every step: all N, then for
+// Labels (docs/METHOD.md §6.4) are recomputed from the greens after every step: all N, then for
 // each green its midpoint M, the ends of its split edge C, its opposite corner D.
 // An undone green's M is an ordinary N vertex of the red split, and its C / D revert
 // to N unless another green still uses them. A vertex can play several roles in the
-// rare cascading cases SPEC §6.4 allows us to ignore; then M wins over C, C over D
+// rare cascading cases docs/METHOD.md §6.4 allows us to ignore; then M wins over C, C over D
 // (M is the hanging node whose row matters most for border stability; C has the
 // larger weights of the two and keeps the coarse corner held by the fine side).
 //
@@ -117,7 +117,7 @@ private:
   int ExpectedPoints = -1, ExpectedTriangles = -1;
 };
 
-/// The topology invariants every refinement must keep (SPEC §6.3 and issue 4): manifold
+/// The topology invariants every refinement must keep (docs/METHOD.md §6.3 and issue 4): manifold
 /// edges and vertices, consistent orientation, the given Euler characteristic, and,
 /// when mustBeClosed, every edge with two triangles (on a closed surface this also means
 /// no T-vertex). Runs BuildTopology() on a copy when the mesh's topology is stale.

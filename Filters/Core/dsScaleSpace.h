@@ -1,4 +1,4 @@
-// Scale-space external force of the deformable surface (SPEC.md §2, §6.6):
+// Scale-space external force of the deformable surface (docs/METHOD.md §2, §6.6):
 // plain C++, no pipeline types. Shared by vtkImageScaleSpaceGradient and
 // vtkDeformableSurfaceFilter so the two never disagree.
 //

@@ -1,4 +1,4 @@
-// Counting self-intersections of a triangle mesh (SPEC.md §5, ours): a bounding-volume
+// Counting self-intersections of a triangle mesh (docs/METHOD.md §5, ours): a bounding-volume
 // hierarchy over the triangles' bounding boxes finds candidate pairs (not O(n^2), and
 // bounded memory for any mix of triangle sizes), Moeller's interval test decides each
 // pair. Plain C++, no pipeline types.

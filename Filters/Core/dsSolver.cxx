@@ -27,7 +27,7 @@ struct MeshView
 /// Weight sum of vertex v and the normalised weight it gives neighbour slot i.
 /// Uniform fallback when the label weights of v sum to zero: an M vertex whose only
 /// neighbours are M, which red-green cascades do produce now and then (review: 19 times
-/// in 300 random multi-level runs; SPEC §6.4 lets rare cascading cases be ignored).
+/// in 300 random multi-level runs; docs/METHOD.md §6.4 lets rare cascading cases be ignored).
 struct RingWeights
 {
   double InvW = 0;   ///< 1 / sum of weights
@@ -317,7 +317,7 @@ void Solver::UpdateVertex(int v)
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau, gamma = this->Parameters.Gamma;
 
-  // U(p), U^2(p) and alpha (SPEC §3 with the §6.4 weights).
+  // U(p), U^2(p) and alpha (docs/METHOD.md §3 with the §6.4 weights).
   Vec3 u, u2acc{ 0, 0, 0 };
   double alpha = 1.0;
   double unused = 0;
@@ -348,7 +348,7 @@ void Solver::UpdateVertex(int v)
   const Vec3 c2 = (-1.0 / alpha) * u2;
   const Vec3 internal = tau * c1 + ((1.0 - tau) * alpha) * c2;
 
-  // External force and the SPEC §5 rule: along the umbrella when F points the same
+  // External force and the docs/METHOD.md §5 rule: along the umbrella when F points the same
   // way, otherwise along the normal; the projection keeps F from sliding vertices
   // tangentially over each other.
   Vec3 force{ 0, 0, 0 };

@@ -1,5 +1,5 @@
-// The single-level deformable-surface solver (SPEC.md §3-5): umbrella operators with
-// the label weights of SPEC §6.4, one fixed-point step per vertex, Gauss-Seidel
+// The single-level deformable-surface solver (docs/METHOD.md §3-5): umbrella operators with
+// the label weights of docs/METHOD.md §6.4, one fixed-point step per vertex, Gauss-Seidel
 // in place, and the self-intersection rule for the external force. Plain C++, no
 // pipeline types; the hierarchy (refinement, sigma halving) drives it from outside.
 //
@@ -31,12 +31,12 @@ namespace dsurf
 
 struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
 {
-  double Tau = 0.1;   ///< membrane (1) vs thin plate (0), SPEC §2
-  double Gamma = 0.07; ///< damping of the correction, SPEC §4
-  /// SPEC §5 rule (project F onto the umbrella or the normal). false is a test-only
+  double Tau = 0.1;   ///< membrane (1) vs thin plate (0), docs/METHOD.md §2
+  double Gamma = 0.07; ///< damping of the correction, docs/METHOD.md §4
+  /// docs/METHOD.md §5 rule (project F onto the umbrella or the normal). false is a test-only
   /// switch that applies the raw force, to show what the rule prevents.
   bool ProjectExternalForce = true;
-  /// (hierarchy branch) SPEC §6.4 label weights on (default). false weighs every
+  /// (hierarchy branch) docs/METHOD.md §6.4 label weights on (default). false weighs every
   /// neighbour 1 whatever the labels: a test-only switch showing what the table prevents
   /// (vertices drifting on red-green borders).
   bool UseLabelWeights = true;
@@ -104,12 +104,12 @@ public:
   int Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
 
   /// Per vertex, from the last sweep (0 for fixed vertices):
-  /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (SPEC §6.2),
+  /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (docs/METHOD.md §6.2),
   /// in the same units as Displacement().
   const std::vector<double>& ErrorIndicator() const { return this->ErrorIndicatorValues; }
   /// |c|, the length the vertex moved.
   const std::vector<double>& Displacement() const { return this->DisplacementValues; }
-  /// |F| before the SPEC §5 projection (forceScale applied).
+  /// |F| before the docs/METHOD.md §5 projection (forceScale applied).
   const std::vector<double>& ExternalForceMagnitude() const { return this->ForceValues; }
 
   int NumberOfColors() const { return static_cast<int>(this->ClassOffsets.size()) - 1; }
@@ -117,7 +117,7 @@ public:
   const std::vector<int>& ColorOffsets() const { return this->ClassOffsets; }
   const std::vector<int>& ColorVertices() const { return this->ClassVertices; }
 
-  /// The umbrella operator of vertex v with the SPEC §6.4 weights (uniform when the
+  /// The umbrella operator of vertex v with the docs/METHOD.md §6.4 weights (uniform when the
   /// weights of v sum to zero): U(v) = sum w_i q_i / W - v. Exposed for tests.
   Vec3 Umbrella(int v) const;
 

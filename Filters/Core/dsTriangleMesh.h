@@ -39,7 +39,7 @@ inline unsigned long long EdgeKey(int a, int b)
     static_cast<unsigned int>(b);
 }
 
-/// Vertex labels of red-green refinement (SPEC §6.4). Initial and red vertices are N;
+/// Vertex labels of red-green refinement (docs/METHOD.md §6.4). Initial and red vertices are N;
 /// a green split labels its new midpoint M, the ends of the split edge C, the opposite corner D.
 enum VertexLabel : unsigned char
 {
@@ -50,7 +50,7 @@ enum VertexLabel : unsigned char
 };
 
 /// Finite-difference weight that a vertex labelled `self` gives a neighbour labelled
-/// `neighbor` (SPEC §6.4 table; row = self, column = neighbour).
+/// `neighbor` (docs/METHOD.md §6.4 table; row = self, column = neighbour).
 inline double UmbrellaWeight(unsigned char self, unsigned char neighbor)
 {
   static const double table[4][4] = {

@@ -1,4 +1,4 @@
-// The self-intersection rule of SPEC §5 matters: a subdivided box shrinking onto a
+// The self-intersection rule of docs/METHOD.md §5 matters: a subdivided box shrinking onto a
 // cube phantom (the paper's cube test, one level) keeps well-shaped triangles with the
 // rule, and measurably worse ones when the raw external force is applied
 // (vtkDeformableSurfaceFilter::ProjectExternalForceOff, a test-only switch).
@@ -109,7 +109,7 @@ Quality Run(vtkImageData* image, vtkPolyData* start, bool rule, double c, double
   filter->SetInputData(0, image);
   filter->SetInitialSurfaceData(start);
   filter->SetSigma(4.0);
-  filter->SetMaxLevels(0); // single level: this test is about the SPEC 5 rule
+  filter->SetMaxLevels(0); // single level: this test is about the docs/METHOD.md §5 rule
   filter->SetMaxSweepsPerLevel(1500);
   filter->SetProjectExternalForce(rule);
   // The paper's rule with the paper's force: the region force (beyond the paper) is off.

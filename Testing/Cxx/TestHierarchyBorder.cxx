@@ -1,4 +1,4 @@
-// Red-green border stability (SPEC §6.4): a flat equilateral plane refined adaptively in
+// Red-green border stability (docs/METHOD.md §6.4): a flat equilateral plane refined adaptively in
 // one patch (two levels, so greens are undone and re-made), then 500 sweeps with no
 // external force. With the label weight table the vertices on red-green borders stay
 // put (< 1% of their local edge length) and every triangle keeps a min angle >= 20
@@ -62,8 +62,8 @@ Drift Run(bool useLabelWeights, int sweeps)
   DS_CHECK(rg.Initialize(m, &err), err);
   const int euler = m.EulerCharacteristic();
   // The patch is a band across the sheet (level 1: 13 < y < 21, level 2: 15 < y < 19):
-  // its red-green borders run along a lattice direction, the case the SPEC §6.4 table
-  // balances. (Where a border turns a corner the table is not exact; SPEC §6.4 lets
+  // its red-green borders run along a lattice direction, the case the docs/METHOD.md §6.4 table
+  // balances. (Where a border turns a corner the table is not exact; docs/METHOD.md §6.4 lets
   // those rare cases go, and the sheet's fixed rim keeps them out of this test.)
   for (double halfWidth : { 4.0, 2.0 })
   {

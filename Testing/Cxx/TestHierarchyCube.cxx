@@ -1,4 +1,4 @@
-// The paper's cube test (SPEC §8) as measured assertions: a 128^3 volume, value 1 in a
+// The paper's cube test (docs/METHOD.md §8) as measured assertions: a 128^3 volume, value 1 in a
 // central cube of half-side 16 voxels, the start surface the box enclosing the whole
 // volume. Halving sigma reaches the cube; a constant small sigma (1 voxel) leaves the
 // coarse surface to internal forces until it nears the cube (the paper's Fig. 12); and

@@ -1,4 +1,4 @@
-// Red-green refinement (SPEC §6.3-6.4): exact counts for one marked triangle, undoing a
+// Red-green refinement (docs/METHOD.md §6.3-6.4): exact counts for one marked triangle, undoing a
 // marked green, uniform refinement, random adaptive marks over several levels on closed
 // and open meshes, a point-focused cascade; after every step the topology invariants,
 // zero T-vertices and the label rules are checked independently of the refiner's code.

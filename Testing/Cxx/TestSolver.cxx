@@ -115,7 +115,7 @@ int TestSolver(int, char*[])
     DS_CHECK_LE(s.NumberOfColors(), 24, "number of colours");
   }
 
-  // --- weighted umbrella (SPEC §6.4): a C vertex gives N/C/M neighbours weight 2, D weight 1 ---
+  // --- weighted umbrella (docs/METHOD.md §6.4): a C vertex gives N/C/M neighbours weight 2, D weight 1 ---
   {
     TriangleMesh m;
     // A fan: centre 0 and a hexagon 1..6 in the plane z = 0, plus one lifted vertex.
