@@ -477,7 +477,7 @@ int vtkDeformableSurfaceFilter::RequestData(
   const dsurf::InitialSigmaChoice& choice = solver.GetInitialSigmaChoice();
   vtkDebugMacro(<< "sigma_0 " << (solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma)
                 << (choice.SpansVolume ? ": the start spans the volume (extent / 6)" : "")
-                << (choice.Rays > 0 ? ": half the 90th-percentile distance " + std::to_string(choice.StartDistance) +
+                << (choice.Rays > 0 ? ": the 90th-percentile distance " + std::to_string(choice.StartDistance) +
                         " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) + " of " +
                         std::to_string(choice.Rays) + " rays met one)" : std::string()));
   vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()

@@ -405,6 +405,31 @@ void BuildTetrahedraOutput(const SeedComplex& complex, const std::vector<unsigne
   }
 }
 
+// Indices of the first `enough` points of `points` that are pairwise farther apart than
+// tolerance x the bounding-box diagonal (vtkDelaunay3D's merge distance), in input order.
+std::vector<vtkIdType> FirstDistinctPoints(vtkPolyData* points, double tolerance, std::size_t enough)
+{
+  std::vector<vtkIdType> distinct;
+  const double merge = tolerance * std::sqrt(points->GetLength2());
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints() && distinct.size() < enough; ++i)
+  {
+    double x[3];
+    points->GetPoint(i, x);
+    bool repeated = false;
+    for (vtkIdType j : distinct)
+    {
+      double y[3];
+      points->GetPoint(j, y);
+      repeated = repeated || std::sqrt(vtkMath::Distance2BetweenPoints(x, y)) <= merge;
+    }
+    if (!repeated)
+    {
+      distinct.push_back(i);
+    }
+  }
+  return distinct;
+}
+
 // One to three points: a sphere of `radius` around each (an icosahedron subdivided twice,
 // projected onto the sphere: 162 vertices, 320 well-shaped triangles), outward-oriented,
 // each sphere's vertices carrying its point's SeedPointId. Overlapping spheres are warned
@@ -607,10 +632,21 @@ int vtkDelaunaySeedSurface::RequestData(
     vtkErrorMacro("No point with finite coordinates: nothing to seed from.");
     return 1;
   }
-  if (inputId.size() < 4)
+  const std::vector<vtkIdType> distinct = FirstDistinctPoints(finite, this->Tolerance, 4);
+  if (distinct.size() < 4)
   {
-    // Too few points for a tetrahedron: one click, a small sphere around each point.
-    BuildSphereSeeds(this, finite, inputId, this->SeedRadius, surfaceOut);
+    // Too few points for a tetrahedron (a click, or the same click twice): one small sphere
+    // around each distinct point.
+    vtkNew<vtkPoints> centres;
+    std::vector<vtkIdType> centreIds;
+    for (vtkIdType p : distinct)
+    {
+      centres->InsertNextPoint(finite->GetPoint(p));
+      centreIds.push_back(inputId[p]);
+    }
+    vtkNew<vtkPolyData> clicks;
+    clicks->SetPoints(centres);
+    BuildSphereSeeds(this, clicks, centreIds, this->SeedRadius, surfaceOut);
     return 1;
   }
 

@@ -76,18 +76,24 @@ bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& ge
 {
   const MultilevelParameters& P = this->Parameters;
   double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(hi - lo))
+  {
+    this->Warnings.push_back("the region force is off: the intensity range must be finite");
+    return false;
+  }
   if (!(lo < hi) && StartSpansImage(geometry, mesh))
   {
     // A box around the whole volume has no outside to tell its object from: without a
     // given range the region force stays off (the paper's edge-only method).
+    this->Warnings.push_back("the region force is off: a start spanning the whole image has no "
+                             "outside to estimate the object's intensity range from; give IntensityRange");
     return false;
   }
   if (!(lo < hi))
   {
     RangeEstimate estimate;
     std::string msg;
-    const double outward = mesh.IsClosed() && mesh.SignedVolume() < 0 ? -1.0 : 1.0;
-    if (!EstimateIntensityRange(scalars, geometry, mesh, outward, estimate, &msg))
+    if (!EstimateIntensityRange(scalars, geometry, mesh, 1.0, estimate, &msg))
     {
       this->Warnings.push_back("the region force is off: no intensity range was given and none could be "
                                "estimated (" + msg + ")");
@@ -157,9 +163,22 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     return fail(msg);
   }
   const double firstSigma = sigma;
+  if (P.RegionWeight > 0)
+  {
+    // The region force pushes along the outward normal (and the range estimate looks just
+    // outside the start): every closed piece must face out.
+    const int flipped = mesh.OrientPiecesOutward();
+    if (flipped > 0)
+    {
+      this->Warnings.push_back("the region force needs outward normals: " + std::to_string(flipped) +
+        " triangle(s) of inward-oriented pieces were reversed");
+      if (!refiner.Initialize(mesh, &msg))
+      {
+        return fail("the reoriented initial surface is not a manifold triangle mesh: " + msg);
+      }
+    }
+  }
   const bool region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
-  // The region force pushes along the outward normal: flip it for an inward-oriented start.
-  const double regionSign = mesh.IsClosed() && mesh.SignedVolume() < 0 ? -1.0 : 1.0;
   if (P.InitialEdgeSigmaRatio > 0)
   {
     // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
@@ -231,7 +250,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
       // strength it presses the surface into every narrow dark gap of the object).
       const double decay = std::min(1.0, sigma / firstSigma);
       solver.SetRegionForce(scalars, geometry, this->UsedRange[0], this->UsedRange[1],
-        decay * regionSign * P.RegionWeight * h, this->RegionOutwardOnly);
+        decay * P.RegionWeight * h, this->RegionOutwardOnly);
     }
 
     LevelRecord rec;
@@ -290,6 +309,11 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     // Folds the forces left (two parts of the surface pushed together) are smoothed open
     // before the level's estimator is read and the mesh is refined (dsUntangle.h).
     rec.Folds = Untangle(mesh);
+    if (rec.Folds.After > 0)
+    {
+      this->Warnings.push_back(std::to_string(rec.Folds.After) + " pairs of triangles still intersect after level " +
+        std::to_string(level) + " (" + std::to_string(rec.Folds.Before) + " before smoothing them)");
+    }
     this->ErrorIndicator = solver.ErrorIndicator();
     this->Displacement = solver.Displacement();
     this->ExternalForce = solver.ExternalForceMagnitude();

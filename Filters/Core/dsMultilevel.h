@@ -55,8 +55,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double ForceWeight = 1.0;     ///< multiplies h * sigma * (-grad P)
   /// sigma_0: InitialSigma (physical units) when > 0; else InitialSigmaFraction * the mean
   /// extent of the volume when > 0 (the paper's 1/6); else (0, the default) chosen from the
-  /// start (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, about
-  /// half the start's distance to its nearest edges for any other.
+  /// start (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the
+  /// start's (90th-percentile) distance to its nearest edges for any other.
   double InitialSigmaFraction = 0.0;
   double InitialSigma = 0.0;
   /// How the edge strength is normalised in the potential (dsScaleSpace.h).

@@ -48,10 +48,13 @@ std::vector<float> ValuesInside(const float* scalars, const ImageGeometry& g, co
     {
       for (int j = j0; j <= j1; ++j)
       {
-        const double u = ((j - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (k - a[2])) / det;
-        const double v = ((b[1] - a[1]) * (k - a[2]) - (j - a[1]) * (b[2] - a[2])) / det;
-        // Half-open on one side so a line through a shared edge is counted once.
-        if (u >= 0 && v >= 0 && u + v < 1)
+        // The row's line is moved by a tiny irrational offset, so it never passes exactly
+        // through a vertex or an edge (picked points often lie on whole voxel indices): every
+        // crossing then belongs to exactly one triangle.
+        const double y = j + 1.1e-7 * M_SQRT2, z = k + 1.3e-7 * M_PI;
+        const double u = ((y - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (z - a[2])) / det;
+        const double v = ((b[1] - a[1]) * (z - a[2]) - (y - a[1]) * (b[2] - a[2])) / det;
+        if (u >= 0 && v >= 0 && u + v <= 1)
         {
           crossings[j + static_cast<std::size_t>(ny) * k].push_back(a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]));
         }

@@ -7,9 +7,9 @@
 // and ITK-SNAP's thresholding speed image (Yushkevich et al. 2006). The speed is
 //   s(I) = clamp(min(I - lo, hi - I) / w, -1, 1),   w = RegionTransition * (hi - lo),
 // +1 well inside [lo, hi], -1 well outside, 0 on the range's ends: the surface stops where the
-// image crosses lo (or hi). The solver adds RegionWeight * h * s * n (h the level's mean edge
-// length, n the outward unit normal) to the edge force before the paper's projection rule, so
-// it cannot fold the surface either.
+// image crosses lo (or hi). The solver adds RegionWeight * h * min(1, sigma_l / sigma_0) * s * n
+// (h the level's mean edge length, n the outward unit normal; the force fades as sigma halves)
+// to the edge force before the paper's projection rule, so it cannot fold the surface either.
 #ifndef dsRegion_h
 #define dsRegion_h
 
@@ -30,7 +30,7 @@ inline double RegionSpeed(double intensity, double lo, double hi)
 {
   const double w = RegionTransition * (hi - lo);
   const double s = std::min(intensity - lo, hi - intensity) / w;
-  return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : s);
+  return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : (s == s ? s : 0.0)); // NaN: no force
 }
 
 /// What the estimate saw, for messages and tests.

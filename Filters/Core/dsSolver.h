@@ -76,7 +76,7 @@ public:
 
   /// The region force (dsRegion.h): scale * RegionSpeed(I(x), low, high) * n at every vertex,
   /// I sampled trilinearly in `scalars` (one float per voxel of `geometry`, not copied), n the
-  /// unit area-weighted normal (scale < 0 for an inward-oriented surface). It is added to the
+  /// unit area-weighted normal (outward for an outward-oriented surface). It is added to the
   /// edge force before the projection rule. scale 0 or no scalars: none. outwardOnly: the
   /// negative speeds are dropped (grow inside the range, leave the rest to the edge force).
   void SetRegionForce(const float* scalars, const ImageGeometry& geometry, double low, double high, double scale,

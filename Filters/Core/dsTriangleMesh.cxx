@@ -242,6 +242,61 @@ int TriangleMesh::OrientConsistently()
   return flipped;
 }
 
+int TriangleMesh::OrientPiecesOutward()
+{
+  // Pieces = triangles connected across edges; each closed piece with a negative signed
+  // volume is turned inside out.
+  const int nTri = this->NumberOfTriangles();
+  std::vector<int> piece(nTri, -1), queue;
+  std::vector<double> volume;
+  std::vector<char> closed;
+  for (int seed = 0; seed < nTri; ++seed)
+  {
+    if (piece[seed] >= 0)
+    {
+      continue;
+    }
+    const int id = static_cast<int>(volume.size());
+    volume.push_back(0.0);
+    closed.push_back(1);
+    queue.assign(1, seed);
+    piece[seed] = id;
+    for (size_t head = 0; head < queue.size(); ++head)
+    {
+      const int t = queue[head];
+      const auto& tri = this->Triangles[t];
+      volume[id] += Dot(this->Points[tri[0]], Cross(this->Points[tri[1]], this->Points[tri[2]]));
+      for (int e : this->TriangleEdges[t])
+      {
+        const int other = this->EdgeTriangles[e][0] == t ? this->EdgeTriangles[e][1] : this->EdgeTriangles[e][0];
+        if (other < 0)
+        {
+          closed[id] = 0;
+        }
+        else if (piece[other] < 0)
+        {
+          piece[other] = id;
+          queue.push_back(other);
+        }
+      }
+    }
+  }
+  int flipped = 0;
+  for (int t = 0; t < nTri; ++t)
+  {
+    if (closed[piece[t]] && volume[piece[t]] < 0)
+    {
+      std::swap(this->Triangles[t][1], this->Triangles[t][2]);
+      ++flipped;
+    }
+  }
+  if (flipped > 0)
+  {
+    this->BuildTopology(nullptr);
+  }
+  return flipped;
+}
+
 int TriangleMesh::CountNonManifoldVertices() const
 {
   // Walk each vertex's triangles across shared edges; more than one connected

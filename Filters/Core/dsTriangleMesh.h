@@ -104,6 +104,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   /// returns the number of triangles flipped (a non-orientable piece stays as it is
   /// where the walk meets itself).
   int OrientConsistently();
+  /// Turns every closed piece whose signed volume is negative inside out (its triangles
+  /// reversed), so normals point out of every closed piece. Rebuilds the topology and returns
+  /// the number of triangles flipped. Needs a consistent orientation per piece.
+  int OrientPiecesOutward();
   int CountNonManifoldVertices() const; ///< vertices whose triangles form more than one fan
   int EulerCharacteristic() const { return this->NumberOfPoints() - static_cast<int>(this->Edges.size()) + this->NumberOfTriangles(); }
   /// Closed volume by the divergence theorem (positive when oriented outward).

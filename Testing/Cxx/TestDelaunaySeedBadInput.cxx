@@ -77,6 +77,20 @@ int main()
   o = Run(three, nullptr, 6); // SeedRadius 5 around points 1 apart: the spheres overlap
   DS_CHECK(o.Errors == 0 && o.Warnings == 3 && o.Triangles == 3 * 320, "3 close points -> a warning per overlap");
 
+  std::cout << "The same click twice, and four picks of which two coincide:" << std::endl;
+  vtkNew<vtkPoints> twice;
+  twice->InsertNextPoint(5, 5, 5);
+  twice->InsertNextPoint(5, 5, 5);
+  o = Run(twice, nullptr, 2);
+  DS_CHECK(o.Errors == 0 && o.Triangles == 320, "a repeated click -> one seed sphere");
+  vtkNew<vtkPoints> fourWithRepeat;
+  fourWithRepeat->InsertNextPoint(0, 0, 0);
+  fourWithRepeat->InsertNextPoint(20, 0, 0);
+  fourWithRepeat->InsertNextPoint(0, 20, 0);
+  fourWithRepeat->InsertNextPoint(20, 0, 0);
+  o = Run(fourWithRepeat, nullptr, 6);
+  DS_CHECK(o.Errors == 0 && o.Triangles == 3 * 320, "four picks, three distinct -> three seed spheres");
+
   std::cout << "Collinear:" << std::endl;
   vtkNew<vtkPoints> line;
   for (int i = 0; i < 10; ++i)
@@ -104,7 +118,7 @@ int main()
     same->InsertNextPoint(5, 5, 5);
   }
   o = Run(same);
-  DS_CHECK(o.Errors == 1 && o.Triangles == 0, "coincident -> error, empty");
+  DS_CHECK(o.Errors == 0 && o.Triangles == 320, "four coincident points -> one seed sphere (a repeated click)");
 
   std::cout << "Cube corners, each twice, plus a NaN and an infinite point:" << std::endl;
   vtkNew<vtkPoints> dup;

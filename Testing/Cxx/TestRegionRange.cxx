@@ -1,0 +1,90 @@
+// The intensity range the region force estimates from a start surface (dsRegion.h), on the
+// core: a box start whose vertices lie exactly on voxel centres (picked points often do),
+// around a bright cube in a dark image with a brighter object further out:
+// - the voxels counted inside are those of the box and nothing else (no scan line paired
+//   wrongly where it passes through the box's vertices and edges);
+// - the range's low end lies midway between the object and its background, its high end
+//   below the brighter neighbour;
+// - a start inside one region (no contrast with its outside) gives median -+ 3 s;
+// - an inward-oriented start gives the same range once its pieces are turned outward.
+#include "DSTestHelpers.h"
+#include "TestSolverMeshes.h"
+
+#include "dsRegion.h"
+#include "dsScaleSpace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace dsurf;
+
+int TestRegionRange(int, char*[])
+{
+  const int n = 40;
+  ImageGeometry g;
+  g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = n;
+  // 100 in the cube [10, 26]^3 (voxel centres), 0 around it, 250 in a slab x >= 34.
+  std::vector<float> image(static_cast<size_t>(n) * n * n, 0.f);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        float v = 0.f;
+        if (i >= 10 && i <= 26 && j >= 10 && j <= 26 && k >= 10 && k <= 26)
+          v = 100.f;
+        if (i >= 34)
+          v = 250.f;
+        image[(static_cast<size_t>(k) * n + j) * n + i] = v;
+      }
+
+  // A box from 8 to 28 (half side 10 around 18): vertices on whole voxel indices.
+  TriangleMesh box = dstest::MakeCubeSurface(3, 10.0, { 18.0, 18.0, 18.0 });
+  std::string error;
+  DS_CHECK(box.BuildTopology(&error), error);
+  RangeEstimate e;
+  DS_CHECK(EstimateIntensityRange(image.data(), g, box, 1.0, e, &error), error);
+  std::cout << "box start: " << e.Samples << " voxels inside, median " << e.Median << ", range [" << e.Range[0]
+            << ", " << e.Range[1] << "], separation " << e.Separation << std::endl;
+  // Centres strictly inside (9..27)^3 = 19^3; those on the box's faces (8 or 28) may count.
+  DS_CHECK_GE(e.Samples, 19 * 19 * 19, "voxels inside the box: at least those strictly inside");
+  DS_CHECK_LE(e.Samples, 21 * 21 * 21, "voxels inside the box: at most those within its closed bounds");
+  DS_CHECK(e.Contrast, "object against background");
+  DS_CHECK_LE(std::abs(e.Range[0] - 50.0), 2.0, "range low end midway between object (100) and background (0)");
+  DS_CHECK(e.Range[1] >= 100.0 && e.Range[1] < 250.0, "range high end above the object, below the bright slab");
+
+  // The same box, inward-oriented, turned outward first: the same estimate.
+  TriangleMesh inward = box;
+  for (auto& t : inward.Triangles)
+  {
+    std::swap(t[1], t[2]);
+  }
+  DS_CHECK(inward.BuildTopology(&error), error);
+  DS_CHECK(inward.OrientPiecesOutward() == inward.NumberOfTriangles(), "every triangle of the inward box reversed");
+  RangeEstimate f;
+  DS_CHECK(EstimateIntensityRange(image.data(), g, inward, 1.0, f, &error), error);
+  DS_CHECK(f.Samples == e.Samples && f.Range[0] == e.Range[0] && f.Range[1] == e.Range[1],
+    "inward start turned outward: the same estimate");
+
+  // A small box inside the object (a click): no contrast, median -+ 3 s.
+  TriangleMesh click = dstest::MakeCubeSurface(2, 3.0, { 18.0, 18.0, 18.0 });
+  DS_CHECK(click.BuildTopology(&error), error);
+  RangeEstimate c;
+  DS_CHECK(EstimateIntensityRange(image.data(), g, click, 1.0, c, &error), error);
+  std::cout << "click: median " << c.Median << ", spread " << c.Spread << ", range [" << c.Range[0] << ", "
+            << c.Range[1] << "]" << std::endl;
+  DS_CHECK(!c.Contrast, "a start inside one region: no contrast");
+  DS_CHECK(c.Median == 100.0 && c.Range[0] < 100.0 && c.Range[1] > 100.0, "click: the region's value in the range");
+  DS_CHECK(c.Range[1] < 250.0 && c.Range[0] > 0.0, "click: neither the background nor the slab");
+
+  // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
+  DS_CHECK(RegionSpeed(75, 50, 150) == 1.0 && RegionSpeed(0, 50, 150) == -1.0 && RegionSpeed(50, 50, 150) == 0.0,
+    "speed +1 inside, -1 outside, 0 at the ends");
+  DS_CHECK(RegionSpeed(std::nan(""), 50, 150) == 0.0, "NaN intensity: no force");
+  return dstest::Result("TestRegionRange");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestRegionRange(argc, argv);
+}
