@@ -1,0 +1,42 @@
+from paraview.simple import *  # noqa: F401,F403
+import os
+# The README's one-click workflow in the GUI, for its picture: run with
+#   scripts/gui_screenshot.sh out.png
+# (paraview --script=Examples/gui_one_click.py under Xvfb, then a picture of the whole window).
+root = os.environ.get("DS_SOURCE_DIR", os.getcwd())
+LoadPlugin(os.environ.get("DS_PLUGIN", os.path.join(root, "build/lib/paraview-5.11/plugins/DeformableSurface/DeformableSurface.so")),
+           remote=False, ns=globals())
+head = OpenDataFile("/usr/share/mricron/templates/ch2.nii.gz")
+head.UpdatePipeline()
+view = GetActiveViewOrCreate("RenderView")
+sl = Slice(registrationName="Slice", Input=head)
+sl.SliceType = "Plane"
+sl.SliceType.Origin = [90, 110, 90]
+sl.SliceType.Normal = [0, 1, 0]
+d = Show(sl, view)
+ColorBy(d, ("POINTS", "NIFTI"))
+lut = GetColorTransferFunction("NIFTI"); lut.ApplyPreset("Grayscale", True); lut.RescaleTransferFunction(0, 140)
+d.SetScalarBarVisibility(view, False)
+table = CSVReader(registrationName="clicked point", FileName=[os.path.join(root, "Examples", "colin27_click.csv")])
+pts = TableToPoints(registrationName="TableToPoints", Input=table, XColumn="x", YColumn="y", ZColumn="z")
+pd = Show(pts, view); pd.SetRepresentationType("Points"); pd.PointSize = 14; pd.RenderPointsAsSpheres = 1; pd.AmbientColor = pd.DiffuseColor = [1, 0.2, 0.2]
+seed = DelaunaySeedSurface(registrationName="DelaunaySeedSurface", Input=pts)
+sd = Show(seed, view); sd.SetRepresentationType("Wireframe"); sd.AmbientColor = sd.DiffuseColor = [1, 1, 0.3]
+ds = DeformableSurface(registrationName="DeformableSurface", Input=head, InitialSurface=seed)
+ds.Scalars = ["POINTS", "NIFTI"]
+ds.RegionWeight = 1.0
+ds.IntensityRange = [62, 130]
+trace = Slice(registrationName="trace", Input=ds)
+trace.SliceType = "Plane"
+trace.SliceType.Origin = [90, 110, 90]
+trace.SliceType.Normal = [0, 1, 0]
+td = Show(trace, view); td.ColorArrayName = ["POINTS", ""]; td.AmbientColor = td.DiffuseColor = [0.3, 0.85, 1.0]
+td.LineWidth = 3; td.Ambient, td.Diffuse = 1.0, 0.0; td.Position = [0, -1, 0]
+pd.Position = [0, -2, 0]
+view.OrientationAxesVisibility = 0
+view.CameraPosition = [90, -450, 90]; view.CameraFocalPoint = [90, 110, 90]; view.CameraViewUp = [0, 0, 1]
+view.CameraParallelProjection = 1
+view.ResetCamera(False)
+view.CameraParallelScale = 95
+SetActiveSource(ds)
+Render()

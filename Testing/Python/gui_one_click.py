@@ -1,0 +1,122 @@
+"""The real ParaView GUI client, tested: run as
+    paraview --dr --script=gui_one_click.py --exit      (under Xvfb: scripts/with_xvfb.sh)
+with DS_PLUGIN set. Inside the GUI's own Python it loads the plugin and builds the README's
+one-click workflow as a user does: the whole Colin27 head (the plugin's NIfTI reader), a Slice,
+the clicked point (CSV Reader -> Table To Points), Delaunay Seed Surface (a seed sphere),
+Deformable Surface (RegionWeight 1, IntensityRange 62 130), the surface's trace on the slice.
+Checks: the proxies exist in the GUI's session and the surface is one closed piece around the
+click of the expected size; the render view matches Testing/Baseline/gui_one_click.png
+(vtkImageDifference, AllowShift, per-pixel threshold 20, thresholded error <= 10, as
+pvbatch_delaunay_seed_image.py explains). The GUI exits with 0 whatever the script does, so the
+verdict goes to DS_TEST_OUTPUT/gui_one_click.result ("PASSED" or "FAILED: ..."), which the ctest
+command reads. A missing baseline is written and the test fails: look at it, then git add it."""
+import os
+import shutil
+import traceback
+
+out_dir = os.environ.get("DS_TEST_OUTPUT", "/tmp")
+result_file = os.path.join(out_dir, "gui_one_click.result")
+
+
+def main():
+    from paraview import servermanager
+    from paraview.simple import (CSVReader, GetActiveViewOrCreate, GetColorTransferFunction, LoadPlugin,
+                                 OpenDataFile, Render, SaveScreenshot, SetActiveSource, Show, Slice,
+                                 TableToPoints)
+    from vtkmodules.vtkImagingCore import vtkImageDifference
+    from vtkmodules.vtkIOImage import vtkPNGReader
+
+    # The GUI runs the script without __file__: the source tree comes from DS_BASELINE_DIR.
+    baseline_dir = os.environ["DS_BASELINE_DIR"]
+    examples = os.path.join(baseline_dir, "..", "..", "Examples")
+    baseline = os.path.join(baseline_dir, "gui_one_click.png")
+    LoadPlugin(os.environ["DS_PLUGIN"], remote=False, ns=globals())
+    namespace = globals()
+    head = OpenDataFile("/usr/share/mricron/templates/ch2.nii.gz")
+    if head is None:
+        return "FAILED: the plugin's NIfTI reader did not open ch2.nii.gz (mricron-data missing?)"
+    view = GetActiveViewOrCreate("RenderView")
+    plane = dict(Origin=[90.0, 110.0, 90.0], Normal=[0.0, 1.0, 0.0])
+    cut = Slice(registrationName="Slice", Input=head)
+    cut.SliceType = "Plane"
+    cut.SliceType.Origin, cut.SliceType.Normal = plane["Origin"], plane["Normal"]
+    shown = Show(cut, view)
+    shown.ColorArrayName = ["POINTS", "NIFTI"]
+    grey = GetColorTransferFunction("NIFTI")
+    grey.ApplyPreset("Grayscale", True)
+    grey.RescaleTransferFunction(0.0, 140.0)
+    shown.LookupTable = grey
+    shown.Ambient, shown.Diffuse = 1.0, 0.0
+    table = CSVReader(registrationName="clicked point", FileName=[os.path.join(examples, "colin27_click.csv")])
+    points = TableToPoints(registrationName="TableToPoints", Input=table, XColumn="x", YColumn="y", ZColumn="z")
+    seed = namespace["DelaunaySeedSurface"](registrationName="DelaunaySeedSurface", Input=points)
+    surface = namespace["DeformableSurface"](registrationName="DeformableSurface", Input=head, InitialSurface=seed)
+    surface.Scalars = ["POINTS", "NIFTI"]
+    surface.RegionWeight = 1.0
+    surface.IntensityRange = [62.0, 130.0]
+    trace = Slice(registrationName="trace", Input=surface)
+    trace.SliceType = "Plane"
+    trace.SliceType.Origin, trace.SliceType.Normal = plane["Origin"], plane["Normal"]
+    line = Show(trace, view)
+    line.ColorArrayName = ["POINTS", ""]
+    line.AmbientColor = line.DiffuseColor = [0.2, 0.85, 1.0]
+    line.Ambient, line.Diffuse = 1.0, 0.0
+    line.LineWidth = 3.0
+    line.Position = [0.0, -1.0, 0.0]
+    dot = Show(points, view)
+    dot.SetRepresentationType("Points")
+    dot.PointSize = 12.0
+    dot.RenderPointsAsSpheres = 1
+    dot.ColorArrayName = ["POINTS", ""]
+    dot.AmbientColor = dot.DiffuseColor = [1.0, 0.2, 0.2]
+    dot.Position = [0.0, -2.0, 0.0]
+    view.OrientationAxesVisibility = 0
+    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [90, -450, 90], plane["Origin"], [0, 0, 1]
+    view.CameraParallelProjection = 1
+    view.CameraParallelScale = 95.0
+    SetActiveSource(surface)
+    Render(view)
+
+    data = servermanager.Fetch(surface, arg1=0)
+    problems = []
+    if not (5000 <= data.GetNumberOfPoints() <= 50000):
+        problems.append("surface of %d points" % data.GetNumberOfPoints())
+    bounds = data.GetBounds()
+    if not (bounds[1] - bounds[0] > 120 and bounds[5] - bounds[4] > 100):
+        problems.append("the click did not grow to the brain: bounds %s" % (bounds,))
+    selfx = data.GetFieldData().GetArray("SelfIntersections")
+    if selfx is None or selfx.GetTuple1(0) != 0:
+        problems.append("self-intersections")
+
+    image = os.path.join(out_dir, "gui_one_click.png")
+    SaveScreenshot(image, view, ImageResolution=[500, 500], TransparentBackground=0)
+    if not os.path.exists(baseline):
+        shutil.copyfile(image, baseline)
+        problems.append("no baseline: wrote %s; look at it and git add it" % baseline)
+    else:
+        readers = []
+        for path in (image, baseline):
+            reader = vtkPNGReader()
+            reader.SetFileName(path)
+            reader.Update()
+            readers.append(reader)
+        diff = vtkImageDifference()
+        diff.SetInputConnection(readers[0].GetOutputPort())
+        diff.SetImageConnection(readers[1].GetOutputPort())
+        diff.SetThreshold(20)
+        diff.SetAllowShift(True)
+        diff.SetAveraging(False)
+        diff.Update()
+        if diff.GetThresholdedError() > 10.0:
+            problems.append("the view differs from %s (thresholded error %.2f)" % (baseline, diff.GetThresholdedError()))
+    if problems:
+        return "FAILED: " + "; ".join(problems)
+    return "PASSED: %d points, bounds %s" % (data.GetNumberOfPoints(), tuple(round(b) for b in bounds))
+
+
+try:
+    verdict = main()
+except Exception:
+    verdict = "FAILED: " + traceback.format_exc()
+with open(result_file, "w") as f:
+    f.write(verdict + "\n")
