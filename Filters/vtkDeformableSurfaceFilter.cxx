@@ -393,9 +393,15 @@ int vtkDeformableSurfaceFilter::RequestData(
     return 1;
   }
 
-  // --- the initial surface ---
+  // --- the initial surface: the input, or the last result (warm start) when only the
+  // filter's own parameters changed since ---
+  const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
+  const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
+    this->LastImage == image && this->LastImageTime == image->GetMTime() && this->LastSurface == surface &&
+    this->LastSurfaceTime == surface->GetMTime();
+  vtkDebugMacro(<< (warm ? "Warm start from the last result." : "Start from the initial surface."));
   dsurf::TriangleMesh mesh;
-  if (!BuildMesh(surface, mesh, error))
+  if (!BuildMesh(warm ? this->LastResult.Get() : surface, mesh, error))
   {
     vtkErrorMacro("Bad initial surface: " << error << ".");
     return 1;
@@ -502,7 +508,21 @@ int vtkDeformableSurfaceFilter::RequestData(
     fd->AddArray(usedRange);
   }
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
+  AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
   columns.AddTo(table);
+  if (this->ContinueFromLastResult && !distributed && !solver.GetAborted())
+  {
+    // A copy: downstream filters must not be able to change where the next run starts.
+    vtkNew<vtkPolyData> shape;
+    shape->SetPoints(output->GetPoints());
+    shape->SetPolys(output->GetPolys());
+    this->LastResult = vtkSmartPointer<vtkPolyData>::New();
+    this->LastResult->DeepCopy(shape);
+    this->LastImage = image;
+    this->LastImageTime = image->GetMTime();
+    this->LastSurface = surface;
+    this->LastSurfaceTime = surface->GetMTime();
+  }
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -532,5 +552,6 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckTopology: " << this->CheckTopology << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ProjectExternalForce: " << this->ProjectExternalForce << "\n";
+  os << indent << "ContinueFromLastResult: " << this->ContinueFromLastResult << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -42,7 +42,7 @@
  * ExternalForce (|F|, region force included), ErrorIndicator (|internal part of c| of the last
  * sweep), RefinementLevel, VertexLabel, and field data Sweeps, Levels, InitialSubdivisions,
  * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, from a bounding-volume
- * hierarchy), InitialSigma, Sigma (the last), Converged and, with the region force,
+ * hierarchy), InitialSigma, Sigma (the last), Converged, WarmStart and, with the region force,
  * IntensityRange.
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
@@ -90,6 +90,7 @@
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // for the warm start's copy
 
 class vtkMultiProcessController;
 class vtkTable;
@@ -307,6 +308,20 @@ public:
 
   ///@{
   /**
+   * Warm start, the paper's interactive tuning (default off): when on, an update after a
+   * change of the filter's own parameters (Tau, Gamma, the weights, Sigma, the region force,
+   * the hierarchy...) starts from the last output surface instead of the initial surface; a
+   * change of either input (a new image or a new start surface) starts over. Serial only: a
+   * distributed run always starts from the initial surface. Memory: one copy of the last output
+   * (points and triangles).
+   */
+  vtkSetMacro(ContinueFromLastResult, bool);
+  vtkGetMacro(ContinueFromLastResult, bool);
+  vtkBooleanMacro(ContinueFromLastResult, bool);
+  ///@}
+
+  ///@{
+  /**
    * Processes whose surface pieces are gathered (default: the global controller). nullptr
    * or one process: serial behaviour.
    */
@@ -350,6 +365,13 @@ protected:
   int NumberOfThreads = 0;
   bool ProjectExternalForce = true;
   vtkMultiProcessController* Controller = nullptr;
+  bool ContinueFromLastResult = false;
+
+  // The warm start's state: the last output and the inputs it came from.
+  vtkSmartPointer<vtkPolyData> LastResult;
+  vtkMTimeType LastImageTime = 0, LastSurfaceTime = 0;
+  const void* LastImage = nullptr;
+  const void* LastSurface = nullptr;
 
 private:
   vtkDeformableSurfaceFilter(const vtkDeformableSurfaceFilter&) = delete;
