@@ -223,6 +223,33 @@ vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
   return piece;
 }
 
+/// The mesh's points and triangles as vtkPolyData with field data Sweeps (a time step).
+vtkSmartPointer<vtkPolyData> MeshSnapshot(const dsurf::TriangleMesh& mesh, int sweeps)
+{
+  auto snapshot = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh.NumberOfPoints());
+  for (int i = 0; i < mesh.NumberOfPoints(); ++i)
+  {
+    points->SetPoint(i, mesh.Points[i].data());
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(mesh.NumberOfTriangles(), 3 * mesh.NumberOfTriangles());
+  for (const auto& t : mesh.Triangles)
+  {
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  snapshot->SetPoints(points);
+  snapshot->SetPolys(polys);
+  vtkNew<vtkIntArray> count;
+  count->SetName("Sweeps");
+  count->InsertNextValue(sweeps);
+  snapshot->GetFieldData()->AddArray(count);
+  return snapshot;
+}
+
 template <typename ArrayT, typename T>
 void AddFieldValue(vtkFieldData* fd, const char* name, T value)
 {
@@ -300,6 +327,48 @@ int vtkDeformableSurfaceFilter::FillOutputPortInformation(int port, vtkInformati
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
   return 1;
+}
+
+//------------------------------------------------------------------------------
+// AnimateSweeps: time steps 0, S, 2S, ... (the time value is the number of sweeps) up to the
+// schedule's cap, at most 1000 of them.
+int vtkDeformableSurfaceFilter::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!this->AnimateSweeps)
+  {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    return 1;
+  }
+  const long long S = this->SweepsPerTimeStep;
+  long long bound = static_cast<long long>(this->MaxLevels + 1) * this->MaxSweepsPerLevel;
+  if (this->MaxSweeps > 0)
+  {
+    bound = std::min<long long>(bound, this->MaxSweeps);
+  }
+  const long long steps = std::min<long long>(1000, (bound + S - 1) / S);
+  std::vector<double> times(static_cast<std::size_t>(steps + 1));
+  for (long long k = 0; k <= steps; ++k)
+  {
+    times[static_cast<std::size_t>(k)] = static_cast<double>(k * S);
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+  const double range[2] = { 0.0, times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+void vtkDeformableSurfaceFilter::ServeTimeStep(double t, vtkPolyData* output)
+{
+  const double k = t < 0 ? -1.0 : std::floor(t / this->SweepsPerTimeStep + 1e-9);
+  const bool snapshot = k >= 0 && k < static_cast<double>(this->Snapshots.size());
+  output->ShallowCopy(snapshot ? this->Snapshots[static_cast<std::size_t>(k)].Get() : this->AnimationResult.Get());
+  if (t >= 0)
+  {
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -396,6 +465,19 @@ int vtkDeformableSurfaceFilter::RequestData(
   // --- the initial surface: the input, or the last result (warm start) when only the
   // filter's own parameters changed since ---
   const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const double requestedTime = this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    : -1.0;
+  const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
+  if (this->AnimateSweeps && this->AnimationResult && this->AnimationInputs[0] == image &&
+    this->AnimationInputs[1] == surface && std::equal(key, key + 3, this->AnimationKey))
+  {
+    vtkDebugMacro(<< "Time " << requestedTime << " from the cache.");
+    this->ServeTimeStep(requestedTime, output);
+    table->ShallowCopy(this->AnimationTable);
+    return 1;
+  }
   const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
     this->LastImage == image && this->LastImageTime == image->GetMTime() && this->LastSurface == surface &&
     this->LastSurfaceTime == surface->GetMTime();
@@ -445,6 +527,14 @@ int vtkDeformableSurfaceFilter::RequestData(
     this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
   mp.MaxVertices = this->MaxVertices;
   mp.CheckInvariants = this->CheckTopology;
+  mp.MaxTotalSweeps = this->MaxSweeps;
+  this->Snapshots.clear();
+  this->AnimationResult = nullptr;
+  if (this->AnimateSweeps)
+  {
+    mp.SweepBatch = 1; // a snapshot exactly every SweepsPerTimeStep sweeps
+    this->Snapshots.push_back(MeshSnapshot(mesh, 0));
+  }
   dsurf::MultilevelSolver solver;
   solver.SetParameters(mp);
   solver.SetProgressCallback([this](double f) {
@@ -452,7 +542,11 @@ int vtkDeformableSurfaceFilter::RequestData(
     return !this->GetAbortExecute();
   });
   ConvergenceColumns columns;
-  solver.SetSweepCallback([&columns](const dsurf::SweepRecord& r, const dsurf::TriangleMesh&) {
+  solver.SetSweepCallback([&columns, this](const dsurf::SweepRecord& r, const dsurf::TriangleMesh& m) {
+    if (this->AnimateSweeps && r.Sweep % this->SweepsPerTimeStep == 0)
+    {
+      this->Snapshots.push_back(MeshSnapshot(m, r.Sweep));
+    }
     columns.Sweep->InsertNextValue(r.Sweep);
     columns.Level->InsertNextValue(r.Level);
     columns.Sigma->InsertNextValue(r.Sigma);
@@ -510,6 +604,17 @@ int vtkDeformableSurfaceFilter::RequestData(
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
   columns.AddTo(table);
+  if (this->AnimateSweeps)
+  {
+    this->AnimationResult = vtkSmartPointer<vtkPolyData>::New();
+    this->AnimationResult->DeepCopy(output);
+    this->AnimationTable = vtkSmartPointer<vtkTable>::New();
+    this->AnimationTable->DeepCopy(table);
+    std::copy(key, key + 3, this->AnimationKey);
+    this->AnimationInputs[0] = image;
+    this->AnimationInputs[1] = surface;
+    this->ServeTimeStep(requestedTime, output);
+  }
   if (this->ContinueFromLastResult && !distributed && !solver.GetAborted())
   {
     // A copy: downstream filters must not be able to change where the next run starts.
@@ -553,5 +658,8 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ProjectExternalForce: " << this->ProjectExternalForce << "\n";
   os << indent << "ContinueFromLastResult: " << this->ContinueFromLastResult << "\n";
+  os << indent << "MaxSweeps: " << this->MaxSweeps << "\n";
+  os << indent << "AnimateSweeps: " << this->AnimateSweeps << "\n";
+  os << indent << "SweepsPerTimeStep: " << this->SweepsPerTimeStep << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -267,8 +267,16 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     std::vector<SweepStatistics> batchStats;
     for (int s = 0; s < cap && !stop && !rec.Converged;)
     {
+      // MaxTotalSweeps: the run stops exactly there (the batch is cut short to reach it).
+      const int budget = P.MaxTotalSweeps > 0 ? P.MaxTotalSweeps - sweepCounter : cap;
+      if (budget <= 0)
+      {
+        this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
+        stop = true;
+        break;
+      }
       batchStats.clear();
-      solver.Sweeps(std::min(batchSize, cap - s), [&](const SweepStatistics& st) {
+      solver.Sweeps(std::min({ batchSize, cap - s, budget }), [&](const SweepStatistics& st) {
         batchStats.push_back(st);
         if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * h)
         {
@@ -305,6 +313,11 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
         this->Aborted = true;
         stop = true;
       }
+    }
+    if (P.MaxTotalSweeps > 0 && sweepCounter >= P.MaxTotalSweeps && !stop)
+    {
+      this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
+      stop = true; // no refinement after the budget
     }
     // Folds the forces left (two parts of the surface pushed together) are smoothed open
     // before the level's estimator is read and the mesh is refined (dsUntangle.h).

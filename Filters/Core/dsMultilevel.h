@@ -73,6 +73,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// come after each batch, so the callback sees the mesh as of the end of its batch; 1
   /// hands over every sweep's mesh (slower on several threads: threads start per sweep).
   int SweepBatch = 16;
+  /// Stop the whole run after this many sweeps (0: no limit), exactly there, mid-level if
+  /// need be (a warning says so); the surface is valid at every sweep.
+  int MaxTotalSweeps = 0;
   double Tolerance = 1e-3;       ///< stop a level when mean |c| < Tolerance * mean edge length
   double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;

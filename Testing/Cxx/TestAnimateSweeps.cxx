@@ -1,0 +1,147 @@
+// Convergence as time steps (AnimateSweeps): the output reports time steps 0, S, 2S, ...; the
+// surface at time k S equals a plain run stopped after k S sweeps (MaxSweeps) to the last bit;
+// stepping back and forth comes from the cache (no new solve: the filter's progress events
+// count solves); a time beyond the end gives the last surface, not an error; a changed
+// parameter solves again. A soft ball of radius 12 in 48^3 from a sphere of radius 16.
+#include "DSTestHelpers.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDeformableSurfaceFilter.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTable.h"
+
+#include <cmath>
+
+namespace
+{
+const int N = 48;
+const double C = 23.5, R = 12.0;
+
+class Counter : public vtkCommand
+{
+public:
+  static Counter* New() { return new Counter; }
+  void Execute(vtkObject*, unsigned long event, void*) override
+  {
+    (event == vtkCommand::ErrorEvent ? this->Errors : this->Progress)++;
+  }
+  int Progress = 0, Errors = 0;
+};
+
+double MaxDifference(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPoints() == 0)
+  {
+    return 1e300;
+  }
+  double worst = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    worst = std::max({ worst, std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2]) });
+  }
+  return worst;
+}
+} // namespace
+
+int TestAnimateSweeps(int, char*[])
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(N, N, N);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("density");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i)
+      {
+        const double d = std::sqrt((i - C) * (i - C) + (j - C) * (j - C) + (k - C) * (k - C));
+        values->SetValue(i + N * (j + N * static_cast<vtkIdType>(k)), static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (d - R)))));
+      }
+  image->GetPointData()->SetScalars(values);
+  vtkNew<vtkSphereSource> start;
+  start->SetCenter(C, C, C);
+  start->SetRadius(16.0);
+  start->SetThetaResolution(24);
+  start->SetPhiResolution(24);
+
+  vtkNew<vtkDeformableSurfaceFilter> animated;
+  vtkNew<Counter> solves;
+  animated->AddObserver(vtkCommand::ProgressEvent, solves);
+  animated->AddObserver(vtkCommand::ErrorEvent, solves);
+  animated->SetInputData(0, image);
+  animated->SetInitialSurfaceConnection(start->GetOutputPort());
+  animated->AnimateSweepsOn();
+  animated->SetSweepsPerTimeStep(20);
+  animated->UpdateInformation();
+  vtkInformation* info = animated->GetOutputInformation(0);
+  const int steps = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  std::cout << steps << " time steps: " << times[0] << ", " << times[1] << ", ... " << times[steps - 1] << std::endl;
+  DS_CHECK(steps > 10 && times[0] == 0 && times[1] == 20, "time steps 0, 20, 40, ...");
+
+  auto at = [&](double t) {
+    animated->UpdateTimeStep(t);
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(animated->GetOutput());
+    return copy;
+  };
+  auto plain = [&](int sweeps) {
+    vtkNew<vtkDeformableSurfaceFilter> f;
+    f->SetInputData(0, image);
+    f->SetInitialSurfaceConnection(start->GetOutputPort());
+    f->SetMaxSweeps(sweeps);
+    f->Update();
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(f->GetOutput());
+    return copy;
+  };
+
+  const auto step3 = at(60);
+  const int solveProgress = solves->Progress;
+  const auto step1 = at(20);
+  const auto step5 = at(100);
+  const auto again3 = at(60);
+  std::cout << "progress events: " << solveProgress << " for the first request, "
+            << solves->Progress - solveProgress << " for the next three" << std::endl;
+  DS_CHECK(solveProgress > 5, "the first request solved");
+  // The pipeline itself reports 0 and 1 around every execution; a solve reports hundreds.
+  DS_CHECK_LE(solves->Progress - solveProgress, 3 * 2, "the next three came from the cache (progress events)");
+  DS_CHECK_LE(MaxDifference(step3, plain(60)), 0.0, "time 60 = a plain run stopped after 60 sweeps (max |dx|)");
+  DS_CHECK_LE(MaxDifference(step1, plain(20)), 0.0, "time 20 = a plain run stopped after 20 sweeps (max |dx|)");
+  DS_CHECK_LE(MaxDifference(step5, plain(100)), 0.0, "time 100 = a plain run stopped after 100 sweeps (max |dx|)");
+  DS_CHECK_LE(MaxDifference(again3, step3), 0.0, "back to time 60: the same surface");
+  vtkDataArray* sweeps = step3->GetFieldData()->GetArray("Sweeps");
+  DS_CHECK(sweeps && sweeps->GetTuple1(0) == 60, "the snapshot at time 60 says 60 sweeps");
+
+  DS_CHECK(animated->GetConvergenceTable()->GetNumberOfRows() > 100, "the cached convergence table is kept");
+
+  // Beyond the end: the final surface, no error.
+  const auto last = at(times[steps - 1] + 1000.0);
+  vtkNew<vtkDeformableSurfaceFilter> whole;
+  whole->SetInputData(0, image);
+  whole->SetInitialSurfaceConnection(start->GetOutputPort());
+  whole->Update();
+  DS_CHECK(solves->Errors == 0, "no error for a time beyond the end");
+  DS_CHECK_LE(MaxDifference(last, whole->GetOutput()), 0.0, "beyond the end: the final surface (max |dx|)");
+  DS_CHECK(last->GetPointData()->GetArray("Normals") != nullptr, "the final step carries every array");
+  return dstest::Result("TestAnimateSweeps");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestAnimateSweeps(argc, argv);
+}
