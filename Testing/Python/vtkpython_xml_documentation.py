@@ -36,8 +36,9 @@ for path in files:
             pdoc = prop.find("Documentation")
             if pdoc is None or len((pdoc.text or "").strip()) < 15:
                 failures.append("%s: %s.%s has no real <Documentation>" % (path, name, pname))
+            # Information-only properties (TimestepValues) are never shown in the panel.
             if (prop.tag != "InputProperty" and not is_reader and pname not in grouped
-                    and prop.get("panel_visibility") != "advanced"):
+                    and prop.get("panel_visibility") != "advanced" and prop.get("information_only") != "1"):
                 failures.append("%s: %s.%s is in no PropertyGroup" % (path, name, pname))
 
 print("checked %d proxies in %d files" % (proxies, len(files)))
