@@ -147,13 +147,13 @@ vtkSmartPointer<vtkDoubleArray> PointArray(const char* name, const std::vector<d
 }
 
 /// The deformed mesh as vtkPolyData with the solver's per-vertex arrays.
-void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
+/// The mesh's points and triangles into `output` (nothing else).
+void SetGeometry(const dsurf::TriangleMesh& mesh, vtkPolyData* output)
 {
-  const int nPts = mesh.NumberOfPoints();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(nPts);
-  for (int i = 0; i < nPts; ++i)
+  points->SetNumberOfPoints(mesh.NumberOfPoints());
+  for (int i = 0; i < mesh.NumberOfPoints(); ++i)
   {
     points->SetPoint(i, mesh.Points[i].data());
   }
@@ -166,6 +166,12 @@ void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& 
   }
   output->SetPoints(points);
   output->SetPolys(polys);
+}
+
+void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
+{
+  const int nPts = mesh.NumberOfPoints();
+  SetGeometry(mesh, output);
 
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
@@ -227,22 +233,7 @@ vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
 vtkSmartPointer<vtkPolyData> MeshSnapshot(const dsurf::TriangleMesh& mesh, int sweeps)
 {
   auto snapshot = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(mesh.NumberOfPoints());
-  for (int i = 0; i < mesh.NumberOfPoints(); ++i)
-  {
-    points->SetPoint(i, mesh.Points[i].data());
-  }
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(mesh.NumberOfTriangles(), 3 * mesh.NumberOfTriangles());
-  for (const auto& t : mesh.Triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    polys->InsertNextCell(3, ids);
-  }
-  snapshot->SetPoints(points);
-  snapshot->SetPolys(polys);
+  SetGeometry(mesh, snapshot);
   vtkNew<vtkIntArray> count;
   count->SetName("Sweeps");
   count->InsertNextValue(sweeps);

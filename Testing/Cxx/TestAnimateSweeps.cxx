@@ -4,6 +4,7 @@
 // count solves); a time beyond the end gives the last surface, not an error; a changed
 // parameter solves again. A soft ball of radius 12 in 48^3 from a sphere of radius 16.
 #include "DSTestHelpers.h"
+#include "SoftBallImage.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -59,19 +60,7 @@ double MaxDifference(vtkPolyData* a, vtkPolyData* b)
 
 int TestAnimateSweeps(int, char*[])
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(N, N, N);
-  vtkNew<vtkFloatArray> values;
-  values->SetName("density");
-  values->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
-  for (int k = 0; k < N; ++k)
-    for (int j = 0; j < N; ++j)
-      for (int i = 0; i < N; ++i)
-      {
-        const double d = std::sqrt((i - C) * (i - C) + (j - C) * (j - C) + (k - C) * (k - C));
-        values->SetValue(i + N * (j + N * static_cast<vtkIdType>(k)), static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (d - R)))));
-      }
-  image->GetPointData()->SetScalars(values);
+  auto image = dstest::SoftBallImage(N, C, R);
   vtkNew<vtkSphereSource> start;
   start->SetCenter(C, C, C);
   start->SetRadius(16.0);

@@ -10,6 +10,7 @@
 // - sigma_0: the paper's extent / 6 for a box spanning the image, about the start's distance
 //   to the boundary for a sphere 3 voxels outside it.
 #include "DSTestHelpers.h"
+#include "SoftBallImage.h"
 
 #include "vtkCommand.h"
 #include "vtkCubeSource.h"
@@ -45,20 +46,7 @@ public:
 
 vtkSmartPointer<vtkImageData> Ball()
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(N, N, N);
-  vtkNew<vtkFloatArray> values;
-  values->SetName("density");
-  values->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
-  for (int k = 0; k < N; ++k)
-    for (int j = 0; j < N; ++j)
-      for (int i = 0; i < N; ++i)
-      {
-        const double d = std::sqrt((i - C) * (i - C) + (j - C) * (j - C) + (k - C) * (k - C));
-        values->SetValue(i + N * (j + N * static_cast<vtkIdType>(k)), static_cast<float>(100.0 / (1.0 + std::exp(2.0 * (d - R)))));
-      }
-  image->GetPointData()->SetScalars(values);
-  return image;
+  return dstest::SoftBallImage(N, C, R, 100.0);
 }
 
 vtkSmartPointer<vtkPolyData> Sphere(double r)

@@ -5,6 +5,7 @@
 // (mean |d| to the sphere within 0.05 voxel of the cold run's, both <= 0.2); a new start
 // surface (another radius) makes the next run cold again.
 #include "DSTestHelpers.h"
+#include "SoftBallImage.h"
 
 #include "vtkDataArray.h"
 #include "vtkDeformableSurfaceFilter.h"
@@ -51,19 +52,7 @@ Run Measure(vtkDeformableSurfaceFilter* f)
 
 int TestWarmStart(int, char*[])
 {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(N, N, N);
-  vtkNew<vtkFloatArray> values;
-  values->SetName("density");
-  values->SetNumberOfTuples(static_cast<vtkIdType>(N) * N * N);
-  for (int k = 0; k < N; ++k)
-    for (int j = 0; j < N; ++j)
-      for (int i = 0; i < N; ++i)
-      {
-        const double d = std::sqrt((i - C) * (i - C) + (j - C) * (j - C) + (k - C) * (k - C));
-        values->SetValue(i + N * (j + N * static_cast<vtkIdType>(k)), static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (d - R)))));
-      }
-  image->GetPointData()->SetScalars(values);
+  auto image = dstest::SoftBallImage(N, C, R);
   vtkNew<vtkSphereSource> start;
   start->SetCenter(C, C, C);
   start->SetRadius(22.0);
