@@ -413,6 +413,33 @@ def _caption(view, text, location="Upper Left Corner"):
     display.Color = [0.9, 0.9, 0.9]
 
 
+def _distance_mesh(producer, view, limit, title):
+    """The surface in 3-D in `view`, with edges, coloured by DistanceToMask in [-limit, limit]
+    with a horizontal colour bar, seen from the left front above the brain."""
+    mesh = simple.Show(producer, view)
+    mesh.SetRepresentationType("Surface With Edges")
+    mesh.EdgeColor = [0.25, 0.25, 0.3]
+    simple.ColorBy(mesh, ("POINTS", "DistanceToMask"))
+    lut = simple.GetColorTransferFunction("DistanceToMask")
+    lut.ApplyPreset("Cool to Warm", True)
+    lut.RescaleTransferFunction(-limit, limit)
+    mesh.SetScalarBarVisibility(view, True)
+    bar = simple.GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.RangeLabelFormat = "%.0f"
+    bar.Orientation = "Horizontal"
+    bar.WindowLocation = "Lower Center"
+    bar.ScalarBarLength = 0.5
+    bar.TitleFontSize = bar.LabelFontSize = 12
+    view.CameraFocalPoint = [90.0, 108.0, 80.0]
+    view.CameraPosition = [-330.0, -150.0, 260.0]
+    view.CameraViewUp = [0.0, 0.0, 1.0]
+    view.CameraViewAngle = 24
+    view.ResetCamera(False)
+    view.CameraPosition = [f + 0.85 * (p - f) for p, f in zip(view.CameraPosition, view.CameraFocalPoint)]
+
+
 def render(result, png, size=(1600, 800), metrics=None):
     """Left: a sagittal slice of the full head T1 (ch2.nii.gz) with the line where the
     surface cuts it. Right: the surface mesh coloured by its distance to the mask boundary."""
@@ -461,29 +488,7 @@ def render(result, png, size=(1600, 800), metrics=None):
     left.CameraParallelScale = 116.0
 
     # Right: the mesh in 3-D, coloured by the signed distance to the mask boundary.
-    mesh = simple.Show(surface, right)
-    mesh.SetRepresentationType("Surface With Edges")
-    mesh.EdgeColor = [0.25, 0.25, 0.3]
-    simple.ColorBy(mesh, ("POINTS", "DistanceToMask"))
-    lut = simple.GetColorTransferFunction("DistanceToMask")
-    lut.ApplyPreset("Cool to Warm", True)
-    lut.RescaleTransferFunction(-2.0, 2.0)
-    mesh.SetScalarBarVisibility(right, True)
-    bar = simple.GetScalarBar(lut, right)
-    bar.Title = "distance to the mask boundary (mm)"
-    bar.ComponentTitle = ""
-    bar.RangeLabelFormat = "%.0f"
-    bar.Orientation = "Horizontal"
-    bar.WindowLocation = "Lower Center"
-    bar.ScalarBarLength = 0.5
-    bar.TitleFontSize = bar.LabelFontSize = 12
-    right.CameraFocalPoint = [90.0, 108.0, 80.0]
-    right.CameraPosition = [-330.0, -150.0, 260.0]
-    right.CameraViewUp = [0.0, 0.0, 1.0]
-    right.CameraViewAngle = 24
-    right.ResetCamera(False)
-    right.CameraPosition = [f + 0.85 * (p - f) for p, f in zip(right.CameraPosition,
-                                                                right.CameraFocalPoint)]
+    _distance_mesh(surface, right, 2.0, "distance to the mask boundary (mm)")
     # Lift the brain clear of the colour bar.
     right.CameraPosition = [right.CameraPosition[0], right.CameraPosition[1], right.CameraPosition[2] - 14.0]
     right.CameraFocalPoint = [right.CameraFocalPoint[0], right.CameraFocalPoint[1],
@@ -558,29 +563,7 @@ def render_head(picks, click, png, metrics, size=(1600, 800)):
     left.ResetCamera(False)
     left.CameraParallelScale = 100.0
 
-    mesh = simple.Show(annotated, right)
-    mesh.SetRepresentationType("Surface With Edges")
-    mesh.EdgeColor = [0.25, 0.25, 0.3]
-    simple.ColorBy(mesh, ("POINTS", "DistanceToMask"))
-    lut = simple.GetColorTransferFunction("DistanceToMask")
-    lut.ApplyPreset("Cool to Warm", True)
-    lut.RescaleTransferFunction(-3.0, 3.0)
-    mesh.SetScalarBarVisibility(right, True)
-    bar = simple.GetScalarBar(lut, right)
-    bar.Title = "distance to the brain-mask boundary (mm)"
-    bar.ComponentTitle = ""
-    bar.RangeLabelFormat = "%.0f"
-    bar.Orientation = "Horizontal"
-    bar.WindowLocation = "Lower Center"
-    bar.ScalarBarLength = 0.5
-    bar.TitleFontSize = bar.LabelFontSize = 12
-    right.CameraFocalPoint = [90.0, 108.0, 80.0]
-    right.CameraPosition = [-330.0, -150.0, 260.0]
-    right.CameraViewUp = [0.0, 0.0, 1.0]
-    right.CameraViewAngle = 24
-    right.ResetCamera(False)
-    right.CameraPosition = [f + 0.85 * (p - f) for p, f in zip(right.CameraPosition,
-                                                                right.CameraFocalPoint)]
+    _distance_mesh(annotated, right, 3.0, "distance to the brain-mask boundary (mm)")
 
     mp, mc = metrics["picks"], metrics["click"]
     _caption(left, "Colin27 whole head (ch2.nii.gz), coronal slice y = %g mm\n"
