@@ -64,9 +64,9 @@ def load_plugin(path=None):
 
 
 # ParaView 5.11 has no reader for .nii.gz (its AnalyzeNIfTI plugin reads only plain .nii);
-# the DeformableSurface plugin adds one (VTK's vtkNIFTIImageReader), which OpenDataFile picks.
-# The NIfTI qform is not applied: the image lies at the origin with its spacing, and so do
-# the mask and the surface. The scalar array is called "NIFTI".
+# the DeformableSurface plugin adds one (vtkDSNIFTIImageReader), which OpenDataFile picks. It
+# places the image by its qform/sform: Colin27 in MNI coordinates (x -90..90, y -125..91,
+# z -71..109 mm), and so the surfaces. The scalar array is called "NIFTI".
 def nifti_source(path):
     reader = simple.OpenDataFile(path)
     if reader is None or reader.GetXMLName() != "DSNIfTIImageReader":
@@ -104,7 +104,8 @@ ITK_DATA = "/usr/share/doc/insighttoolkit5-examples/examples/Data"
 
 # Whole heads with their references. picks: ~40 points a user picked on a few slices, ~3 mm
 # outside the brain; click: one point picked in the white matter. Both chosen on the image
-# (never on the mask). range: the IntensityRange a user gives with the click, read off the
+# (never on the mask), in the world coordinates the plugin's reader gives (the file's
+# qform/sform: MNI millimetres for Colin27). range: the IntensityRange a user gives with the click, read off the
 # image by probing tissues: Colin27 CSF around the brain 41-55, cortex 78-91, white matter
 # 108-117, skull marrow 145-166 -> midway between CSF and cortex, and between white matter and
 # marrow; KmeansTest dark CSF and bone 1-45 (ventricles 13-21), cortex 70-85, white matter
@@ -284,10 +285,10 @@ def _distances(polydata, points):
 
 
 def _read_nifti(path):
-    """A NIfTI volume with plain VTK (the reference masks: scored against, never fed to the
-    filter)."""
-    from vtkmodules.vtkIOImage import vtkNIFTIImageReader
-    reader = vtkNIFTIImageReader()
+    """A NIfTI volume read in plain VTK with the plugin's reader class (the reference masks:
+    scored against, never fed to the filter)."""
+    from deformablesurface import vtkDSNIFTIImageReader
+    reader = vtkDSNIFTIImageReader()
     reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
@@ -413,7 +414,19 @@ def _caption(view, text, location="Upper Left Corner"):
     display.Color = [0.9, 0.9, 0.9]
 
 
-def _distance_mesh(producer, view, limit, title):
+def _centre(proxy):
+    """The centre of a source's bounds (the NIfTI reader places images where their file says:
+    Colin27 in MNI coordinates), so pictures are set up relative to the head."""
+    proxy.UpdatePipeline()
+    b = proxy.GetDataInformation().GetBounds()
+    return [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
+
+
+def _at(c, dx, dy, dz):
+    return [c[0] + dx, c[1] + dy, c[2] + dz]
+
+
+def _distance_mesh(producer, view, limit, title, c):
     """The surface in 3-D in `view`, with edges, coloured by DistanceToMask in [-limit, limit]
     with a horizontal colour bar, seen from the left front above the brain."""
     mesh = simple.Show(producer, view)
@@ -432,8 +445,8 @@ def _distance_mesh(producer, view, limit, title):
     bar.WindowLocation = "Lower Center"
     bar.ScalarBarLength = 0.5
     bar.TitleFontSize = bar.LabelFontSize = 12
-    view.CameraFocalPoint = [90.0, 108.0, 80.0]
-    view.CameraPosition = [-330.0, -150.0, 260.0]
+    view.CameraFocalPoint = _at(c, 0.0, 0.0, -10.0)
+    view.CameraPosition = _at(c, -420.0, -258.0, 170.0)
     view.CameraViewUp = [0.0, 0.0, 1.0]
     view.CameraViewAngle = 24
     view.ResetCamera(False)
@@ -458,10 +471,11 @@ def render(result, png, size=(1600, 800), metrics=None):
         view.Background = [0.06, 0.06, 0.08]
 
     # Left: a parasagittal plane through the left hemisphere, the surface's trace on it.
-    x = 70.0
+    c = _centre(head)
+    x = c[0] - 20.0  # a parasagittal plane through the left hemisphere
     cut = simple.Slice(Input=head)
     cut.SliceType = "Plane"
-    cut.SliceType.Origin = [x, 108.0, 90.0]
+    cut.SliceType.Origin = [x, c[1], c[2]]
     cut.SliceType.Normal = [1.0, 0.0, 0.0]
     slice_display = simple.Show(cut, left)
     simple.ColorBy(slice_display, ("POINTS", "NIFTI"))
@@ -472,7 +486,7 @@ def render(result, png, size=(1600, 800), metrics=None):
     slice_display.Ambient, slice_display.Diffuse = 1.0, 0.0  # the image's own greys, unlit
     trace = simple.Slice(Input=surface)
     trace.SliceType = "Plane"
-    trace.SliceType.Origin = [x, 108.0, 90.0]
+    trace.SliceType.Origin = [x, c[1], c[2]]
     trace.SliceType.Normal = [1.0, 0.0, 0.0]
     line = simple.Show(trace, left)
     line.ColorArrayName = ["POINTS", ""]
@@ -480,21 +494,21 @@ def render(result, png, size=(1600, 800), metrics=None):
     line.Ambient, line.Diffuse = 1.0, 0.0
     line.LineWidth = 3.0
     line.Position = [-1.0, 0.0, 0.0]  # in front of the slice, not in it
-    left.CameraFocalPoint = [x, 108.0, 90.0]
-    left.CameraPosition = [-400.0, 108.0, 90.0]
+    left.CameraFocalPoint = [x, c[1], c[2]]
+    left.CameraPosition = _at(c, -490.0, 0.0, 0.0)
     left.CameraViewUp = [0.0, 0.0, 1.0]
     left.CameraParallelProjection = 1
     left.ResetCamera(False)
     left.CameraParallelScale = 116.0
 
     # Right: the mesh in 3-D, coloured by the signed distance to the mask boundary.
-    _distance_mesh(surface, right, 2.0, "distance to the mask boundary (mm)")
+    _distance_mesh(surface, right, 2.0, "distance to the mask boundary (mm)", c)
     # Lift the brain clear of the colour bar.
     right.CameraPosition = [right.CameraPosition[0], right.CameraPosition[1], right.CameraPosition[2] - 14.0]
     right.CameraFocalPoint = [right.CameraFocalPoint[0], right.CameraFocalPoint[1],
                               right.CameraFocalPoint[2] - 14.0]
 
-    _caption(left, "Colin27 T1 head (ch2.nii.gz), sagittal slice x = %g mm\n"
+    _caption(left, "Colin27 T1 head (ch2.nii.gz), sagittal slice x = %g mm (MNI)\n"
                    "orange: where the deformable surface cuts it" % x)
     if metrics:
         _caption(right, "from the box around the volume: %.1f s, %d levels\n"
@@ -523,8 +537,9 @@ def render_head(picks, click, png, metrics, size=(1600, 800)):
         view.UseColorPaletteForBackground = 0
         view.Background = [0.06, 0.06, 0.08]
 
-    y = 110.0  # the coronal slice the user picked on
-    plane = dict(Origin=[90.0, y, 90.0], Normal=[0.0, 1.0, 0.0])
+    c = _centre(picks["image_proxy"])
+    y = c[1] + 2.0  # the coronal slice the user picked on
+    plane = dict(Origin=[c[0], y, c[2]], Normal=[0.0, 1.0, 0.0])
     cut = simple.Slice(Input=picks["image_proxy"])
     cut.SliceType = "Plane"
     cut.SliceType.Origin, cut.SliceType.Normal = plane["Origin"], plane["Normal"]
@@ -546,9 +561,9 @@ def render_head(picks, click, png, metrics, size=(1600, 800)):
         line.LineWidth = 3.0
         line.Position = [0.0, -1.0, 0.0]  # in front of the slice
     near = simple.Clip(Input=picks["points"], ClipType="Plane", Invert=0, Crinkleclip=0)
-    near.ClipType.Origin, near.ClipType.Normal = [90.0, y - 1.0, 90.0], [0.0, 1.0, 0.0]
+    near.ClipType.Origin, near.ClipType.Normal = [c[0], y - 1.0, c[2]], [0.0, 1.0, 0.0]
     near = simple.Clip(Input=near, ClipType="Plane", Invert=1)
-    near.ClipType.Origin, near.ClipType.Normal = [90.0, y + 1.0, 90.0], [0.0, 1.0, 0.0]
+    near.ClipType.Origin, near.ClipType.Normal = [c[0], y + 1.0, c[2]], [0.0, 1.0, 0.0]
     dots = simple.Show(near, left)
     dots.SetRepresentationType("Points")
     dots.PointSize = 9.0
@@ -556,17 +571,17 @@ def render_head(picks, click, png, metrics, size=(1600, 800)):
     dots.ColorArrayName = ["POINTS", ""]
     dots.AmbientColor = dots.DiffuseColor = [1.0, 0.2, 0.2]
     dots.Position = [0.0, -2.0, 0.0]
-    left.CameraFocalPoint = [90.0, y, 90.0]
-    left.CameraPosition = [90.0, -400.0, 90.0]
+    left.CameraFocalPoint = [c[0], y, c[2]]
+    left.CameraPosition = _at(c, 0.0, -508.0, 0.0)
     left.CameraViewUp = [0.0, 0.0, 1.0]
     left.CameraParallelProjection = 1
     left.ResetCamera(False)
     left.CameraParallelScale = 100.0
 
-    _distance_mesh(annotated, right, 3.0, "distance to the brain-mask boundary (mm)")
+    _distance_mesh(annotated, right, 3.0, "distance to the brain-mask boundary (mm)", c)
 
     mp, mc = metrics["picks"], metrics["click"]
-    _caption(left, "Colin27 whole head (ch2.nii.gz), coronal slice y = %g mm\n"
+    _caption(left, "Colin27 whole head (ch2.nii.gz), coronal slice y = %g mm (MNI)\n"
                    "red: picked points near this slice\n"
                    "orange: surface from %d picked points (mean %.2f mm from the brain)\n"
                    "cyan: surface from one click (mean %.2f mm)"

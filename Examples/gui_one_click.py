@@ -8,10 +8,12 @@ LoadPlugin(os.environ.get("DS_PLUGIN", os.path.join(root, "build/lib/paraview-5.
            remote=False, ns=globals())
 head = OpenDataFile("/usr/share/mricron/templates/ch2.nii.gz")
 head.UpdatePipeline()
+b = head.GetDataInformation().GetBounds()  # MNI coordinates: the reader applies the sform
+c = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
 view = GetActiveViewOrCreate("RenderView")
 sl = Slice(registrationName="Slice", Input=head)
 sl.SliceType = "Plane"
-sl.SliceType.Origin = [90, 110, 90]
+sl.SliceType.Origin = [c[0], c[1] + 2, c[2]]
 sl.SliceType.Normal = [0, 1, 0]
 d = Show(sl, view)
 ColorBy(d, ("POINTS", "NIFTI"))
@@ -28,13 +30,13 @@ ds.RegionWeight = 1.0
 ds.IntensityRange = [62, 130]
 trace = Slice(registrationName="trace", Input=ds)
 trace.SliceType = "Plane"
-trace.SliceType.Origin = [90, 110, 90]
+trace.SliceType.Origin = [c[0], c[1] + 2, c[2]]
 trace.SliceType.Normal = [0, 1, 0]
 td = Show(trace, view); td.ColorArrayName = ["POINTS", ""]; td.AmbientColor = td.DiffuseColor = [0.3, 0.85, 1.0]
 td.LineWidth = 3; td.Ambient, td.Diffuse = 1.0, 0.0; td.Position = [0, -1, 0]
 pd.Position = [0, -2, 0]
 view.OrientationAxesVisibility = 0
-view.CameraPosition = [90, -450, 90]; view.CameraFocalPoint = [90, 110, 90]; view.CameraViewUp = [0, 0, 1]
+view.CameraPosition = [c[0], c[1] - 558, c[2]]; view.CameraFocalPoint = [c[0], c[1] + 2, c[2]]; view.CameraViewUp = [0, 0, 1]
 view.CameraParallelProjection = 1
 view.ResetCamera(False)
 view.CameraParallelScale = 95

@@ -36,7 +36,10 @@ def main():
     if head is None:
         return "FAILED: the plugin's NIfTI reader did not open ch2.nii.gz (mricron-data missing?)"
     view = GetActiveViewOrCreate("RenderView")
-    plane = dict(Origin=[90.0, 110.0, 90.0], Normal=[0.0, 1.0, 0.0])
+    head.UpdatePipeline()
+    b = head.GetDataInformation().GetBounds()  # MNI coordinates: the reader applies the sform
+    c = [0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5])]
+    plane = dict(Origin=[c[0], c[1] + 2.0, c[2]], Normal=[0.0, 1.0, 0.0])
     cut = Slice(registrationName="Slice", Input=head)
     cut.SliceType = "Plane"
     cut.SliceType.Origin, cut.SliceType.Normal = plane["Origin"], plane["Normal"]
@@ -71,7 +74,8 @@ def main():
     dot.AmbientColor = dot.DiffuseColor = [1.0, 0.2, 0.2]
     dot.Position = [0.0, -2.0, 0.0]
     view.OrientationAxesVisibility = 0
-    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [90, -450, 90], plane["Origin"], [0, 0, 1]
+    view.CameraPosition = [c[0], c[1] - 558.0, c[2]]
+    view.CameraFocalPoint, view.CameraViewUp = plane["Origin"], [0, 0, 1]
     view.CameraParallelProjection = 1
     view.CameraParallelScale = 95.0
     SetActiveSource(surface)
@@ -82,7 +86,7 @@ def main():
     if not (5000 <= data.GetNumberOfPoints() <= 50000):
         problems.append("surface of %d points" % data.GetNumberOfPoints())
     bounds = data.GetBounds()
-    if not (bounds[1] - bounds[0] > 120 and bounds[5] - bounds[4] > 100):
+    if not (bounds[1] - bounds[0] > 120 and bounds[5] - bounds[4] > 100 and bounds[0] < -50):
         problems.append("the click did not grow to the brain: bounds %s" % (bounds,))
     selfx = data.GetFieldData().GetArray("SelfIntersections")
     if selfx is None or selfx.GetTuple1(0) != 0:

@@ -5,9 +5,9 @@
 # Deformable Surface with RegionWeight 0.3; and one click in the white matter -> a 5 mm seed
 # sphere -> Deformable Surface with RegionWeight 1 and the IntensityRange read off the image.
 #
-# Measured (Release, this 2-core machine): picks 1.3 s, 14 460 vertices, one closed surface,
-# 0 self-intersections, vertex -> mask boundary mean 0.88, 95 % 3.63 mm, volume +3.8 %; click
-# 1.6 s, 10 869 vertices, mean 1.38, 95 % 6.7 mm, volume +2.5 %. The goals: picks mean
+# Measured (Release, this 2-core machine): picks 1.4 s, 14 466 vertices, one closed surface,
+# 0 self-intersections, vertex -> mask boundary mean 0.88, 95 % 3.62 mm, volume +3.8 %; click
+# 1.7 s, 11 015 vertices, mean 1.38, 95 % 6.6 mm, volume +2.5 %. The goals: picks mean
 # <= 1.0, 95 % <= 3.0 (not reached: 3.6), volume within 5 %; click mean <= 1.5, volume 8 %.
 import os
 import sys

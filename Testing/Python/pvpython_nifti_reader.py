@@ -1,6 +1,8 @@
-"""ParaView 5.11 has no reader for gzipped NIfTI; the plugin adds one (vtkNIFTIImageReader)
+"""ParaView 5.11 has no reader for gzipped NIfTI; the plugin adds one (vtkDSNIFTIImageReader)
 so MRI volumes open with OpenDataFile / File > Open. A volume written here round-trips
-exactly, and the Colin27 template of the demo opens with its known size and range."""
+exactly; an oblique one (a qform turned 30 degrees about z and 10 about x, and shifted) lands
+where the file says (a known voxel's world position, the direction matrix); and the Colin27
+template of the demo opens with its known size, range and place (its sform: MNI coordinates)."""
 import os
 import sys
 
@@ -41,6 +43,35 @@ assert dims == (21, 16, 11), dims
 assert all(abs(s - t) < 1e-6 for s, t in zip(spacing, (0.5, 0.75, 1.5))), spacing
 assert (a == b).all(), "voxel values differ after the round trip"
 
+# Oblique: a rotated, shifted qform. Voxel (i, j, k) must land at R (i, j, k) * spacing + t.
+import math  # noqa: E402
+from vtkmodules.vtkCommonMath import vtkMatrix4x4  # noqa: E402
+from vtkmodules.vtkCommonTransforms import vtkTransform  # noqa: E402
+turn = vtkTransform()
+turn.PostMultiply()
+turn.RotateX(10.0)
+turn.RotateZ(30.0)
+turn.Translate(-40.0, 12.5, 7.0)
+qform = vtkMatrix4x4()
+qform.DeepCopy(turn.GetMatrix())
+oblique = os.path.join(out_dir, "oblique.nii.gz")
+writer = vtkNIFTIImageWriter()
+writer.SetInputData(written)
+writer.SetQFormMatrix(qform)
+writer.SetFileName(oblique)
+writer.Write()
+image = servermanager.Fetch(OpenDataFile(oblique))
+ijk = (7, 11, 4)
+placed = [0.0, 0.0, 0.0]
+image.TransformIndexToPhysicalPoint(ijk, placed)
+local = [ijk[a] * (0.5, 0.75, 1.5)[a] for a in range(3)]
+expected = [sum(qform.GetElement(r, c) * local[c] for c in range(3)) + qform.GetElement(r, 3) for r in range(3)]
+print("oblique: voxel", ijk, "at", [round(x, 4) for x in placed], "expected", [round(x, 4) for x in expected])
+assert max(abs(p - e) for p, e in zip(placed, expected)) < 1e-4, (placed, expected)
+direction = image.GetDirectionMatrix()
+assert max(abs(direction.GetElement(r, c) - qform.GetElement(r, c)) for r in range(3) for c in range(3)) < 1e-5
+assert abs(direction.Determinant() - 1.0) < 1e-6 and not math.isnan(direction.Determinant())
+
 # The real volume of the demo (installed by scripts/install-deps.sh: mricron-data).
 colin = "/usr/share/mricron/templates/ch2bet.nii.gz"
 if not os.path.exists(colin):
@@ -52,3 +83,6 @@ rng = reader.PointData.GetArray(0).GetRange()
 print("Colin27 (brain):", info.GetExtent(), rng)
 assert tuple(info.GetExtent()) == (0, 180, 0, 216, 0, 180), info.GetExtent()
 assert rng == (0.0, 133.0), rng
+bounds = info.GetBounds()
+print("Colin27 bounds (sform, MNI):", bounds)
+assert max(abs(b - e) for b, e in zip(bounds, (-90, 90, -125, 91, -71, 109))) < 1e-6, bounds
