@@ -1,6 +1,6 @@
 """The real ParaView GUI client, tested: run as
-    paraview --dr --script=gui_one_click.py --exit      (under Xvfb: scripts/with_xvfb.sh)
-with DS_PLUGIN set. Inside the GUI's own Python it loads the plugin and builds the README's
+    PV_PLUGIN_PATH=<plugin dir> paraview --dr --script=gui_one_click.py --exit   (under Xvfb) The client loads the plugin at startup from PV_PLUGIN_PATH (as a user's ParaView does); inside
+the GUI's own Python the script builds the README's
 one-click workflow as a user does: the whole Colin27 head (the plugin's NIfTI reader), a Slice,
 the clicked point (CSV Reader -> Table To Points), Delaunay Seed Surface (a seed sphere),
 Deformable Surface (RegionWeight 1, IntensityRange 62 130), the surface's trace on the slice.
@@ -30,8 +30,14 @@ def main():
     baseline_dir = os.environ["DS_BASELINE_DIR"]
     examples = os.path.join(baseline_dir, "..", "..", "Examples")
     baseline = os.path.join(baseline_dir, "gui_one_click.png")
-    LoadPlugin(os.environ["DS_PLUGIN"], remote=False, ns=globals())
-    namespace = globals()
+    # The client loaded the plugin at startup from PV_PLUGIN_PATH, as a user's ParaView does;
+    # its proxies are then in paraview.simple. (LoadPlugin only if it did not.)
+    from paraview import simple
+    loaded_at_startup = hasattr(simple, "DeformableSurface")
+    namespace = vars(simple)
+    if not loaded_at_startup:
+        LoadPlugin(os.environ["DS_PLUGIN"], remote=False, ns=globals())
+        namespace = globals()
     head = OpenDataFile("/usr/share/mricron/templates/ch2.nii.gz")
     if head is None:
         return "FAILED: the plugin's NIfTI reader did not open ch2.nii.gz (mricron-data missing?)"
@@ -113,6 +119,8 @@ def main():
         diff.Update()
         if diff.GetThresholdedError() > 10.0:
             problems.append("the view differs from %s (thresholded error %.2f)" % (baseline, diff.GetThresholdedError()))
+    if not loaded_at_startup:
+        problems.append("the client did not load the plugin from PV_PLUGIN_PATH at startup")
     if problems:
         return "FAILED: " + "; ".join(problems)
     return "PASSED: %d points, bounds %s" % (data.GetNumberOfPoints(), tuple(round(b) for b in bounds))
