@@ -5,6 +5,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNIFTIImageHeader.h"
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -48,26 +49,32 @@ void Split(vtkMatrix4x4* m, double rotation[9], double translation[3])
 
 bool vtkDSNIFTIImageReader::FileOrientation(double rotation[9], double translation[3])
 {
+  // The sform first when the file says it is meant (sform_code > 0): templates and atlases
+  // put their standard space there (MNI for Colin27) and often an unrelated qform beside it;
+  // then the qform; a matrix is used only when it is a rotation.
   this->OrientationSource = "none";
-  if (vtkMatrix4x4* q = this->GetQFormMatrix())
+  vtkNIFTIImageHeader* header = this->GetNIFTIHeader();
+  vtkMatrix4x4* sform = header && header->GetSFormCode() > 0 ? this->GetSFormMatrix() : nullptr;
+  vtkMatrix4x4* qform = header && header->GetQFormCode() > 0 ? this->GetQFormMatrix() : nullptr;
+  if (sform)
   {
-    Split(q, rotation, translation);
-    if (IsRotation(rotation))
-    {
-      this->OrientationSource = "qform";
-      return true;
-    }
-  }
-  if (vtkMatrix4x4* s = this->GetSFormMatrix())
-  {
-    Split(s, rotation, translation);
+    Split(sform, rotation, translation);
     if (IsRotation(rotation))
     {
       this->OrientationSource = "sform";
       return true;
     }
     vtkWarningMacro("The sform of " << (this->GetFileName() ? this->GetFileName() : "the file")
-                                    << " scales or shears: the image is left axis-aligned.");
+                                    << " scales or shears; the qform is used if there is one.");
+  }
+  if (qform)
+  {
+    Split(qform, rotation, translation);
+    if (IsRotation(rotation))
+    {
+      this->OrientationSource = "qform";
+      return true;
+    }
   }
   return false;
 }
@@ -79,23 +86,22 @@ int vtkDSNIFTIImageReader::RequestInformation(
   {
     return 0;
   }
-  double r[9], t[3];
-  if (this->FileOrientation(r, t))
+  // Always set: a file without a usable orientation must not keep the previous file's.
+  double r[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }, t[3] = { 0, 0, 0 };
+  this->FileOrientation(r, t);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  double origin[3] = { 0, 0, 0 };
+  if (outInfo->Has(vtkDataObject::ORIGIN()))
   {
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    double origin[3] = { 0, 0, 0 };
-    if (outInfo->Has(vtkDataObject::ORIGIN()))
-    {
-      outInfo->Get(vtkDataObject::ORIGIN(), origin);
-    }
-    double placed[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      placed[i] = r[3 * i] * origin[0] + r[3 * i + 1] * origin[1] + r[3 * i + 2] * origin[2] + t[i];
-    }
-    outInfo->Set(vtkDataObject::ORIGIN(), placed, 3);
-    outInfo->Set(vtkDataObject::DIRECTION(), r, 9);
+    outInfo->Get(vtkDataObject::ORIGIN(), origin);
   }
+  double placed[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    placed[i] = r[3 * i] * origin[0] + r[3 * i + 1] * origin[1] + r[3 * i + 2] * origin[2] + t[i];
+  }
+  outInfo->Set(vtkDataObject::ORIGIN(), placed, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), r, 9);
   return 1;
 }
 

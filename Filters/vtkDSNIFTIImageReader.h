@@ -6,10 +6,10 @@
  * VTK's vtkNIFTIImageReader reads the voxels and the spacing but leaves the image axis-aligned
  * at the origin; the file's orientation is only offered as GetQFormMatrix()/GetSFormMatrix().
  * This reader applies it, so surfaces land in scanner (or template) coordinates and line up with
- * other data there, and oblique scans keep their orientation. The qform is used when the file
- * has one (it is always a rotation); otherwise the sform when it is a rotation (orthonormal,
- * positive determinant, to 1e-4); otherwise the image stays axis-aligned at the origin, as with
- * VTK's reader. Both matrices map VTK's data coordinates (origin + index x spacing, slices
+ * other data there, and oblique scans keep their orientation. The sform is used when the file
+ * marks it as meant (sform_code > 0: templates and atlases keep their standard space there) and
+ * it is a rotation (orthonormal, positive determinant, to 1e-4); otherwise the qform when
+ * qform_code > 0; otherwise the image stays axis-aligned at the origin, as with VTK's reader. Both matrices map VTK's data coordinates (origin + index x spacing, slices
  * already reordered for qfac) to the file's world, so world = R (origin + ijk spacing) + t:
  * the output's direction matrix is R and its origin R origin + t.
  *

@@ -229,6 +229,17 @@ vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
   return piece;
 }
 
+/// AnimateSweeps keeps at most this many snapshots (the time steps reported) and this much
+/// memory in them; later steps show the final surface.
+constexpr std::size_t MaxSnapshots = 1001;
+constexpr double MaxSnapshotBytes = 512.0 * 1024 * 1024;
+
+/// Memory of one snapshot: double points, 64-bit connectivity and offsets.
+double SnapshotBytes(const dsurf::TriangleMesh& mesh)
+{
+  return 24.0 * mesh.NumberOfPoints() + 32.0 * mesh.NumberOfTriangles();
+}
+
 /// The mesh's points and triangles as vtkPolyData with field data Sweeps (a time step).
 vtkSmartPointer<vtkPolyData> MeshSnapshot(const dsurf::TriangleMesh& mesh, int sweeps)
 {
@@ -329,9 +340,7 @@ int vtkDeformableSurfaceFilter::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (!this->AnimateSweeps)
   {
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-    return 1;
+    return 1; // the inputs' time steps, if any, pass through as for any filter
   }
   const long long S = this->SweepsPerTimeStep;
   long long bound = static_cast<long long>(this->MaxLevels + 1) * this->MaxSweepsPerLevel;
@@ -339,7 +348,7 @@ int vtkDeformableSurfaceFilter::RequestInformation(
   {
     bound = std::min<long long>(bound, this->MaxSweeps);
   }
-  const long long steps = std::min<long long>(1000, (bound + S - 1) / S);
+  const long long steps = std::min<long long>(static_cast<long long>(MaxSnapshots) - 1, (bound + S - 1) / S);
   std::vector<double> times(static_cast<std::size_t>(steps + 1));
   for (long long k = 0; k <= steps; ++k)
   {
@@ -379,6 +388,17 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
       imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
         imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
       imageInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+    }
+  }
+  if (this->AnimateSweeps)
+  {
+    // The output's time is a number of sweeps, not the inputs' time.
+    for (int port = 0; port < 2; ++port)
+    {
+      if (vtkInformation* info = inputVector[port]->GetInformationObject(0))
+      {
+        info->Remove(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+      }
     }
   }
   if (vtkInformation* surfaceInfo = inputVector[1]->GetInformationObject(0))
@@ -534,7 +554,9 @@ int vtkDeformableSurfaceFilter::RequestData(
   });
   ConvergenceColumns columns;
   solver.SetSweepCallback([&columns, this](const dsurf::SweepRecord& r, const dsurf::TriangleMesh& m) {
-    if (this->AnimateSweeps && r.Sweep % this->SweepsPerTimeStep == 0)
+    if (this->AnimateSweeps && r.Sweep % this->SweepsPerTimeStep == 0 &&
+      this->Snapshots.size() < MaxSnapshots &&
+      static_cast<double>(this->Snapshots.size() + 1) * SnapshotBytes(m) <= MaxSnapshotBytes)
     {
       this->Snapshots.push_back(MeshSnapshot(m, r.Sweep));
     }
@@ -595,20 +617,10 @@ int vtkDeformableSurfaceFilter::RequestData(
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
   columns.AddTo(table);
-  if (this->AnimateSweeps)
-  {
-    this->AnimationResult = vtkSmartPointer<vtkPolyData>::New();
-    this->AnimationResult->DeepCopy(output);
-    this->AnimationTable = vtkSmartPointer<vtkTable>::New();
-    this->AnimationTable->DeepCopy(table);
-    std::copy(key, key + 3, this->AnimationKey);
-    this->AnimationInputs[0] = image;
-    this->AnimationInputs[1] = surface;
-    this->ServeTimeStep(requestedTime, output);
-  }
   if (this->ContinueFromLastResult && !distributed && !solver.GetAborted())
   {
-    // A copy: downstream filters must not be able to change where the next run starts.
+    // A copy of the final surface: downstream filters must not be able to change where the
+    // next run starts (and with AnimateSweeps the output becomes a time step below).
     vtkNew<vtkPolyData> shape;
     shape->SetPoints(output->GetPoints());
     shape->SetPolys(output->GetPolys());
@@ -618,6 +630,20 @@ int vtkDeformableSurfaceFilter::RequestData(
     this->LastImageTime = image->GetMTime();
     this->LastSurface = surface;
     this->LastSurfaceTime = surface->GetMTime();
+  }
+  if (this->AnimateSweeps)
+  {
+    this->AnimationResult = vtkSmartPointer<vtkPolyData>::New();
+    this->AnimationResult->DeepCopy(output);
+    this->AnimationTable = vtkSmartPointer<vtkTable>::New();
+    this->AnimationTable->DeepCopy(table);
+    // Cached only when complete and serial: an aborted run's steps would be served as if
+    // they were the solve's, and a distributed run gathers a new surface every time.
+    const bool cache = !distributed && !solver.GetAborted();
+    std::copy(key, key + 3, this->AnimationKey);
+    this->AnimationInputs[0] = cache ? image : nullptr;
+    this->AnimationInputs[1] = cache ? surface : nullptr;
+    this->ServeTimeStep(requestedTime, output);
   }
   this->UpdateProgress(1.0);
   return 1;

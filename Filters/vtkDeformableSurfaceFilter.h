@@ -322,11 +322,14 @@ public:
    * Convergence as time steps (default off): the output reports time steps 0, S, 2S, ...
    * (S = SweepsPerTimeStep, default 20; the time value is the number of sweeps, at most 1000
    * steps up to the schedule's cap), and the surface at time t is the one after t sweeps (the
-   * last surface from the end of the solve on). The first request solves the whole schedule
-   * once and keeps a snapshot every S sweeps (points and triangles: memory = snapshots x mesh,
-   * e.g. 25 x 14 000 vertices = 10 MB); every other step, forward or back, comes from that
-   * cache until a parameter or an input changes. Snapshots carry the geometry and the field
-   * data Sweeps; the final step carries every array.
+   * last surface from the end of the solve on; time 0 is the start surface). The first request
+   * solves the whole schedule once and keeps a snapshot every S sweeps (points and triangles,
+   * ~24 bytes a vertex and 32 a triangle: 25 snapshots of 14 000 vertices ~ 20 MB; at most
+   * 1000 snapshots and 512 MB, later steps show the final surface); every other step, forward
+   * or back, comes from that cache until a parameter or an input changes. Serial only: a
+   * distributed run, or an aborted one, is not cached (every step solves again). Snapshots
+   * carry the geometry and the field data Sweeps; the final step carries every array. The
+   * inputs are asked for no particular time.
    */
   vtkSetMacro(AnimateSweeps, bool);
   vtkGetMacro(AnimateSweeps, bool);
@@ -339,10 +342,11 @@ public:
   /**
    * Warm start, the paper's interactive tuning (default off): when on, an update after a
    * change of the filter's own parameters (Tau, Gamma, the weights, Sigma, the region force,
-   * the hierarchy...) starts from the last output surface instead of the initial surface; a
-   * change of either input (a new image or a new start surface) starts over. Serial only: a
-   * distributed run always starts from the initial surface. Memory: one copy of the last output
-   * (points and triangles).
+   * the hierarchy, the Scalars array...) starts from the last surface computed while it was on
+   * instead of the initial surface; a change of either input (a new image or a new start
+   * surface) starts over. Serial only: a distributed run always starts from the initial
+   * surface. Memory: one copy of the last result (points and triangles). A warm-started surface
+   * depends on the session's history: a saved state reloaded computes it from the start.
    */
   vtkSetMacro(ContinueFromLastResult, bool);
   vtkGetMacro(ContinueFromLastResult, bool);

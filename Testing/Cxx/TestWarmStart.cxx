@@ -82,6 +82,10 @@ int TestWarmStart(int, char*[])
   start->SetRadius(21.0); // a new input: start over
   const Run again = Measure(tuned);
   DS_CHECK(again.Warm == 0, "a changed start surface: cold again");
+  tuned->SetGamma(0.08);
+  DS_CHECK(Measure(tuned).Warm == 1, "then a parameter change: warm");
+  image->Modified(); // a new image: start over
+  DS_CHECK(Measure(tuned).Warm == 0, "a changed image: cold again");
   return dstest::Result("TestWarmStart");
 }
 

@@ -7,7 +7,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from paraview.modules.vtkRemotingCore import vtkProcessModule  # noqa: E402
 from vtkmodules.vtkFiltersSources import vtkCubeSource  # noqa: E402
-from vtkmodules.vtkIOImage import vtkNIFTIImageReader  # noqa: E402
+from deformablesurface import vtkDSNIFTIImageReader  # noqa: E402 (the class the reader proxy uses)
 
 import readme_pipeline as rp  # noqa: E402
 from deformablesurface import vtkDeformableSurfaceFilter  # noqa: E402
@@ -19,7 +19,7 @@ out = os.path.join(os.environ.get("DS_TEST_OUTPUT", "."), "readme_pipeline_mpi")
 results = rp.run_all(out)
 
 # The serial reference: the same filter in this process alone, on the NIfTI phantom.
-reader = vtkNIFTIImageReader()
+reader = vtkDSNIFTIImageReader()
 reader.SetFileName(os.path.join(out, "ball.nii"))
 box = vtkCubeSource()
 box.SetXLength(rp.N)

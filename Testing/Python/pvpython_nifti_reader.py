@@ -72,6 +72,39 @@ direction = image.GetDirectionMatrix()
 assert max(abs(direction.GetElement(r, c) - qform.GetElement(r, c)) for r in range(3) for c in range(3)) < 1e-5
 assert abs(direction.Determinant() - 1.0) < 1e-6 and not math.isnan(direction.Determinant())
 
+# Both matrices, disagreeing (as in many atlases): the sform, marked as meant, wins.
+shifted = vtkMatrix4x4()
+shifted.Identity()
+shifted.SetElement(0, 3, 100.0)
+both = os.path.join(out_dir, "both.nii.gz")
+writer = vtkNIFTIImageWriter()
+writer.SetInputData(written)
+writer.SetQFormMatrix(qform)
+writer.SetSFormMatrix(shifted)
+writer.SetFileName(both)
+writer.Write()
+reader = OpenDataFile(both)
+image = servermanager.Fetch(reader)
+print("qform and sform: origin", image.GetOrigin(), "direction[0][0]", image.GetDirectionMatrix().GetElement(0, 0))
+assert max(abs(o - e) for o, e in zip(image.GetOrigin(), (100.0, 0.0, 0.0))) < 1e-6, image.GetOrigin()
+assert image.GetDirectionMatrix().GetElement(0, 0) == 1.0
+
+# The same reader, a file without orientation next: axis-aligned at the origin again, not the
+# previous file's rotation.
+plain = os.path.join(out_dir, "plain.nii")
+writer = vtkNIFTIImageWriter()
+writer.SetInputData(written)
+writer.SetFileName(plain)
+writer.Write()
+reader = OpenDataFile(oblique)
+reader.UpdatePipeline()
+reader.FileName = plain
+image = servermanager.Fetch(reader)
+d = image.GetDirectionMatrix()
+print("after the oblique file, a plain one: origin", image.GetOrigin(), "direction diagonal",
+      [d.GetElement(i, i) for i in range(3)])
+assert all(abs(d.GetElement(i, j) - (1.0 if i == j else 0.0)) < 1e-9 for i in range(3) for j in range(3))
+
 # The real volume of the demo (installed by scripts/install-deps.sh: mricron-data).
 colin = "/usr/share/mricron/templates/ch2bet.nii.gz"
 if not os.path.exists(colin):
