@@ -453,6 +453,22 @@ int vtkDeformableSurfaceFilter::RequestData(
     vtkErrorMacro("No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
     return 1;
   }
+  // AnimateSweeps: a time step already computed comes from the cache, before any work.
+  const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const double requestedTime = this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    : -1.0;
+  const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
+  if (this->AnimateSweeps && this->AnimationResult && this->AnimationInputs[0] == image &&
+    this->AnimationInputs[1] == surface && std::equal(key, key + 3, this->AnimationKey))
+  {
+    vtkDebugMacro(<< "Time " << requestedTime << " from the cache.");
+    this->ServeTimeStep(requestedTime, output);
+    table->ShallowCopy(this->AnimationTable);
+    return 1;
+  }
+
   dsurf::ImageVolume volume;
   std::string error;
   if (!dsurf::GetImageVolume(image, this->GetInputArrayToProcess(0, inputVector), volume, error))
@@ -475,20 +491,6 @@ int vtkDeformableSurfaceFilter::RequestData(
 
   // --- the initial surface: the input, or the last result (warm start) when only the
   // filter's own parameters changed since ---
-  const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const double requestedTime = this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
-    : -1.0;
-  const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
-  if (this->AnimateSweeps && this->AnimationResult && this->AnimationInputs[0] == image &&
-    this->AnimationInputs[1] == surface && std::equal(key, key + 3, this->AnimationKey))
-  {
-    vtkDebugMacro(<< "Time " << requestedTime << " from the cache.");
-    this->ServeTimeStep(requestedTime, output);
-    table->ShallowCopy(this->AnimationTable);
-    return 1;
-  }
   const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
     this->LastImage == image && this->LastImageTime == image->GetMTime() && this->LastSurface == surface &&
     this->LastSurfaceTime == surface->GetMTime();
