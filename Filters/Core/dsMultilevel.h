@@ -72,6 +72,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// Sweeps per parallel region (Solver::Sweeps): progress, abort and the sweep callback
   /// come after each batch, so the callback sees the mesh as of the end of its batch; 1
   /// hands over every sweep's mesh (slower on several threads: threads start per sweep).
+  /// Meshes over 50 000 vertices get smaller batches (16 x 50 000 / vertices, at least 1),
+  /// so an abort is answered quickly; results do not depend on the batch size.
   int SweepBatch = 16;
   /// Stop the whole run after this many sweeps (0: no limit), exactly there, mid-level if
   /// need be (a warning says so); the surface is valid at every sweep.
