@@ -84,7 +84,7 @@ bool SampleImage(vtkImageData* image, vtkDataArray* scalars, const double x[3], 
 // Collects every process's points (with their point data) on process 0, in process order, and
 // turns inputId into indices of the concatenation of all processes' inputs. Collective: every
 // process must call it. Returns false on the processes other than 0.
-bool GatherOnProcessZero(vtkMultiProcessController* controller, vtkIdType numberOfInputPoints,
+bool GatherPointsOnProcessZero(vtkMultiProcessController* controller, vtkIdType numberOfInputPoints,
   vtkSmartPointer<vtkPolyData>& points, std::vector<vtkIdType>& inputId)
 {
   const int nProcs = controller->GetNumberOfProcesses();
@@ -623,7 +623,7 @@ int vtkDelaunaySeedSurface::RequestData(
   // the seed is the one of the whole point set and is not duplicated downstream. The gather is
   // collective, so no process may return before it.
   if (vtkDSPolyDataGather::IsDistributed(this->Controller) &&
-    !GatherOnProcessZero(this->Controller, input->GetNumberOfPoints(), finite, inputId))
+    !GatherPointsOnProcessZero(this->Controller, input->GetNumberOfPoints(), finite, inputId))
   {
     return 1;
   }

@@ -1,5 +1,7 @@
 #include "dsScaleSpace.h"
 
+#include "dsThreads.h"
+
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -407,16 +409,6 @@ void FIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmooth
       }
     }
   }
-}
-
-int ResolveThreads(int n)
-{
-  if (n > 0)
-  {
-    return n;
-  }
-  const unsigned hc = std::thread::hardware_concurrency();
-  return hc > 0 ? static_cast<int>(hc) : 1;
 }
 
 // Runs body with vtkSMPTools on the STDThread backend (the machine default is

@@ -1,6 +1,7 @@
 #include "dsSolver.h"
 
 #include "dsRegion.h"
+#include "dsThreads.h"
 
 #include "vtkSMPTools.h"
 
@@ -112,15 +113,6 @@ inline void WaitPause(int& spins)
   }
 }
 
-int ResolveThreads(int requested)
-{
-  if (requested > 0)
-  {
-    return requested;
-  }
-  const unsigned hc = std::thread::hardware_concurrency();
-  return hc > 0 ? static_cast<int>(hc) : 1;
-}
 } // namespace
 
 void Solver::SetMesh(TriangleMesh* mesh)

@@ -1,6 +1,6 @@
-// The one bridge from VTK image data into the plain-C++ core: the checks, geometry and
-// float scalars that vtkImageScaleSpaceGradient and vtkDeformableSurfaceFilter both need.
-// (Everything else in Filters/Core is free of VTK types.)
+// The one bridge from VTK image data into the plain-C++ core (Filters/Core): the checks,
+// geometry and float scalars that the three filters need. It uses VTK data types, so it lives
+// beside the VTK classes, not in the core.
 #ifndef dsVTKImage_h
 #define dsVTKImage_h
 
