@@ -1,0 +1,64 @@
+# The outputs of Deformable Surface carry exactly the documented arrays, and every document
+# names each of them: the class comment (vtkDeformableSurfaceFilter.h), the ParaView help (the
+# proxy's XML documentation) and the README. Plain VTK Python (/usr/bin/python3).
+import os
+import sys
+
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.util.numpy_support import numpy_to_vtk
+import numpy as np
+
+from deformablesurface import vtkDeformableSurfaceFilter
+
+POINT_ARRAYS = {"Normals", "Displacement", "ExternalForce", "ErrorIndicator", "RefinementLevel", "VertexLabel"}
+FIELD_ARRAYS = {"Sweeps", "Levels", "InitialSubdivisions", "FinalMeanCorrection", "SelfIntersections",
+                "InitialSigma", "Sigma", "Converged", "WarmStart"}
+REGION_FIELD = {"IntensityRange"}  # only with the region force
+TABLE_COLUMNS = {"Sweep", "Level", "Sigma", "Vertices", "Triangles", "MeanCorrection", "MaxCorrection"}
+
+n, c, r = 32, 15.5, 8.0
+z, y, x = np.mgrid[0:n, 0:n, 0:n].astype(float)
+values = 1.0 / (1.0 + np.exp(2.0 * (np.sqrt((x - c) ** 2 + (y - c) ** 2 + (z - c) ** 2) - r)))
+image = vtkImageData()
+image.SetDimensions(n, n, n)
+array = numpy_to_vtk(values.ravel().astype(np.float32), deep=1)
+array.SetName("density")
+image.GetPointData().SetScalars(array)
+start = vtkSphereSource()
+start.SetCenter(c, c, c)
+start.SetRadius(11.0)
+
+failures = []
+for region in (0.0, 0.3):
+    f = vtkDeformableSurfaceFilter()
+    f.SetInputData(0, image)
+    f.SetInitialSurfaceConnection(start.GetOutputPort())
+    f.SetRegionWeight(region)
+    f.Update()
+    out = f.GetOutput()
+    points = {out.GetPointData().GetArrayName(i) for i in range(out.GetPointData().GetNumberOfArrays())}
+    field = {out.GetFieldData().GetArrayName(i) for i in range(out.GetFieldData().GetNumberOfArrays())}
+    table = f.GetConvergenceTable()
+    columns = {table.GetColumnName(i) for i in range(table.GetNumberOfColumns())}
+    expected_field = FIELD_ARRAYS | (REGION_FIELD if region > 0 else set())
+    for what, got, want in (("point arrays", points, POINT_ARRAYS), ("field data", field, expected_field),
+                            ("table columns", columns, TABLE_COLUMNS)):
+        print("RegionWeight %g, %s: %s" % (region, what, sorted(got)))
+        if got != want:
+            failures.append("RegionWeight %g %s: extra %s, missing %s" % (region, what, sorted(got - want),
+                                                                           sorted(want - got)))
+
+root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+documents = {"class comment": os.path.join(root, "Filters", "vtkDeformableSurfaceFilter.h"),
+             "ParaView help (XML)": os.path.join(root, "xml", "DeformableSurface.xml"),
+             "README": os.path.join(root, "README.md")}
+for name, path in documents.items():
+    with open(path) as f:
+        text = f.read()
+    missing = sorted(a for a in POINT_ARRAYS | FIELD_ARRAYS | REGION_FIELD if a not in text)
+    if missing:
+        failures.append("%s does not name %s" % (name, missing))
+for failure in failures:
+    print("FAILED:", failure)
+sys.exit(1 if failures else 0)
