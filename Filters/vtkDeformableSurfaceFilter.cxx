@@ -513,7 +513,7 @@ int vtkDeformableSurfaceFilter::RequestData(
                                     << mesh.NumberOfTriangles() << " triangles, signed volume "
                                     << mesh.SignedVolume() << ".");
 
-  // --- the multilevel solve (hierarchy branch): dsurf::MultilevelSolver runs the
+  // --- the multilevel solve: dsurf::MultilevelSolver runs the
   // levels (sweeps, error estimator, red-green refinement, butterfly, sigma halving,
   // force field per level); here only parameters in and results out.
   dsurf::MultilevelParameters mp;

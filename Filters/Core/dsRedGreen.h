@@ -117,7 +117,7 @@ private:
   int ExpectedPoints = -1, ExpectedTriangles = -1;
 };
 
-/// The topology invariants every refinement must keep (docs/METHOD.md §6.3 and issue 4): manifold
+/// The topology invariants every refinement must keep (docs/METHOD.md §6.3): manifold
 /// edges and vertices, consistent orientation, the given Euler characteristic, and,
 /// when mustBeClosed, every edge with two triangles (on a closed surface this also means
 /// no T-vertex). Runs BuildTopology() on a copy when the mesh's topology is stale.

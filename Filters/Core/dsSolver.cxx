@@ -27,7 +27,7 @@ struct MeshView
 
 /// Weight sum of vertex v and the normalised weight it gives neighbour slot i.
 /// Uniform fallback when the label weights of v sum to zero: an M vertex whose only
-/// neighbours are M, which red-green cascades do produce now and then (review: 19 times
+/// neighbours are M, which red-green cascades do produce now and then (measured: 19 times
 /// in 300 random multi-level runs; docs/METHOD.md §6.4 lets rare cascading cases be ignored).
 struct RingWeights
 {

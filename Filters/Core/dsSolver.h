@@ -36,7 +36,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
   /// docs/METHOD.md §5 rule (project F onto the umbrella or the normal). false is a test-only
   /// switch that applies the raw force, to show what the rule prevents.
   bool ProjectExternalForce = true;
-  /// (hierarchy branch) docs/METHOD.md §6.4 label weights on (default). false weighs every
+  /// docs/METHOD.md §6.4 label weights on (default). false weighs every
   /// neighbour 1 whatever the labels: a test-only switch showing what the table prevents
   /// (vertices drifting on red-green borders).
   bool UseLabelWeights = true;

@@ -1,4 +1,4 @@
-// End to end (issue 5): picked points -> vtkDelaunaySeedSurface -> vtkDeformableSurfaceFilter.
+// End to end: picked points -> vtkDelaunaySeedSurface -> vtkDeformableSurfaceFilter.
 //
 // 1. Torus phantom 128^3 (R = 32, r = 12.8 voxels, a one-voxel partial-volume ramp so the
 //    edge sits on the true surface). A user picks 40 points on its boundary on four slices
