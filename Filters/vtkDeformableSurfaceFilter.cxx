@@ -260,6 +260,28 @@ void AddFieldValue(vtkFieldData* fd, const char* name, T value)
   a->InsertNextValue(value);
   fd->AddArray(a);
 }
+/// The field data of output 0 (the list the class comment, the XML help and the README give).
+void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMesh& mesh, bool region, bool warm,
+  vtkFieldData* fd)
+{
+  AddFieldValue<vtkIntArray>(fd, "Sweeps", solver.GetTotalSweeps());
+  AddFieldValue<vtkIntArray>(fd, "Levels", static_cast<int>(solver.GetLevels().size()));
+  AddFieldValue<vtkIntArray>(fd, "InitialSubdivisions", solver.GetInitialSubdivisions());
+  AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
+  AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
+  AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
+  AddFieldValue<vtkDoubleArray>(fd, "InitialSigma", solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma);
+  if (region)
+  {
+    vtkNew<vtkDoubleArray> usedRange;
+    usedRange->SetName("IntensityRange");
+    usedRange->SetNumberOfComponents(2);
+    usedRange->InsertNextTuple(solver.GetIntensityRange());
+    fd->AddArray(usedRange);
+  }
+  AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
+  AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -414,6 +436,92 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
+dsurf::MultilevelParameters vtkDeformableSurfaceFilter::SolveParameters() const
+{
+  dsurf::MultilevelParameters mp;
+  mp.Solver.Tau = this->Tau;
+  mp.Solver.Gamma = this->Gamma;
+  mp.Solver.ProjectExternalForce = this->ProjectExternalForce;
+  mp.Solver.NumberOfThreads = this->NumberOfThreads;
+  mp.EdgeWeight = this->EdgeWeight;
+  mp.ImageWeight = this->ImageWeight;
+  mp.InitialSigma = this->Sigma;
+  mp.InitialSigmaFraction = this->SigmaFraction;
+  mp.Normalization = static_cast<dsurf::EdgeNormalization>(this->EdgeNormalization);
+  mp.RegionWeight = this->RegionWeight;
+  mp.IntensityRange[0] = this->IntensityRange[0];
+  mp.IntensityRange[1] = this->IntensityRange[1];
+  mp.HierarchicalSigma = this->HierarchicalSigma;
+  mp.MaxLevels = this->MaxLevels;
+  mp.MaxSweepsPerLevel = this->MaxSweepsPerLevel;
+  mp.Tolerance = this->ConvergenceTolerance;
+  mp.RefinementThreshold = this->RefinementThreshold;
+  mp.UniformRefinement = this->UniformRefinement;
+  mp.InitialEdgeSigmaRatio = this->SubdivideInitialSurface ? 4.0 : 0.0;
+  mp.ProlongationMode =
+    this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
+  mp.MaxVertices = this->MaxVertices;
+  mp.CheckInvariants = this->CheckTopology;
+  mp.MaxTotalSweeps = this->MaxSweeps;
+  return mp;
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::Report(const dsurf::MultilevelSolver& solver)
+{
+  for (const std::string& w : solver.GetWarnings())
+  {
+    vtkWarningMacro(<< w);
+  }
+  // Vertices that only pass outside on the way (a start box at the image bounds bulges
+  // out for a few sweeps) are harmless; the ones that end outside never met the image.
+  if (solver.GetFinalOutsideVertices() > 0)
+  {
+    vtkWarningMacro(<< solver.GetFinalOutsideVertices()
+                    << " vertices ended outside the image, where they feel no external force: "
+                       "the initial surface may reach beyond the volume.");
+  }
+  const dsurf::InitialSigmaChoice& choice = solver.GetInitialSigmaChoice();
+  vtkDebugMacro(<< "sigma_0 " << (solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma)
+                << (choice.SpansVolume ? ": the start spans the volume (extent / 6)" : "")
+                << (choice.Rays > 0 ? ": the 90th-percentile distance " + std::to_string(choice.StartDistance) +
+                        " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) + " of " +
+                        std::to_string(choice.Rays) + " rays met one)" : std::string()));
+  vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()
+                << " vertices lay outside the image during a sweep.");
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
+  bool complete, vtkPolyData* output, vtkTable* table)
+{
+  if (this->ContinueFromLastResult && complete)
+  {
+    // A copy of the final surface: downstream filters must not be able to change where the
+    // next run starts (and with AnimateSweeps the output becomes a time step).
+    vtkNew<vtkPolyData> shape;
+    shape->SetPoints(output->GetPoints());
+    shape->SetPolys(output->GetPolys());
+    this->LastResult = vtkSmartPointer<vtkPolyData>::New();
+    this->LastResult->DeepCopy(shape);
+    this->LastImage = image;
+    this->LastImageTime = image->GetMTime();
+    this->LastSurface = surface;
+    this->LastSurfaceTime = surface->GetMTime();
+  }
+  if (this->AnimateSweeps)
+  {
+    this->AnimationResult = vtkSmartPointer<vtkPolyData>::New();
+    this->AnimationResult->DeepCopy(output);
+    this->AnimationTable = vtkSmartPointer<vtkTable>::New();
+    this->AnimationTable->DeepCopy(table);
+    std::copy(key, key + 3, this->AnimationKey);
+    this->AnimationInputs[0] = complete ? image : nullptr; // an incomplete run is never a hit
+    this->AnimationInputs[1] = complete ? surface : nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
 int vtkDeformableSurfaceFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -516,31 +624,7 @@ int vtkDeformableSurfaceFilter::RequestData(
   // --- the multilevel solve: dsurf::MultilevelSolver runs the
   // levels (sweeps, error estimator, red-green refinement, butterfly, sigma halving,
   // force field per level); here only parameters in and results out.
-  dsurf::MultilevelParameters mp;
-  mp.Solver.Tau = this->Tau;
-  mp.Solver.Gamma = this->Gamma;
-  mp.Solver.ProjectExternalForce = this->ProjectExternalForce;
-  mp.Solver.NumberOfThreads = this->NumberOfThreads;
-  mp.EdgeWeight = this->EdgeWeight;
-  mp.ImageWeight = this->ImageWeight;
-  mp.InitialSigma = this->Sigma;
-  mp.InitialSigmaFraction = this->SigmaFraction;
-  mp.Normalization = static_cast<dsurf::EdgeNormalization>(this->EdgeNormalization);
-  mp.RegionWeight = this->RegionWeight;
-  mp.IntensityRange[0] = this->IntensityRange[0];
-  mp.IntensityRange[1] = this->IntensityRange[1];
-  mp.HierarchicalSigma = this->HierarchicalSigma;
-  mp.MaxLevels = this->MaxLevels;
-  mp.MaxSweepsPerLevel = this->MaxSweepsPerLevel;
-  mp.Tolerance = this->ConvergenceTolerance;
-  mp.RefinementThreshold = this->RefinementThreshold;
-  mp.UniformRefinement = this->UniformRefinement;
-  mp.InitialEdgeSigmaRatio = this->SubdivideInitialSurface ? 4.0 : 0.0;
-  mp.ProlongationMode =
-    this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
-  mp.MaxVertices = this->MaxVertices;
-  mp.CheckInvariants = this->CheckTopology;
-  mp.MaxTotalSweeps = this->MaxSweeps;
+  dsurf::MultilevelParameters mp = this->SolveParameters();
   this->Snapshots.clear();
   this->AnimationResult = nullptr;
   if (this->AnimateSweeps)
@@ -577,74 +661,17 @@ int vtkDeformableSurfaceFilter::RequestData(
     output->Initialize();
     return 1;
   }
-  for (const std::string& w : solver.GetWarnings())
-  {
-    vtkWarningMacro(<< w);
-  }
-  // Vertices that only pass outside on the way (a start box at the image bounds bulges
-  // out for a few sweeps) are harmless; the ones that end outside never met the image.
-  if (solver.GetFinalOutsideVertices() > 0)
-  {
-    vtkWarningMacro(<< solver.GetFinalOutsideVertices()
-                    << " vertices ended outside the image, where they feel no external force: "
-                       "the initial surface may reach beyond the volume.");
-  }
-  const dsurf::InitialSigmaChoice& choice = solver.GetInitialSigmaChoice();
-  vtkDebugMacro(<< "sigma_0 " << (solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma)
-                << (choice.SpansVolume ? ": the start spans the volume (extent / 6)" : "")
-                << (choice.Rays > 0 ? ": the 90th-percentile distance " + std::to_string(choice.StartDistance) +
-                        " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) + " of " +
-                        std::to_string(choice.Rays) + " rays met one)" : std::string()));
-  vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()
-                << " vertices lay outside the image during a sweep.");
+  this->Report(solver);
 
   // --- outputs ---
   FillOutput(mesh, solver, output);
-  vtkFieldData* fd = output->GetFieldData();
-  AddFieldValue<vtkIntArray>(fd, "Sweeps", solver.GetTotalSweeps());
-  AddFieldValue<vtkIntArray>(fd, "Levels", static_cast<int>(solver.GetLevels().size()));
-  AddFieldValue<vtkIntArray>(fd, "InitialSubdivisions", solver.GetInitialSubdivisions());
-  AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
-  AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
-  AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
-  AddFieldValue<vtkDoubleArray>(fd, "InitialSigma", solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma);
-  if (this->RegionWeight > 0)
-  {
-    vtkNew<vtkDoubleArray> usedRange;
-    usedRange->SetName("IntensityRange");
-    usedRange->SetNumberOfComponents(2);
-    usedRange->InsertNextTuple(solver.GetIntensityRange());
-    fd->AddArray(usedRange);
-  }
-  AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
-  AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
+  AddFieldData(solver, mesh, this->RegionWeight > 0, warm, output->GetFieldData());
   columns.AddTo(table);
-  if (this->ContinueFromLastResult && !distributed && !solver.GetAborted())
-  {
-    // A copy of the final surface: downstream filters must not be able to change where the
-    // next run starts (and with AnimateSweeps the output becomes a time step below).
-    vtkNew<vtkPolyData> shape;
-    shape->SetPoints(output->GetPoints());
-    shape->SetPolys(output->GetPolys());
-    this->LastResult = vtkSmartPointer<vtkPolyData>::New();
-    this->LastResult->DeepCopy(shape);
-    this->LastImage = image;
-    this->LastImageTime = image->GetMTime();
-    this->LastSurface = surface;
-    this->LastSurfaceTime = surface->GetMTime();
-  }
+  // Warm start and time steps: only complete, serial results (an aborted run's steps would be
+  // served as the solve's; a distributed run gathers a new surface every time).
+  this->KeepResult(image, surface, key, !distributed && !solver.GetAborted(), output, table);
   if (this->AnimateSweeps)
   {
-    this->AnimationResult = vtkSmartPointer<vtkPolyData>::New();
-    this->AnimationResult->DeepCopy(output);
-    this->AnimationTable = vtkSmartPointer<vtkTable>::New();
-    this->AnimationTable->DeepCopy(table);
-    // Cached only when complete and serial: an aborted run's steps would be served as if
-    // they were the solve's, and a distributed run gathers a new surface every time.
-    const bool cache = !distributed && !solver.GetAborted();
-    std::copy(key, key + 3, this->AnimationKey);
-    this->AnimationInputs[0] = cache ? image : nullptr;
-    this->AnimationInputs[1] = cache ? surface : nullptr;
     this->ServeTimeStep(requestedTime, output);
   }
   this->UpdateProgress(1.0);

@@ -94,8 +94,14 @@
 
 #include <vector> // for the time-step snapshots
 
+class vtkImageData;
 class vtkMultiProcessController;
 class vtkTable;
+namespace dsurf
+{
+struct MultilevelParameters;
+class MultilevelSolver;
+}
 
 class DEFORMABLESURFACEFILTERS_EXPORT vtkDeformableSurfaceFilter : public vtkPolyDataAlgorithm
 {
@@ -413,6 +419,16 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The surface at time t (sweeps) from the cache into `output`.
   void ServeTimeStep(double t, vtkPolyData* output);
+
+private:
+  /// This filter's properties as the core's parameters.
+  dsurf::MultilevelParameters SolveParameters() const;
+  /// The solver's warnings and debug lines.
+  void Report(const dsurf::MultilevelSolver& solver);
+  /// The warm start's copy and the time steps' cache of this result (complete: not aborted,
+  /// serial).
+  void KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3], bool complete,
+    vtkPolyData* output, vtkTable* table);
 
   // The warm start's state: the last output and the inputs it came from.
   vtkSmartPointer<vtkPolyData> LastResult;
