@@ -117,6 +117,132 @@ bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& ge
   return true;
 }
 
+bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
+  RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
+  const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
+  std::string msg;
+  if (P.RegionWeight > 0)
+  {
+    // The region force pushes along the outward normal (and the range estimate looks just
+    // outside the start): every closed piece must face out.
+    const int flipped = mesh.OrientPiecesOutward();
+    if (flipped > 0)
+    {
+      this->Warnings.push_back("the region force needs outward normals: " + std::to_string(flipped) +
+        " triangle(s) of inward-oriented pieces were reversed");
+      if (!refiner.Initialize(mesh, &msg))
+      {
+        *error = "the reoriented initial surface is not a manifold triangle mesh: " + msg;
+        return false;
+      }
+    }
+  }
+  region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
+  if (P.InitialEdgeSigmaRatio > 0)
+  {
+    // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
+    // and the result is a fresh level-0 mesh for the hierarchy.
+    // Edges shorter than two voxels resolve nothing more, whatever sigma is.
+    const double target = std::max(P.InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
+    bool subdivided = false;
+    while (mesh.MeanEdgeLength() > target &&
+      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
+    {
+      const std::vector<char> all(mesh.Triangles.size(), 1);
+      const RefinementCounts rc = refiner.Refine(mesh, all, Prolongation::Linear);
+      if (!rc.Ok)
+      {
+        *error = "subdividing the initial surface failed: " + rc.Error;
+        return false;
+      }
+      ++this->InitialSubdivisions;
+      subdivided = true;
+    }
+    if (subdivided)
+    {
+      mesh.Levels.assign(mesh.Points.size(), 0);
+      if (!refiner.Initialize(mesh, &msg))
+      {
+        *error = "the subdivided initial surface is not a manifold triangle mesh: " + msg;
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
+{
+  const MultilevelParameters& P = this->Parameters;
+  const int cap = std::max(1, P.MaxSweepsPerLevel);
+  const int maxLevels = std::max(0, P.MaxLevels);
+  bool stop = false;
+  // Sweeps run in batches inside one parallel region (threads start once per batch, not
+  // per sweep); convergence is tested after every sweep, progress and abort between
+  // batches, and the sweep records are handed on after each batch.
+  // Batches shrink on big meshes so that progress moves and an abort is answered within
+  // about the time of 16 sweeps of 50 000 vertices (one sweep from 800 000 vertices on).
+  const int batchSize = std::max(1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
+  std::vector<SweepStatistics> batchStats;
+  for (int s = 0; s < cap && !stop && !rec.Converged;)
+  {
+    // MaxTotalSweeps: the run stops exactly there (the batch is cut short to reach it).
+    const int budget = P.MaxTotalSweeps > 0 ? P.MaxTotalSweeps - sweepCounter : cap;
+    if (budget <= 0)
+    {
+      this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
+      stop = true;
+      break;
+    }
+    batchStats.clear();
+    solver.Sweeps(std::min({ batchSize, cap - s, budget }), [&](const SweepStatistics& st) {
+      batchStats.push_back(st);
+      if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * rec.MeanEdgeLength)
+      {
+        rec.Converged = true;
+        return false;
+      }
+      return true;
+    });
+    for (const SweepStatistics& st : batchStats)
+    {
+      ++s;
+      ++sweepCounter;
+      ++rec.Sweeps;
+      SweepRecord sr;
+      sr.Sweep = sweepCounter;
+      sr.Level = rec.Level;
+      sr.Sigma = rec.Sigma;
+      sr.Vertices = mesh.NumberOfPoints();
+      sr.Triangles = mesh.NumberOfTriangles();
+      sr.MeanCorrection = st.MeanCorrection;
+      sr.MaxCorrection = st.MaxCorrection;
+      this->Sweeps.push_back(sr);
+      this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
+      this->FinalOutsideVertices = st.OutsideVertices;
+      if (this->OnSweep && !this->OnSweep(sr, mesh))
+      {
+        stop = true;
+        break;
+      }
+    }
+    if (!stop && !rec.Converged && this->Progress &&
+      !this->Progress((rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (maxLevels + 1)))
+    {
+      this->Aborted = true;
+      stop = true;
+    }
+  }
+  if (P.MaxTotalSweeps > 0 && sweepCounter >= P.MaxTotalSweeps && !stop)
+  {
+    this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
+    stop = true; // no refinement after the budget
+  }
+  return stop;
+}
+
 bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
@@ -163,49 +289,10 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     return fail(msg);
   }
   const double firstSigma = sigma;
-  if (P.RegionWeight > 0)
+  bool region = false;
+  if (!this->PrepareStart(scalars, geometry, mesh, refiner, sigma, region, &msg))
   {
-    // The region force pushes along the outward normal (and the range estimate looks just
-    // outside the start): every closed piece must face out.
-    const int flipped = mesh.OrientPiecesOutward();
-    if (flipped > 0)
-    {
-      this->Warnings.push_back("the region force needs outward normals: " + std::to_string(flipped) +
-        " triangle(s) of inward-oriented pieces were reversed");
-      if (!refiner.Initialize(mesh, &msg))
-      {
-        return fail("the reoriented initial surface is not a manifold triangle mesh: " + msg);
-      }
-    }
-  }
-  const bool region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
-  if (P.InitialEdgeSigmaRatio > 0)
-  {
-    // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
-    // and the result is a fresh level-0 mesh for the hierarchy.
-    // Edges shorter than two voxels resolve nothing more, whatever sigma is.
-    const double target = std::max(P.InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
-    bool subdivided = false;
-    while (mesh.MeanEdgeLength() > target &&
-      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
-    {
-      const std::vector<char> all(mesh.Triangles.size(), 1);
-      const RefinementCounts rc = refiner.Refine(mesh, all, Prolongation::Linear);
-      if (!rc.Ok)
-      {
-        return fail("subdividing the initial surface failed: " + rc.Error);
-      }
-      ++this->InitialSubdivisions;
-      subdivided = true;
-    }
-    if (subdivided)
-    {
-      mesh.Levels.assign(mesh.Points.size(), 0);
-      if (!refiner.Initialize(mesh, &msg))
-      {
-        return fail("the subdivided initial surface is not a manifold triangle mesh: " + msg);
-      }
-    }
+    return fail(msg);
   }
 #ifndef NDEBUG
   const bool checkInvariants = true;
@@ -226,7 +313,6 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   ssp.NumberOfThreads = P.Solver.NumberOfThreads;
 
   const int maxLevels = std::max(0, P.MaxLevels);
-  const int cap = std::max(1, P.MaxSweepsPerLevel);
   int sweepCounter = 0;
   bool budgetWarned = false;
   for (int level = 0; level <= maxLevels; ++level)
@@ -259,68 +345,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     rec.Vertices = mesh.NumberOfPoints();
     rec.Triangles = mesh.NumberOfTriangles();
     rec.MeanEdgeLength = h;
-    bool stop = false;
-    // Sweeps run in batches inside one parallel region (threads start once per batch, not
-    // per sweep); convergence is tested after every sweep, progress and abort between
-    // batches, and the sweep records are handed on after each batch.
-    // Batches shrink on big meshes so that progress moves and an abort is answered within
-    // about the time of 16 sweeps of 50 000 vertices (one sweep from 800 000 vertices on).
-    const int batchSize = std::max(1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
-    std::vector<SweepStatistics> batchStats;
-    for (int s = 0; s < cap && !stop && !rec.Converged;)
-    {
-      // MaxTotalSweeps: the run stops exactly there (the batch is cut short to reach it).
-      const int budget = P.MaxTotalSweeps > 0 ? P.MaxTotalSweeps - sweepCounter : cap;
-      if (budget <= 0)
-      {
-        this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
-        stop = true;
-        break;
-      }
-      batchStats.clear();
-      solver.Sweeps(std::min({ batchSize, cap - s, budget }), [&](const SweepStatistics& st) {
-        batchStats.push_back(st);
-        if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * h)
-        {
-          rec.Converged = true;
-          return false;
-        }
-        return true;
-      });
-      for (const SweepStatistics& st : batchStats)
-      {
-        ++s;
-        ++sweepCounter;
-        ++rec.Sweeps;
-        SweepRecord sr;
-        sr.Sweep = sweepCounter;
-        sr.Level = level;
-        sr.Sigma = sigma;
-        sr.Vertices = mesh.NumberOfPoints();
-        sr.Triangles = mesh.NumberOfTriangles();
-        sr.MeanCorrection = st.MeanCorrection;
-        sr.MaxCorrection = st.MaxCorrection;
-        this->Sweeps.push_back(sr);
-        this->MaxOutsideVertices = std::max(this->MaxOutsideVertices, st.OutsideVertices);
-        this->FinalOutsideVertices = st.OutsideVertices;
-        if (this->OnSweep && !this->OnSweep(sr, mesh))
-        {
-          stop = true;
-          break;
-        }
-      }
-      if (!stop && !rec.Converged && this->Progress &&
-        !this->Progress((level + std::min(1.0, double(s) / std::min(cap, 400))) / (maxLevels + 1)))
-      {
-        this->Aborted = true;
-        stop = true;
-      }
-    }
-    if (P.MaxTotalSweeps > 0 && sweepCounter >= P.MaxTotalSweeps && !stop)
-    {
-      this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
-      stop = true; // no refinement after the budget
-    }
+    const bool stop = this->SolveLevel(solver, mesh, rec, sweepCounter);
     // Folds the forces left (two parts of the surface pushed together) are smoothed open
     // before the level's estimator is read and the mesh is refined (dsUntangle.h).
     rec.Folds = Untangle(mesh);

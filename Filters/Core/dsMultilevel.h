@@ -187,6 +187,13 @@ private:
   /// sigma_0 by the rule of InitialSigma / InitialSigmaFraction / the start.
   bool FirstSigma(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
     double& sigma, std::string* error);
+  /// Before level 0: closed pieces turned outward and the region force's range (with
+  /// RegionWeight > 0; region = whether it is on), then the start subdivided to ~4 sigma_0.
+  bool PrepareStart(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
+    RedGreenRefiner& refiner, double sigma, bool& region, std::string* error);
+  /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
+  /// convergence test, the records, progress and abort, MaxTotalSweeps. True = stop the run.
+  bool SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says why).
   bool RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh);
 };
