@@ -453,14 +453,9 @@ def _distance_mesh(producer, view, limit, title, c):
     view.CameraPosition = [f + 0.85 * (p - f) for p, f in zip(view.CameraPosition, view.CameraFocalPoint)]
 
 
-def render(result, png, size=(1600, 800), metrics=None):
-    """Left: a sagittal slice of the full head T1 (ch2.nii.gz) with the line where the
-    surface cuts it. Right: the surface mesh coloured by its distance to the mask boundary."""
-    head = nifti_source(HEAD)
-    surface = simple.TrivialProducer(registrationName="brain surface")
-    surface.GetClientSideObject().SetOutput(result["annotated"])
-    surface.UpdatePipeline()
-    layout = simple.CreateLayout("brain")
+def _two_views(name):
+    """A layout of two render views side by side, dark, without orientation axes."""
+    layout = simple.CreateLayout(name)
     left = simple.CreateView("RenderView")
     right = simple.CreateView("RenderView")
     simple.AssignViewToLayout(view=left, layout=layout, hint=0)
@@ -469,31 +464,50 @@ def render(result, png, size=(1600, 800), metrics=None):
         view.OrientationAxesVisibility = 0
         view.UseColorPaletteForBackground = 0
         view.Background = [0.06, 0.06, 0.08]
+    return layout, left, right
+
+
+def _grey_slice(image, origin, normal, view, top):
+    """The image's plane through origin, its own greys (0..top), unlit."""
+    cut = simple.Slice(Input=image)
+    cut.SliceType = "Plane"
+    cut.SliceType.Origin, cut.SliceType.Normal = origin, normal
+    shown = simple.Show(cut, view)
+    simple.ColorBy(shown, ("POINTS", "NIFTI"))
+    grey = simple.GetColorTransferFunction("NIFTI")
+    grey.ApplyPreset("Grayscale", True)
+    grey.RescaleTransferFunction(0.0, top)
+    shown.SetScalarBarVisibility(view, False)
+    shown.Ambient, shown.Diffuse = 1.0, 0.0
+
+
+def _trace(surface, origin, normal, view, colour):
+    """Where the surface cuts the plane: a thick line, one unit in front of the slice."""
+    trace = simple.Slice(Input=surface)
+    trace.SliceType = "Plane"
+    trace.SliceType.Origin, trace.SliceType.Normal = origin, normal
+    line = simple.Show(trace, view)
+    line.ColorArrayName = ["POINTS", ""]
+    line.AmbientColor = line.DiffuseColor = colour
+    line.Ambient, line.Diffuse = 1.0, 0.0
+    line.LineWidth = 3.0
+    line.Position = [-n for n in normal]
+
+
+def render(result, png, size=(1600, 800), metrics=None):
+    """Left: a sagittal slice of the full head T1 (ch2.nii.gz) with the line where the
+    surface cuts it. Right: the surface mesh coloured by its distance to the mask boundary."""
+    head = nifti_source(HEAD)
+    surface = simple.TrivialProducer(registrationName="brain surface")
+    surface.GetClientSideObject().SetOutput(result["annotated"])
+    surface.UpdatePipeline()
+    layout, left, right = _two_views("brain")
 
     # Left: a parasagittal plane through the left hemisphere, the surface's trace on it.
     c = _centre(head)
-    x = c[0] - 20.0  # a parasagittal plane through the left hemisphere
-    cut = simple.Slice(Input=head)
-    cut.SliceType = "Plane"
-    cut.SliceType.Origin = [x, c[1], c[2]]
-    cut.SliceType.Normal = [1.0, 0.0, 0.0]
-    slice_display = simple.Show(cut, left)
-    simple.ColorBy(slice_display, ("POINTS", "NIFTI"))
-    grey = simple.GetColorTransferFunction("NIFTI")
-    grey.ApplyPreset("Grayscale", True)
-    grey.RescaleTransferFunction(0.0, 130.0)
-    slice_display.SetScalarBarVisibility(left, False)
-    slice_display.Ambient, slice_display.Diffuse = 1.0, 0.0  # the image's own greys, unlit
-    trace = simple.Slice(Input=surface)
-    trace.SliceType = "Plane"
-    trace.SliceType.Origin = [x, c[1], c[2]]
-    trace.SliceType.Normal = [1.0, 0.0, 0.0]
-    line = simple.Show(trace, left)
-    line.ColorArrayName = ["POINTS", ""]
-    line.AmbientColor = line.DiffuseColor = [1.0, 0.55, 0.1]
-    line.Ambient, line.Diffuse = 1.0, 0.0
-    line.LineWidth = 3.0
-    line.Position = [-1.0, 0.0, 0.0]  # in front of the slice, not in it
+    x = c[0] - 20.0
+    _grey_slice(head, [x, c[1], c[2]], [1.0, 0.0, 0.0], left, 130.0)
+    _trace(surface, [x, c[1], c[2]], [1.0, 0.0, 0.0], left, [1.0, 0.55, 0.1])
     left.CameraFocalPoint = [x, c[1], c[2]]
     left.CameraPosition = _at(c, -490.0, 0.0, 0.0)
     left.CameraViewUp = [0.0, 0.0, 1.0]
@@ -527,39 +541,14 @@ def render_head(picks, click, png, metrics, size=(1600, 800)):
     annotated = simple.TrivialProducer(registrationName="surface from the picks")
     annotated.GetClientSideObject().SetOutput(picks["annotated"])
     annotated.UpdatePipeline()
-    layout = simple.CreateLayout("head")
-    left = simple.CreateView("RenderView")
-    right = simple.CreateView("RenderView")
-    simple.AssignViewToLayout(view=left, layout=layout, hint=0)
-    simple.AssignViewToLayout(view=right, layout=layout, hint=0)
-    for view in (left, right):
-        view.OrientationAxesVisibility = 0
-        view.UseColorPaletteForBackground = 0
-        view.Background = [0.06, 0.06, 0.08]
+    layout, left, right = _two_views("head")
 
     c = _centre(picks["image_proxy"])
     y = c[1] + 2.0  # the coronal slice the user picked on
-    plane = dict(Origin=[c[0], y, c[2]], Normal=[0.0, 1.0, 0.0])
-    cut = simple.Slice(Input=picks["image_proxy"])
-    cut.SliceType = "Plane"
-    cut.SliceType.Origin, cut.SliceType.Normal = plane["Origin"], plane["Normal"]
-    slice_display = simple.Show(cut, left)
-    simple.ColorBy(slice_display, ("POINTS", "NIFTI"))
-    grey = simple.GetColorTransferFunction("NIFTI")
-    grey.ApplyPreset("Grayscale", True)
-    grey.RescaleTransferFunction(0.0, 140.0)
-    slice_display.SetScalarBarVisibility(left, False)
-    slice_display.Ambient, slice_display.Diffuse = 1.0, 0.0
+    plane = ([c[0], y, c[2]], [0.0, 1.0, 0.0])
+    _grey_slice(picks["image_proxy"], plane[0], plane[1], left, 140.0)
     for result, colour in ((picks, [1.0, 0.55, 0.1]), (click, [0.2, 0.85, 1.0])):
-        trace = simple.Slice(Input=result["surface"])
-        trace.SliceType = "Plane"
-        trace.SliceType.Origin, trace.SliceType.Normal = plane["Origin"], plane["Normal"]
-        line = simple.Show(trace, left)
-        line.ColorArrayName = ["POINTS", ""]
-        line.AmbientColor = line.DiffuseColor = colour
-        line.Ambient, line.Diffuse = 1.0, 0.0
-        line.LineWidth = 3.0
-        line.Position = [0.0, -1.0, 0.0]  # in front of the slice
+        _trace(result["surface"], plane[0], plane[1], left, colour)
     near = simple.Clip(Input=picks["points"], ClipType="Plane", Invert=0, Crinkleclip=0)
     near.ClipType.Origin, near.ClipType.Normal = [c[0], y - 1.0, c[2]], [0.0, 1.0, 0.0]
     near = simple.Clip(Input=near, ClipType="Plane", Invert=1)
