@@ -359,11 +359,16 @@ void Solver::UpdateVertex(int v)
       outside = 1;
     }
   }
+  // The area-weighted normal, computed once: the region force and the projection rule need it.
+  Vec3 normal{ 0, 0, 0 };
+  bool haveNormal = false;
   if (this->RegionScalars)
   {
     bool inside = false;
     const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, points[v].data(), &inside);
-    const Vec3 n = this->FanNormal(v);
+    normal = this->FanNormal(v);
+    haveNormal = true;
+    const Vec3& n = normal;
     const double nn = Norm(n);
     if (inside && nn > 0)
     {
@@ -387,7 +392,7 @@ void Solver::UpdateVertex(int v)
       }
       else
       {
-        const Vec3 nrm = this->FanNormal(v);
+        const Vec3 nrm = haveNormal ? normal : this->FanNormal(v);
         const double nn = Dot(nrm, nrm);
         if (nn > 0)
         {
