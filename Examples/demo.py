@@ -125,12 +125,12 @@ HEADS = {
 }
 
 # The non-default filter properties per start, and why:
-#   picks  RegionWeight 0.3: the brain sits among scalp and skull with edges as strong as its
-#          own; the region force (range estimated from inside and just outside the seed)
-#          tells the brain from them (edge force alone: mean 2.2 mm, see the README).
+#   picks  none: the default region force (RegionWeight 0.3, its range estimated from inside
+#          and just outside the seed) tells the brain from scalp and skull, whose edges are as
+#          strong as its own (edge force alone: mean 2.2 mm, see the README).
 #   click  RegionWeight 1 and the user's IntensityRange: the 5 mm seed sphere has to grow
 #          ~65 mm through the brain, and one click says nothing about where the brain ends.
-HEAD_SETTINGS = {"picks": {"RegionWeight": 0.3},
+HEAD_SETTINGS = {"picks": {},
                  "click": {"RegionWeight": 1.0}}
 
 

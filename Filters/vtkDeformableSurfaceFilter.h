@@ -184,13 +184,13 @@ public:
    * outward where the image under the vertex lies in IntensityRange, inward where it does not
    * (speed clamp(min(I - lo, hi - I) / (0.1 (hi - lo)), -1, 1), in edge lengths, times
    * RegionWeight, shrinking with sigma level by level), added to the edge force before the
-   * paper's projection rule. RegionWeight 0 (default) turns it off; 0.3 suits a seed near its
-   * object (the whole-head MRI of the README), ~1 a one-click seed sphere growing to a large
-   * object. It is off by default because a Delaunay seed whose pinches were split (sheets 2 % of
-   * an edge apart) can fold under it (measured on the torus phantom). IntensityRange [lo, hi]
+   * paper's projection rule. RegionWeight 0.3 (default) suits a seed near its object (the
+   * whole-head MRI of the README), ~1 a one-click seed sphere growing to a large object given
+   * its IntensityRange; 0 turns it off. IntensityRange [lo, hi]
    * with lo < hi is used as given. Otherwise (default [0, 0]) it is estimated from the image
    * inside and just outside the start surface (EstimateIntensityRange), and the force is off
-   * for a start spanning the whole image (nothing outside it to compare with). The range used
+   * for a start spanning the whole image (nothing outside it to compare with), so a box around
+   * the volume solves the paper's problem unchanged. The range used
    * is in the field data IntensityRange. A range matching no voxel turns the force off with a
    * warning.
    */
@@ -389,7 +389,7 @@ protected:
   double Sigma = 0.0;
   double SigmaFraction = 0.0;
   int EdgeNormalization = GLOBAL_MAXIMUM;
-  double RegionWeight = 0.0;
+  double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
   int MaxSweepsPerLevel = 2000;
   double ConvergenceTolerance = 1e-3;

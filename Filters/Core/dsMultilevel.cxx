@@ -346,9 +346,19 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     rec.Triangles = mesh.NumberOfTriangles();
     rec.MeanEdgeLength = h;
     const bool stop = this->SolveLevel(solver, mesh, rec, sweepCounter);
-    // Folds the forces left (two parts of the surface pushed together) are smoothed open
-    // before the level's estimator is read and the mesh is refined (dsUntangle.h).
-    rec.Folds = Untangle(mesh);
+    // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
+    // last: further levels would only refine the mesh for detail the image does not show
+    // (a start near its object reaches the floor after a few halvings).
+    const bool atFloor = P.HierarchicalSigma && !(sigma > 0.5 * voxel * (1 + 1e-9));
+    const bool lastLevel = stop || level == maxLevels || atFloor;
+    // Folds the forces left (two parts of the surface pushed together) are smoothed open on
+    // the surface delivered (dsUntangle.h). Only there: a coarse level's folds are undone by
+    // the finer levels' sweeps, while smoothing two rings of a coarse mesh flattens most of it
+    // (docs/METHOD.md §9.4).
+    if (lastLevel)
+    {
+      rec.Folds = Untangle(mesh);
+    }
     if (rec.Folds.After > 0)
     {
       this->Warnings.push_back(std::to_string(rec.Folds.After) + " pairs of triangles still intersect after level " +
@@ -357,11 +367,7 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     this->ErrorIndicator = solver.ErrorIndicator();
     this->Displacement = solver.Displacement();
     this->ExternalForce = solver.ExternalForceMagnitude();
-    // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
-    // last: further levels would only refine the mesh for detail the image does not show
-    // (a start near its object reaches the floor after a few halvings).
-    const bool atFloor = P.HierarchicalSigma && !(sigma > 0.5 * voxel * (1 + 1e-9));
-    if (stop || level == maxLevels || atFloor)
+    if (lastLevel)
     {
       this->Levels.push_back(rec);
       break;

@@ -64,7 +64,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. Its range is
   /// IntensityRange when IntensityRange[0] < IntensityRange[1], else estimated from the image
   /// inside the start surface (EstimateIntensityRange).
-  double RegionWeight = 0.0;
+  double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
   int MaxLevels = 4;             ///< refinement steps (levels 0..MaxLevels are solved)

@@ -179,14 +179,49 @@ double SmoothedMode(const std::vector<double>& w, double lo, double width)
   return lo + (best + 0.5) * width;
 }
 
-/// The object against its background, from the two histograms (256 bins): the intensities
-/// more frequent inside than outside (d = p_in - p_out > 0) are the object's, those more
-/// frequent outside are the background's. Their levels (smoothed modes) m_obj and m_bg give the
-/// boundary, (m_obj + m_bg) / 2, which lies on the true edge for any symmetric blur; the
-/// range runs from there to m_obj + 3 s_obj on the object's side (s_obj from the object's
-/// interquartile range, floored like s). The total
-/// variation sum(max(d, 0)) below 0.1 means both sides look alike (a click inside one region):
-/// the estimate then keeps m -+ 3 s.
+/// Otsu's threshold (IEEE Trans. SMC 9, 1979): the bin t that maximises the between-class
+/// variance of the bins [0, t] and (t, end) of the histogram w.
+int OtsuSplit(const std::vector<double>& w)
+{
+  double total = 0, moment = 0;
+  for (std::size_t b = 0; b < w.size(); ++b)
+  {
+    total += w[b];
+    moment += b * w[b];
+  }
+  double w0 = 0, m0 = 0, best = -1;
+  int split = 0;
+  for (std::size_t b = 0; b + 1 < w.size(); ++b)
+  {
+    w0 += w[b];
+    m0 += b * w[b];
+    const double w1 = total - w0;
+    if (w0 > 0 && w1 > 0)
+    {
+      const double d = m0 / w0 - (moment - m0) / w1;
+      if (w0 * w1 * d * d > best)
+      {
+        best = w0 * w1 * d * d;
+        split = static_cast<int>(b);
+      }
+    }
+  }
+  return split;
+}
+
+/// The object against its background, from the histograms (256 bins) of the image inside the
+/// start and just outside it. Otsu's threshold of the two pooled (each weighted equally) splits
+/// the intensities into two classes; the one more frequent inside than outside is the object's.
+/// The object's level is the smoothed mode of the inside values on its side, the background's
+/// that of the outside values on the other. Taken within the split classes, a long
+/// partial-volume tail next to a spike (a blurred ball in an empty image: a thousand voxels
+/// just above 0) stays on the background's side instead of passing for the object's level.
+/// The boundary, the levels' midpoint, lies on the true edge for any symmetric blur; the range
+/// runs from there to the object's level + 3 s_obj (s_obj from the object's interquartile
+/// range, floored like s), or to the object's 99.5 % quantile when that is nearer. A class
+/// share that differs by less than 0.1 between inside and outside, or levels within 2 s_obj of
+/// each other, mean both sides look alike (a click inside one region): the estimate then
+/// keeps m -+ 3 s.
 void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<float>& out, double floor,
   RangeEstimate& estimate)
 {
@@ -205,38 +240,58 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
     return;
   }
   const double width = (static_cast<double>(hi) - lo) / B;
-  std::vector<double> object(B, 0.0), background(B, 0.0);
-  for (float x : in)
-  {
-    object[std::min(B - 1, static_cast<int>((x - lo) / width))] += 1.0 / in.size();
-  }
-  for (float x : out)
-  {
-    background[std::min(B - 1, static_cast<int>((x - lo) / width))] += 1.0 / out.size();
-  }
-  double tv = 0;
+  const auto histogram = [&](const std::vector<float>& values) {
+    std::vector<double> h(B, 0.0);
+    for (float x : values)
+    {
+      h[std::min(B - 1, static_cast<int>((x - lo) / width))] += 1.0 / values.size();
+    }
+    return h;
+  };
+  const std::vector<double> pIn = histogram(in), pOut = histogram(out);
+  std::vector<double> pooled(B);
   for (int b = 0; b < B; ++b)
   {
-    const double d = object[b] - background[b];
-    object[b] = std::max(d, 0.0);
-    background[b] = std::max(-d, 0.0);
-    tv += object[b];
+    pooled[b] = pIn[b] + pOut[b];
   }
-  estimate.Separation = tv;
-  if (tv < 0.1)
+  const int t = OtsuSplit(pooled);
+  double inHigh = 0, outHigh = 0;
+  for (int b = t + 1; b < B; ++b)
+  {
+    inHigh += pIn[b];
+    outHigh += pOut[b];
+  }
+  estimate.Separation = std::abs(inHigh - outHigh);
+  if (estimate.Separation < 0.1)
   {
     return;
+  }
+  const bool bright = inHigh > outHigh;
+  std::vector<double> object(B, 0.0), background(B, 0.0);
+  for (int b = 0; b < B; ++b)
+  {
+    ((b > t) == bright ? object[b] : background[b]) = ((b > t) == bright ? pIn[b] : pOut[b]);
   }
   const double mObject = SmoothedMode(object, lo, width);
   const double mBackground = SmoothedMode(background, lo, width);
   const double s = std::max(floor,
     (WeightedQuantile(object, 0.75, lo, width) - WeightedQuantile(object, 0.25, lo, width)) / 1.349);
+  if (std::abs(mObject - mBackground) < 2.0 * s)
+  {
+    return;
+  }
   const double mid = 0.5 * (mObject + mBackground);
   estimate.Contrast = true;
   estimate.ObjectMedian = mObject;
   estimate.BackgroundMedian = mBackground;
-  estimate.Range[0] = mObject > mBackground ? mid : mObject - 3.0 * s;
-  estimate.Range[1] = mObject > mBackground ? mObject + 3.0 * s : mid;
+  // The far end: 3 s beyond the object's level, but not past the last 0.5 % of the object's
+  // own intensities (the bin's far edge). A wide object class (a brain's grey and white
+  // matter, s ~ 20) would otherwise reach the brighter tissue next to it (orbital fat at
+  // 130-200 in Colin27, the brain's own values ending at ~120): docs/METHOD.md §9.3.
+  const double top = std::min(mObject + 3.0 * s, WeightedQuantile(object, 0.995, lo, width) + 0.5 * width);
+  const double bottom = std::max(mObject - 3.0 * s, WeightedQuantile(object, 0.005, lo, width) - 0.5 * width);
+  estimate.Range[0] = bright ? mid : bottom;
+  estimate.Range[1] = bright ? top : mid;
 }
 
 bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,

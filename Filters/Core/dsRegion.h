@@ -52,13 +52,15 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 /// span; a start enclosing fewer than 16 voxel centres samples the image at its vertices
 /// instead. Outside: the image 1, 2 and 3 voxels out along the face normals (outward =
 /// `outwardSign` * the triangles' orientation), at about one sample per voxel of the surface.
-/// The intensities more frequent inside than outside are the object's, those more frequent
-/// outside the background's (256-bin histograms); the range runs from the midpoint of their
-/// levels (smoothed histogram modes) -- on the true edge for any symmetric blur -- to the object's median + 3 s on its
-/// side. When the two histograms differ by less than 0.1 in total variation the start lies
-/// inside one region (a click), and the range is m -+ 3 s: the whole of that region's class.
-/// Returns false (with a message)
-/// when there is nothing to sample.
+/// Otsu's threshold of the two samples pooled splits the intensities into two classes; the one
+/// more frequent inside than outside is the object's (256-bin histograms). The range runs from
+/// the midpoint of the two classes' levels (smoothed histogram modes, the object's from the
+/// inside, the background's from the outside) -- on the true edge for any symmetric blur -- to
+/// the object's level + 3 s on its side, or to the object's 99.5 % quantile when that is
+/// nearer. When the object's class share differs by less than 0.1 between inside and outside,
+/// or the levels lie within 2 s of each other, the start lies inside one region (a click), and
+/// the range is m -+ 3 s: the whole of that region's class.
+/// Returns false (with a message) when there is nothing to sample.
 DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const float* scalars,
   const ImageGeometry& geometry, const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate,
   std::string* error);

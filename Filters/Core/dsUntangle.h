@@ -5,7 +5,8 @@
 // surface into a narrow dark gap (between the cerebrum and the cerebellum) brings the gap's two
 // walls together. Where triangles intersect, their vertices and two rings of neighbours are
 // smoothed toward their umbrella centres (x <- x + U(x) / 2, membrane steps that pull a fold
-// open and flat) until no pair intersects or the rounds run out.
+// open and flat) until no pair intersects or the rounds run out. The multilevel solver calls it
+// on the delivered surface only: on a coarse mesh two rings are most of the surface.
 #ifndef dsUntangle_h
 #define dsUntangle_h
 

@@ -7,7 +7,8 @@
 //    image (IntensityRange) removes the hole's tetrahedra; TargetEdgeLength gives a few
 //    thousand vertices. The deformed surface must lie on the torus: mean |distance| <= 0.3
 //    voxel, genus 1 (closed, manifold, Euler characteristic 0), no self-intersections.
-// 2. The torus from picks 3 voxels outside its tube, every default (sigma_0 follows the start).
+// 2. The torus from picks 3 voxels outside its tube, every default (sigma_0 follows the start;
+//    the region force estimates its range from the seed).
 // 3. Two objects in one volume (a ball and a cube), picks around the ball only: only the ball
 //    is extracted (every vertex within 1 voxel of the ball's boundary, none near the cube).
 #include "TestDelaunaySeedUtils.h"
@@ -260,6 +261,16 @@ void TorusClosePicksCase()
               << " self-intersections" << std::endl;
     if (!paper)
     {
+      // The default region force is on for a start that does not span the image: the range it
+      // estimated is in the field data.
+      vtkDataArray* range = out->GetFieldData()->GetArray("IntensityRange");
+      DS_CHECK(range != nullptr, "close picks, defaults: the region force estimated a range");
+      if (range)
+      {
+        std::cout << "  region force range [" << range->GetComponent(0, 0) << ", " << range->GetComponent(0, 1)
+                  << "]" << std::endl;
+        DS_CHECK_LE(std::abs(range->GetComponent(0, 0) - 0.5), 0.05, "close picks: range low end at the half level");
+      }
       DS_CHECK_LE(after.Mean, 0.3, "close picks, defaults: mean |distance| to the torus (voxels)");
       DS_CHECK(facts.Euler == 0, "close picks, defaults: Euler characteristic 0 (the hole kept)");
       DS_CHECK(selfx == 0, "close picks, defaults: 0 self-intersections");

@@ -6,7 +6,8 @@
 // - the range's low end lies midway between the object and its background, its high end
 //   below the brighter neighbour;
 // - a start inside one region (no contrast with its outside) gives median -+ 3 s;
-// - an inward-oriented start gives the same range once its pieces are turned outward.
+// - an inward-oriented start gives the same range once its pieces are turned outward;
+// - spheres around a blurred ball in an empty image put the low end at the ball's half level.
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -76,6 +77,35 @@ int TestRegionRange(int, char*[])
   DS_CHECK(!c.Contrast, "a start inside one region: no contrast");
   DS_CHECK(c.Median == 100.0 && c.Range[0] < 100.0 && c.Range[1] > 100.0, "click: the region's value in the range");
   DS_CHECK(c.Range[1] < 250.0 && c.Range[0] > 0.0, "click: neither the background nor the slab");
+
+  // A blurred ball in an empty image (1 / (1 + exp(3 (r - 8))), 0 far away), a sphere three
+  // voxels around it: the sphere encloses ~a thousand voxels just above 0 (the ball's tail).
+  // The boundary must come out at the ball's half level and the range must hold its inside.
+  {
+    const int nb = 40;
+    ImageGeometry gb;
+    gb.Dimensions[0] = gb.Dimensions[1] = gb.Dimensions[2] = nb;
+    std::vector<float> ball(static_cast<size_t>(nb) * nb * nb);
+    for (int k = 0; k < nb; ++k)
+      for (int j = 0; j < nb; ++j)
+        for (int i = 0; i < nb; ++i)
+        {
+          const double r = std::sqrt((i - 20.0) * (i - 20.0) + (j - 20.0) * (j - 20.0) + (k - 20.0) * (k - 20.0));
+          ball[(static_cast<size_t>(k) * nb + j) * nb + i] = static_cast<float>(1.0 / (1.0 + std::exp(3.0 * (r - 8.0))));
+        }
+    for (double radius : { 10.0, 11.0, 14.0 })
+    {
+      TriangleMesh sphere = dstest::MakeIcosphere(3, radius, { 20.0, 20.0, 20.0 });
+      DS_CHECK(sphere.BuildTopology(&error), error);
+      RangeEstimate b;
+      DS_CHECK(EstimateIntensityRange(ball.data(), gb, sphere, 1.0, b, &error), error);
+      std::cout << "sphere of radius " << radius << " around the blurred ball: range [" << b.Range[0] << ", "
+                << b.Range[1] << "]" << std::endl;
+      DS_CHECK(b.Contrast, "blurred ball: object against background");
+      DS_CHECK_LE(std::abs(b.Range[0] - 0.5), 0.05, "blurred ball: low end at the half level");
+      DS_CHECK_GE(b.Range[1], 0.99, "blurred ball: the ball's inside in the range");
+    }
+  }
 
   // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
   DS_CHECK(RegionSpeed(75, 50, 150) == 1.0 && RegionSpeed(0, 50, 150) == -1.0 && RegionSpeed(50, 50, 150) == 0.0,

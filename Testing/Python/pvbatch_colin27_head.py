@@ -2,7 +2,7 @@
 # (ch2.nii.gz, mricron-data), checked with numbers against the brain mask ch2bet > 0 (a
 # reference only: the filter never sees it). Two starts, both from Examples/ (chosen on the
 # image): 44 points picked ~3 mm outside the brain on six slices -> Delaunay Seed Surface ->
-# Deformable Surface with RegionWeight 0.3; and one click in the white matter -> a 5 mm seed
+# Deformable Surface with every default; and one click in the white matter -> a 5 mm seed
 # sphere -> Deformable Surface with RegionWeight 1 and the IntensityRange read off the image.
 #
 # Measured (Release, this 2-core machine): picks 1.4 s, 14 466 vertices, one closed surface,
@@ -41,7 +41,7 @@ for start in ("picks", "click"):
     check(start + ": no self-intersections", m["self_intersections"] == 0, m["self_intersections"])
     if start == "picks":
         check("picks: vertex -> mask boundary mean <= 1.0 mm", m["dist_mean"] <= 1.0, m["dist_mean"])
-        check("picks: vertex -> mask boundary 95% <= 4.0 mm", m["dist_p95"] <= 4.0, m["dist_p95"])
+        check("picks: vertex -> mask boundary 95% <= 3.0 mm", m["dist_p95"] <= 3.0, m["dist_p95"])
         check("picks: closer to the brain than the seed was (mean)", m["dist_mean"] < 0.5 * m["seed_mean"],
               (m["dist_mean"], m["seed_mean"]))
         check("picks: |volume / mask volume - 1| <= 5%", abs(volume_error) <= 0.05, volume_error)
