@@ -38,12 +38,12 @@
  * open after every level (dsUntangle.h).
  *
  * Output 0: the surface (triangles, input orientation kept; point order of the merged
- * input) with point arrays Normals, Displacement (|c| of the last sweep),
- * ExternalForce (|F|, region force included), ErrorIndicator (|internal part of c| of the last
- * sweep), RefinementLevel, VertexLabel, and field data Sweeps, Levels, InitialSubdivisions,
- * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, from a bounding-volume
- * hierarchy), InitialSigma, Sigma (the last), Converged, WarmStart and, with the region force,
- * IntensityRange.
+ * input) with point arrays Normals, Displacement (|c| of the last sweep), ExternalForce (|F|,
+ * region force included), ErrorIndicator (|internal part of c| of the last sweep),
+ * RefinementLevel, VertexLabel and field data Sweeps, Levels, InitialSubdivisions,
+ * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found with a
+ * bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
+ * level), WarmStart and, with the region force, IntensityRange (the range it used).
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
@@ -97,10 +97,13 @@
 class vtkImageData;
 class vtkMultiProcessController;
 class vtkTable;
+class vtkDataArray;
 namespace dsurf
 {
+struct ImageVolume;
 struct MultilevelParameters;
 class MultilevelSolver;
+struct TriangleMesh;
 }
 
 class DEFORMABLESURFACEFILTERS_EXPORT vtkDeformableSurfaceFilter : public vtkPolyDataAlgorithm
@@ -382,30 +385,33 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  double Tau = 0.1;
-  double Gamma = 0.07;
-  double EdgeWeight = 1.0;
-  double ImageWeight = 0.0;
-  double Sigma = 0.0;
-  double SigmaFraction = 0.0;
-  int EdgeNormalization = GLOBAL_MAXIMUM;
-  double RegionWeight = 0.0;
-  double IntensityRange[2] = { 0.0, 0.0 };
-  int MaxSweepsPerLevel = 2000;
-  double ConvergenceTolerance = 1e-3;
-  int MaxLevels = 4;
-  double RefinementThreshold = 1.0;
-  bool UniformRefinement = false;
-  bool SubdivideInitialSurface = true;
-  bool HierarchicalSigma = true;
-  bool ButterflyProlongation = true;
-  vtkIdType MaxVertices = 2000000;
-  bool CheckTopology = false;
-  int NumberOfThreads = 0;
-  bool ProjectExternalForce = true;
+  // The solver's parameters: their defaults are dsurf::MultilevelParameters' (the constructor
+  // copies them through ExchangeParameters), each under the same name there.
+  double Tau{};
+  double Gamma{};
+  double EdgeWeight{};
+  double ImageWeight{};
+  double Sigma{};
+  double SigmaFraction{};
+  int EdgeNormalization{};
+  double RegionWeight{};
+  double IntensityRange[2]{};
+  int MaxSweepsPerLevel{};
+  double ConvergenceTolerance{};
+  int MaxLevels{};
+  double RefinementThreshold{};
+  bool UniformRefinement{};
+  bool SubdivideInitialSurface{};
+  bool HierarchicalSigma{};
+  bool ButterflyProlongation{};
+  vtkIdType MaxVertices{};
+  bool CheckTopology{};
+  int NumberOfThreads{};
+  bool ProjectExternalForce{};
+  int MaxSweeps{};
+  // This filter's own.
   vtkMultiProcessController* Controller = nullptr;
   bool ContinueFromLastResult = false;
-  int MaxSweeps = 0;
   bool AnimateSweeps = false;
   int SweepsPerTimeStep = 20;
 
@@ -419,10 +425,23 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The surface at time t (sweeps) from the cache into `output`.
   void ServeTimeStep(double t, vtkPolyData* output);
+  /// With AnimateSweeps, time t from the cache when it holds these inputs and parameters
+  /// (key: their modification times); false: not cached, solve.
+  bool ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3], double t,
+    vtkPolyData* output, vtkTable* table);
 
 private:
-  /// This filter's properties as the core's parameters.
-  dsurf::MultilevelParameters SolveParameters() const;
+  /// The one mapping between this filter's solver properties and the core's parameters of
+  /// the same names: into `core` (toCore) or from it (the constructor takes the defaults).
+  void ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore);
+  /// The image array as floats (dsVTKImage.h); false (an error said why) for a bad or constant one.
+  bool ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume);
+  /// The start surface as the core's mesh, consistently oriented; false (an error said why).
+  bool StartMesh(vtkPolyData* start, dsurf::TriangleMesh& mesh);
+  /// Run the solver with this filter's parameters, filling the convergence table and the
+  /// time steps' snapshots; false (an error said why) when it fails.
+  bool Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh, dsurf::MultilevelSolver& solver,
+    vtkTable* table);
   /// The solver's warnings and debug lines.
   void Report(const dsurf::MultilevelSolver& solver);
   /// The warm start's copy and the time steps' cache of this result (complete: not aborted,
