@@ -148,6 +148,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::vector<vtkIdType> RemovedTetrahedra;
+  // The defaults live here (the core, dsSeedSurface.h, takes each value as an argument); the
+  // XML's default_values must equal them (Testing/Python/vtkpython_xml_defaults.py).
   double Alpha = 0.0;
   bool UseIntensityRange = false;
   double IntensityRange[2] = { 0.0, 1.0 };

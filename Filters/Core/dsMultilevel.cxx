@@ -255,7 +255,7 @@ struct MultilevelSolver::RunState
   double Sigma = 0;         ///< this level's
   double FirstSigma = 0;
   bool Region = false;      ///< the region force is on
-  bool CheckInvariants = false;
+  bool CheckTopology = false; ///< CheckTopology, always on in Debug builds
   int EulerStart = 0;
   bool ClosedStart = false;
   bool BudgetWarned = false; ///< the MaxVertices warning is given once
@@ -311,9 +311,9 @@ bool MultilevelSolver::Start(
     return false;
   }
 #ifndef NDEBUG
-  state.CheckInvariants = true;
+  state.CheckTopology = true;
 #else
-  state.CheckInvariants = P.CheckTopology;
+  state.CheckTopology = P.CheckTopology;
 #endif
   state.EulerStart = mesh.EulerCharacteristic();
   state.ClosedStart = mesh.IsClosed();
@@ -446,7 +446,7 @@ bool MultilevelSolver::RefineLevel(TriangleMesh& mesh, RunState& state, LevelRec
     return false;
   }
   std::string msg;
-  if (state.CheckInvariants &&
+  if (state.CheckTopology &&
     (!CheckTopologyInvariants(mesh, state.EulerStart, state.ClosedStart, &msg) ||
       state.Refiner.CountTVertices(mesh) != 0))
   {
