@@ -138,8 +138,8 @@ public:
 
   ///@{
   /**
-   * Weights of the edge term |grad(G_sigma * f)| (default 1) and the image term f
-   * (default 0) of the external potential, each normalised to [0, 1].
+   * Weights of the edge term |grad(G_sigma * f)| and the image term f of the external
+   * potential, each normalised to [0, 1]. Defaults: EdgeWeight 1, ImageWeight 0.
    */
   vtkSetClampMacro(EdgeWeight, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(EdgeWeight, double);
@@ -151,7 +151,7 @@ public:
   /**
    * The first Gaussian sigma. Sigma > 0: that, in world units. Else SigmaFraction > 0: that
    * fraction of the mean extent of the image (the paper's 1/6 = 0.1667). Both 0 (the
-   * default): chosen from the start surface (dsInitialSigma.h). A start spanning the image (a
+   * defaults: Sigma 0, SigmaFraction 0): chosen from the start surface (dsInitialSigma.h). A start spanning the image (a
    * box around the whole volume) begins at the paper's extent / 6; any other start is taken to
    * lie near its object, and sigma_0 is the 90th percentile of its distance to the nearest edge
    * along the vertex and face normals, between one voxel and extent / 6 (field data
@@ -195,7 +195,7 @@ public:
    * inside and just outside the start surface (EstimateIntensityRange), and the force is off
    * for a start spanning the whole image (nothing outside it to compare with). The range used
    * is in the field data IntensityRange. A range matching no voxel turns the force off with a
-   * warning.
+   * warning. Defaults: RegionWeight 0, IntensityRange [0, 0].
    */
   vtkSetClampMacro(RegionWeight, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(RegionWeight, double);
@@ -319,7 +319,7 @@ public:
 
   ///@{
   /**
-   * Stop the whole run after this many sweeps (0, default: no limit), exactly there, mid-level
+   * Stop the whole run after this many sweeps (default 0: no limit), exactly there, mid-level
    * if need be, with a warning: a budget for huge starts, and "the surface after n sweeps".
    */
   vtkSetClampMacro(MaxSweeps, int, 0, VTK_INT_MAX);
@@ -338,7 +338,7 @@ public:
    * or back, comes from that cache until a parameter or an input changes. Serial only: a
    * distributed run, or an aborted one, is not cached (every step solves again). Snapshots
    * carry the geometry and the field data Sweeps; the final step carries every array. The
-   * inputs are asked for no particular time.
+   * inputs are asked for no particular time. Defaults: AnimateSweeps off, SweepsPerTimeStep 20.
    */
   vtkSetMacro(AnimateSweeps, bool);
   vtkGetMacro(AnimateSweeps, bool);

@@ -6,7 +6,10 @@ For every property of every proxy whose command is a Set method with a matching 
   its EnumerationDomain) equals the class's clamp: GetXMinValue / GetXMaxValue where
   vtkSetClampMacro defines them, else what Set returns for a value far outside; a bound the
   XML leaves open must be open in the class too, and a class that clamps needs a domain;
-and every row of the README's Deformable Surface table gives the XML's default.
+every row of the README's Deformable Surface table gives the XML's default; and the class
+comment of each property in the class's header (Filters/<class>.h) states the class's default:
+"Default 0.1", "(default on)", "0 (default)" in a block of one property, "Defaults: A 1, B 0"
+in a block of several.
 Plain VTK Python (/usr/bin/python3)."""
 import glob
 import os
@@ -144,12 +147,67 @@ def readme_value(text, prop):
     return text
 
 
+VALUE = r"\[[^\]]*\]|-?\d[\d ]*(?:\.\d+)?(?:e-?\d+)?(?:/\d+)?(?![\w.]\w)|on\b|off\b|[A-Z][A-Z_]+\b"
+
+
+def header_value(text, cls):
+    """A default as the header writes it ('2 000 000', '1/6', 'on', 'GLOBAL_MAXIMUM', '[0, 1]')
+    as a tuple of floats."""
+    text = text.strip()
+    if text in ("on", "off"):
+        return (float(text == "on"),)
+    if re.fullmatch(r"[A-Z][A-Z_]+", text):
+        return (float(getattr(cls, text)),)
+    if text.startswith("["):
+        return tuple(float(v) for v in text.strip("[]").split(","))
+    text = text.replace(" ", "")
+    if "/" in text:
+        num, den = text.split("/")
+        return (float(num) / float(den),)
+    return (float(text),)
+
+
+def check_header(cls, obj):
+    """Each ///@{ ... ///@} block's stated defaults against a fresh object's Get values."""
+    path = os.path.join(root, "Filters", cls.__name__ + ".h")
+    with open(path) as f:
+        header = f.read()
+    blocks = 0
+    for block in re.findall(r"///@\{(.*?)///@\}", header, re.S):
+        names = [a or b for a, b in re.findall(r"vtkSet\w*Macro\((\w+)|virtual void Set(\w+)\(", block)]
+        names = [n for n in names if hasattr(obj, "Get" + n)]
+        if not names:
+            continue
+        blocks += 1
+        text = re.sub(r"\s+", " ", re.sub(r"^\s*(\*|///)", "", block, flags=re.M))
+        if len(names) == 1:
+            stated = {names[0]: re.findall(r"[Dd]efault:? (%s)" % VALUE, text) +
+                      re.findall(r"(%s) \((?:the )?default\)" % VALUE, text)}
+        else:
+            listed = re.search(r"[Dd]efaults: (.*?)(?:\)|\. |\.$)", text)
+            pairs = re.findall(r"(\w+) (%s)" % VALUE, listed.group(1)) if listed else []
+            stated = {n: [v for k, v in pairs if k == n] for n in names}
+        for name, values in stated.items():
+            value = getattr(obj, "Get" + name)()
+            want = tuple(float(v) for v in (value if isinstance(value, (tuple, list)) else (value,)))
+            if not values:
+                failures.append("%s: the comment of %s states no default (the class's is %s)" %
+                                (os.path.basename(path), name, want))
+            for v in values:
+                if header_value(v, cls) != want:
+                    failures.append("%s: the comment of %s says default %s, the class's is %s" %
+                                    (os.path.basename(path), name, v, want))
+    return blocks
+
+
 vtkObject.GlobalWarningDisplayOff()  # the probes outside the ranges warn (Gamma)
 proxies = {}
+header_blocks = 0
 for path in sorted(glob.glob(os.path.join(root, "xml", "*.xml"))):
     for proxy in ET.parse(path).getroot().iter("SourceProxy"):
         cls = getattr(deformablesurface, proxy.get("class"))
         proxies[proxy.get("name")] = proxy
+        header_blocks += check_header(cls, cls())
         for prop in proxy:
             if prop.tag.endswith("VectorProperty") and prop.get("name") not in EXCEPTIONS:
                 check_property(proxy.get("name"), cls(), prop)
@@ -168,7 +226,8 @@ for prop in proxies["DeformableSurface"]:
     if [float(v) for v in got.split()] != [float(v) for v in want.split()]:
         failures.append("README: %s defaults to '%s' in the table, %s in the XML" % (name, table[name], want))
 
-print("checked %d properties of %d proxies, %d README rows" % (checked, len(proxies), len(table)))
+print("checked %d properties of %d proxies, %d README rows, %d header comments" %
+      (checked, len(proxies), len(table), header_blocks))
 for f in failures:
     print("FAILED:", f)
 sys.exit(1 if failures or checked < 30 else 0)
