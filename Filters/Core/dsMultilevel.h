@@ -89,7 +89,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;
   /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
-  /// (Prolongation::Linear); Refine() maps it to the refiner's enum.
+  /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
   bool ButterflyProlongation = true;
   /// Before level 0, subdivide the start surface uniformly (1 -> 4, midpoints, so its
   /// shape is kept exactly) while its mean edge length exceeds InitialEdgeSigmaRatio *
