@@ -282,11 +282,26 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
 }
+/// One property and its core parameter: copied into the core (toCore) or from it.
+template <typename Mine, typename Core>
+void Exchange(Mine& mine, Core& core, bool toCore)
+{
+  if (toCore)
+  {
+    core = static_cast<Core>(mine);
+  }
+  else
+  {
+    mine = static_cast<Mine>(core);
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
 vtkDeformableSurfaceFilter::vtkDeformableSurfaceFilter()
 {
+  dsurf::MultilevelParameters defaults;
+  this->ExchangeParameters(defaults, false);
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
@@ -393,6 +408,20 @@ void vtkDeformableSurfaceFilter::ServeTimeStep(double t, vtkPolyData* output)
   }
 }
 
+bool vtkDeformableSurfaceFilter::ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
+  double t, vtkPolyData* output, vtkTable* table)
+{
+  if (!this->AnimateSweeps || !this->AnimationResult || this->AnimationInputs[0] != image ||
+    this->AnimationInputs[1] != surface || !std::equal(key, key + 3, this->AnimationKey))
+  {
+    return false;
+  }
+  vtkDebugMacro(<< "Time " << t << " from the cache.");
+  this->ServeTimeStep(t, output);
+  table->ShallowCopy(this->AnimationTable);
+  return true;
+}
+
 //------------------------------------------------------------------------------
 // The Gaussian reaches across the whole volume: always ask for all of it, also when the
 // pipeline runs distributed and would otherwise hand each process one piece. The surface is
@@ -436,34 +465,31 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-dsurf::MultilevelParameters vtkDeformableSurfaceFilter::SolveParameters() const
+void vtkDeformableSurfaceFilter::ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore)
 {
-  dsurf::MultilevelParameters mp;
-  mp.Solver.Tau = this->Tau;
-  mp.Solver.Gamma = this->Gamma;
-  mp.Solver.ProjectExternalForce = this->ProjectExternalForce;
-  mp.Solver.NumberOfThreads = this->NumberOfThreads;
-  mp.EdgeWeight = this->EdgeWeight;
-  mp.ImageWeight = this->ImageWeight;
-  mp.InitialSigma = this->Sigma;
-  mp.InitialSigmaFraction = this->SigmaFraction;
-  mp.Normalization = static_cast<dsurf::EdgeNormalization>(this->EdgeNormalization);
-  mp.RegionWeight = this->RegionWeight;
-  mp.IntensityRange[0] = this->IntensityRange[0];
-  mp.IntensityRange[1] = this->IntensityRange[1];
-  mp.HierarchicalSigma = this->HierarchicalSigma;
-  mp.MaxLevels = this->MaxLevels;
-  mp.MaxSweepsPerLevel = this->MaxSweepsPerLevel;
-  mp.Tolerance = this->ConvergenceTolerance;
-  mp.RefinementThreshold = this->RefinementThreshold;
-  mp.UniformRefinement = this->UniformRefinement;
-  mp.InitialEdgeSigmaRatio = this->SubdivideInitialSurface ? 4.0 : 0.0;
-  mp.ProlongationMode =
-    this->ButterflyProlongation ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
-  mp.MaxVertices = this->MaxVertices;
-  mp.CheckInvariants = this->CheckTopology;
-  mp.MaxTotalSweeps = this->MaxSweeps;
-  return mp;
+  Exchange(this->Tau, core.Solver.Tau, toCore);
+  Exchange(this->Gamma, core.Solver.Gamma, toCore);
+  Exchange(this->ProjectExternalForce, core.Solver.ProjectExternalForce, toCore);
+  Exchange(this->NumberOfThreads, core.Solver.NumberOfThreads, toCore);
+  Exchange(this->EdgeWeight, core.EdgeWeight, toCore);
+  Exchange(this->ImageWeight, core.ImageWeight, toCore);
+  Exchange(this->Sigma, core.Sigma, toCore);
+  Exchange(this->SigmaFraction, core.SigmaFraction, toCore);
+  Exchange(this->EdgeNormalization, core.EdgeNormalization, toCore);
+  Exchange(this->RegionWeight, core.RegionWeight, toCore);
+  Exchange(this->IntensityRange[0], core.IntensityRange[0], toCore);
+  Exchange(this->IntensityRange[1], core.IntensityRange[1], toCore);
+  Exchange(this->HierarchicalSigma, core.HierarchicalSigma, toCore);
+  Exchange(this->MaxLevels, core.MaxLevels, toCore);
+  Exchange(this->MaxSweepsPerLevel, core.MaxSweepsPerLevel, toCore);
+  Exchange(this->ConvergenceTolerance, core.ConvergenceTolerance, toCore);
+  Exchange(this->RefinementThreshold, core.RefinementThreshold, toCore);
+  Exchange(this->UniformRefinement, core.UniformRefinement, toCore);
+  Exchange(this->SubdivideInitialSurface, core.SubdivideInitialSurface, toCore);
+  Exchange(this->ButterflyProlongation, core.ButterflyProlongation, toCore);
+  Exchange(this->MaxVertices, core.MaxVertices, toCore);
+  Exchange(this->CheckTopology, core.CheckTopology, toCore);
+  Exchange(this->MaxSweeps, core.MaxSweeps, toCore);
 }
 
 //------------------------------------------------------------------------------
@@ -522,92 +548,36 @@ void vtkDeformableSurfaceFilter::KeepResult(vtkImageData* image, vtkPolyData* su
 }
 
 //------------------------------------------------------------------------------
-int vtkDeformableSurfaceFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkDeformableSurfaceFilter::ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
 {
-  vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
-  vtkPolyData* surface = vtkPolyData::GetData(inputVector[1], 0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkTable* table = vtkTable::GetData(outputVector, 1);
-  if (!output || !table)
-  {
-    return 0;
-  }
-  output->Initialize();
-  table->Initialize();
-
-  // Distributed: before any check that could return early on one process only, every
-  // process hands its piece of the surface to process 0, which alone solves; the others keep
-  // their outputs empty.
-  vtkNew<vtkPolyData> gathered;
-  if (vtkDSPolyDataGather::IsDistributed(this->Controller))
-  {
-    if (!vtkDSPolyDataGather::GatherOnProcessZero(
-          this->Controller, OwnedSurfacePiece(surface), gathered))
-    {
-      return 1;
-    }
-    surface = gathered;
-  }
-
-  // --- the image and its force field ---
-  if (!image || image->GetNumberOfPoints() <= 0)
-  {
-    vtkErrorMacro("No input image (port 0) or the image is empty.");
-    return 1;
-  }
-  if (!surface)
-  {
-    vtkErrorMacro("No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
-    return 1;
-  }
-  // AnimateSweeps: a time step already computed comes from the cache, before any work.
-  const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const double requestedTime = this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
-    : -1.0;
-  const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
-  if (this->AnimateSweeps && this->AnimationResult && this->AnimationInputs[0] == image &&
-    this->AnimationInputs[1] == surface && std::equal(key, key + 3, this->AnimationKey))
-  {
-    vtkDebugMacro(<< "Time " << requestedTime << " from the cache.");
-    this->ServeTimeStep(requestedTime, output);
-    table->ShallowCopy(this->AnimationTable);
-    return 1;
-  }
-
-  dsurf::ImageVolume volume;
   std::string error;
-  if (!dsurf::GetImageVolume(image, this->GetInputArrayToProcess(0, inputVector), volume, error))
+  if (!dsurf::GetImageVolume(image, array, volume, error))
   {
     vtkErrorMacro(<< error << ".");
-    return 1;
+    return false;
   }
   if (!volume.Note.empty())
   {
     vtkDebugMacro(<< volume.Note << ".");
   }
-  const dsurf::ImageGeometry& geometry = volume.Geometry;
   double range[2];
   volume.Array->GetRange(range, 0);
   if (range[0] == range[1])
   {
     vtkErrorMacro("The image is constant (" << range[0] << "): it has no boundary to find.");
-    return 1;
+    return false;
   }
+  return true;
+}
 
-  // --- the initial surface: the input, or the last result (warm start) when only the
-  // filter's own parameters changed since ---
-  const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
-    this->LastImage == image && this->LastImageTime == image->GetMTime() && this->LastSurface == surface &&
-    this->LastSurfaceTime == surface->GetMTime();
-  vtkDebugMacro(<< (warm ? "Warm start from the last result." : "Start from the initial surface."));
-  dsurf::TriangleMesh mesh;
-  if (!BuildMesh(warm ? this->LastResult.Get() : surface, mesh, error))
+//------------------------------------------------------------------------------
+bool vtkDeformableSurfaceFilter::StartMesh(vtkPolyData* start, dsurf::TriangleMesh& mesh)
+{
+  std::string error;
+  if (!BuildMesh(start, mesh, error))
   {
     vtkErrorMacro("Bad initial surface: " << error << ".");
-    return 1;
+    return false;
   }
   if (!mesh.IsConsistentlyOriented())
   {
@@ -620,11 +590,18 @@ int vtkDeformableSurfaceFilter::RequestData(
   vtkDebugMacro("Initial surface: " << mesh.NumberOfPoints() << " points, "
                                     << mesh.NumberOfTriangles() << " triangles, signed volume "
                                     << mesh.SignedVolume() << ".");
+  return true;
+}
 
-  // --- the multilevel solve: dsurf::MultilevelSolver runs the
-  // levels (sweeps, error estimator, red-green refinement, butterfly, sigma halving,
-  // force field per level); here only parameters in and results out.
-  dsurf::MultilevelParameters mp = this->SolveParameters();
+//------------------------------------------------------------------------------
+// The multilevel solve: dsurf::MultilevelSolver runs the levels (sweeps, error estimator,
+// red-green refinement, butterfly, sigma halving, force field per level); here only
+// parameters in, the convergence table and AnimateSweeps' snapshots out.
+bool vtkDeformableSurfaceFilter::Solve(
+  const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh, dsurf::MultilevelSolver& solver, vtkTable* table)
+{
+  dsurf::MultilevelParameters mp;
+  this->ExchangeParameters(mp, true);
   this->Snapshots.clear();
   this->AnimationResult = nullptr;
   if (this->AnimateSweeps)
@@ -632,7 +609,6 @@ int vtkDeformableSurfaceFilter::RequestData(
     mp.SweepBatch = 1; // a snapshot exactly every SweepsPerTimeStep sweeps
     this->Snapshots.push_back(MeshSnapshot(mesh, 0));
   }
-  dsurf::MultilevelSolver solver;
   solver.SetParameters(mp);
   solver.SetProgressCallback([this](double f) {
     this->UpdateProgress(0.02 + 0.96 * f);
@@ -655,18 +631,85 @@ int vtkDeformableSurfaceFilter::RequestData(
     columns.MaxCorrection->InsertNextValue(r.MaxCorrection);
     return true;
   });
-  if (!solver.Run(volume.Values, geometry, mesh, &error))
+  std::string error;
+  if (!solver.Run(volume.Values, volume.Geometry, mesh, &error))
   {
     vtkErrorMacro("Deformable surface failed: " << error);
-    output->Initialize();
+    return false;
+  }
+  columns.AddTo(table);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkDeformableSurfaceFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* image = vtkImageData::GetData(inputVector[0], 0);
+  vtkPolyData* surface = vtkPolyData::GetData(inputVector[1], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* table = vtkTable::GetData(outputVector, 1);
+  if (!output || !table)
+  {
+    return 0;
+  }
+  output->Initialize();
+  table->Initialize();
+
+  // Distributed: before any check that could return early on one process only, every
+  // process hands its piece of the surface to process 0, which alone solves; the others keep
+  // their outputs empty.
+  vtkNew<vtkPolyData> gathered;
+  const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
+  if (distributed)
+  {
+    if (!vtkDSPolyDataGather::GatherOnProcessZero(this->Controller, OwnedSurfacePiece(surface), gathered))
+    {
+      return 1;
+    }
+    surface = gathered;
+  }
+  if (!image || image->GetNumberOfPoints() <= 0)
+  {
+    vtkErrorMacro("No input image (port 0) or the image is empty.");
+    return 1;
+  }
+  if (!surface)
+  {
+    vtkErrorMacro("No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
+    return 1;
+  }
+  // AnimateSweeps: a time step already computed comes from the cache, before any work.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const double requestedTime = this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+    : -1.0;
+  const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
+  if (this->ServeFromCache(image, surface, key, requestedTime, output, table))
+  {
+    return 1;
+  }
+
+  dsurf::ImageVolume volume;
+  if (!this->ReadImage(image, this->GetInputArrayToProcess(0, inputVector), volume))
+  {
+    return 1;
+  }
+  // The start: the input, or the last result (warm start) when only the filter's own
+  // parameters changed since.
+  const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
+    this->LastImage == image && this->LastImageTime == image->GetMTime() && this->LastSurface == surface &&
+    this->LastSurfaceTime == surface->GetMTime();
+  vtkDebugMacro(<< (warm ? "Warm start from the last result." : "Start from the initial surface."));
+  dsurf::TriangleMesh mesh;
+  dsurf::MultilevelSolver solver;
+  if (!this->StartMesh(warm ? this->LastResult.Get() : surface, mesh) || !this->Solve(volume, mesh, solver, table))
+  {
     return 1;
   }
   this->Report(solver);
-
-  // --- outputs ---
   FillOutput(mesh, solver, output);
   AddFieldData(solver, mesh, this->RegionWeight > 0, warm, output->GetFieldData());
-  columns.AddTo(table);
   // Warm start and time steps: only complete, serial results (an aborted run's steps would be
   // served as the solve's; a distributed run gathers a new surface every time).
   this->KeepResult(image, surface, key, !distributed && !solver.GetAborted(), output, table);

@@ -35,15 +35,15 @@
  * Beyond the paper, for real scans (an object among neighbours, a seed near it): the first
  * sigma follows the start (Sigma), a region force pushes the surface through the object's
  * intensity range (RegionWeight, IntensityRange), and folds left by the forces are smoothed
- * open after every level (dsUntangle.h).
+ * open on the delivered surface (dsUntangle.h).
  *
  * Output 0: the surface (triangles, input orientation kept; point order of the merged
- * input) with point arrays Normals, Displacement (|c| of the last sweep),
- * ExternalForce (|F|, region force included), ErrorIndicator (|internal part of c| of the last
- * sweep), RefinementLevel, VertexLabel, and field data Sweeps, Levels, InitialSubdivisions,
- * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, from a bounding-volume
- * hierarchy), InitialSigma, Sigma (the last), Converged, WarmStart and, with the region force,
- * IntensityRange.
+ * input) with point arrays Normals, Displacement (|c| of the last sweep), ExternalForce (|F|,
+ * region force included), ErrorIndicator (|internal part of c| of the last sweep),
+ * RefinementLevel, VertexLabel and field data Sweeps, Levels, InitialSubdivisions,
+ * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found with a
+ * bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
+ * level), WarmStart and, with the region force, IntensityRange (the range it used).
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
@@ -97,10 +97,13 @@
 class vtkImageData;
 class vtkMultiProcessController;
 class vtkTable;
+class vtkDataArray;
 namespace dsurf
 {
+struct ImageVolume;
 struct MultilevelParameters;
 class MultilevelSolver;
+struct TriangleMesh;
 }
 
 class DEFORMABLESURFACEFILTERS_EXPORT vtkDeformableSurfaceFilter : public vtkPolyDataAlgorithm
@@ -135,8 +138,8 @@ public:
 
   ///@{
   /**
-   * Weights of the edge term |grad(G_sigma * f)| (default 1) and the image term f
-   * (default 0) of the external potential, each normalised to [0, 1].
+   * Weights of the edge term |grad(G_sigma * f)| and the image term f of the external
+   * potential, each normalised to [0, 1]. Defaults: EdgeWeight 1, ImageWeight 0.
    */
   vtkSetClampMacro(EdgeWeight, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(EdgeWeight, double);
@@ -148,7 +151,7 @@ public:
   /**
    * The first Gaussian sigma. Sigma > 0: that, in world units. Else SigmaFraction > 0: that
    * fraction of the mean extent of the image (the paper's 1/6 = 0.1667). Both 0 (the
-   * default): chosen from the start surface (dsInitialSigma.h). A start spanning the image (a
+   * defaults: Sigma 0, SigmaFraction 0): chosen from the start surface (dsInitialSigma.h). A start spanning the image (a
    * box around the whole volume) begins at the paper's extent / 6; any other start is taken to
    * lie near its object, and sigma_0 is the 90th percentile of its distance to the nearest edge
    * along the vertex and face normals, between one voxel and extent / 6 (field data
@@ -192,7 +195,7 @@ public:
    * for a start spanning the whole image (nothing outside it to compare with), so a box around
    * the volume solves the paper's problem unchanged. The range used
    * is in the field data IntensityRange. A range matching no voxel turns the force off with a
-   * warning.
+   * warning. Defaults: RegionWeight 0.3, IntensityRange [0, 0].
    */
   vtkSetClampMacro(RegionWeight, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(RegionWeight, double);
@@ -316,7 +319,7 @@ public:
 
   ///@{
   /**
-   * Stop the whole run after this many sweeps (0, default: no limit), exactly there, mid-level
+   * Stop the whole run after this many sweeps (default 0: no limit), exactly there, mid-level
    * if need be, with a warning: a budget for huge starts, and "the surface after n sweeps".
    */
   vtkSetClampMacro(MaxSweeps, int, 0, VTK_INT_MAX);
@@ -335,7 +338,7 @@ public:
    * or back, comes from that cache until a parameter or an input changes. Serial only: a
    * distributed run, or an aborted one, is not cached (every step solves again). Snapshots
    * carry the geometry and the field data Sweeps; the final step carries every array. The
-   * inputs are asked for no particular time.
+   * inputs are asked for no particular time. Defaults: AnimateSweeps off, SweepsPerTimeStep 20.
    */
   vtkSetMacro(AnimateSweeps, bool);
   vtkGetMacro(AnimateSweeps, bool);
@@ -382,30 +385,33 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  double Tau = 0.1;
-  double Gamma = 0.07;
-  double EdgeWeight = 1.0;
-  double ImageWeight = 0.0;
-  double Sigma = 0.0;
-  double SigmaFraction = 0.0;
-  int EdgeNormalization = GLOBAL_MAXIMUM;
-  double RegionWeight = 0.3;
-  double IntensityRange[2] = { 0.0, 0.0 };
-  int MaxSweepsPerLevel = 2000;
-  double ConvergenceTolerance = 1e-3;
-  int MaxLevels = 4;
-  double RefinementThreshold = 1.0;
-  bool UniformRefinement = false;
-  bool SubdivideInitialSurface = true;
-  bool HierarchicalSigma = true;
-  bool ButterflyProlongation = true;
-  vtkIdType MaxVertices = 2000000;
-  bool CheckTopology = false;
-  int NumberOfThreads = 0;
-  bool ProjectExternalForce = true;
+  // The solver's parameters: their defaults are dsurf::MultilevelParameters' (the constructor
+  // copies them through ExchangeParameters), each under the same name there.
+  double Tau{};
+  double Gamma{};
+  double EdgeWeight{};
+  double ImageWeight{};
+  double Sigma{};
+  double SigmaFraction{};
+  int EdgeNormalization{};
+  double RegionWeight{};
+  double IntensityRange[2]{};
+  int MaxSweepsPerLevel{};
+  double ConvergenceTolerance{};
+  int MaxLevels{};
+  double RefinementThreshold{};
+  bool UniformRefinement{};
+  bool SubdivideInitialSurface{};
+  bool HierarchicalSigma{};
+  bool ButterflyProlongation{};
+  vtkIdType MaxVertices{};
+  bool CheckTopology{};
+  int NumberOfThreads{};
+  bool ProjectExternalForce{};
+  int MaxSweeps{};
+  // This filter's own.
   vtkMultiProcessController* Controller = nullptr;
   bool ContinueFromLastResult = false;
-  int MaxSweeps = 0;
   bool AnimateSweeps = false;
   int SweepsPerTimeStep = 20;
 
@@ -419,10 +425,23 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The surface at time t (sweeps) from the cache into `output`.
   void ServeTimeStep(double t, vtkPolyData* output);
+  /// With AnimateSweeps, time t from the cache when it holds these inputs and parameters
+  /// (key: their modification times); false: not cached, solve.
+  bool ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3], double t,
+    vtkPolyData* output, vtkTable* table);
 
 private:
-  /// This filter's properties as the core's parameters.
-  dsurf::MultilevelParameters SolveParameters() const;
+  /// The one mapping between this filter's solver properties and the core's parameters of
+  /// the same names: into `core` (toCore) or from it (the constructor takes the defaults).
+  void ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore);
+  /// The image array as floats (dsVTKImage.h); false (an error said why) for a bad or constant one.
+  bool ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume);
+  /// The start surface as the core's mesh, consistently oriented; false (an error said why).
+  bool StartMesh(vtkPolyData* start, dsurf::TriangleMesh& mesh);
+  /// Run the solver with this filter's parameters, filling the convergence table and the
+  /// time steps' snapshots; false (an error said why) when it fails.
+  bool Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh, dsurf::MultilevelSolver& solver,
+    vtkTable* table);
   /// The solver's warnings and debug lines.
   void Report(const dsurf::MultilevelSolver& solver);
   /// The warm start's copy and the time steps' cache of this result (complete: not aborted,

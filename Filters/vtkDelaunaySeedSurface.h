@@ -93,13 +93,14 @@ public:
   ///@}
 
   ///@{
-  /// Remove tetrahedra whose circumsphere radius exceeds Alpha (world units); 0 keeps all.
+  /// Remove tetrahedra whose circumsphere radius exceeds Alpha (world units); 0 (default) keeps all.
   vtkSetClampMacro(Alpha, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Alpha, double);
   ///@}
 
   ///@{
   /// Keep only tetrahedra whose centroid's image value lies in IntensityRange (needs port 1).
+  /// Defaults: UseIntensityRange off, IntensityRange [0, 1].
   vtkSetMacro(UseIntensityRange, bool);
   vtkGetMacro(UseIntensityRange, bool);
   vtkBooleanMacro(UseIntensityRange, bool);
@@ -108,7 +109,8 @@ public:
   ///@}
 
   ///@{
-  /// Subdivide the surface to about this mean edge length (world units); 0 leaves it as is.
+  /// Subdivide the surface to about this mean edge length (world units); 0 (default) leaves it
+  /// as is.
   vtkSetClampMacro(TargetEdgeLength, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(TargetEdgeLength, double);
   ///@}
@@ -124,6 +126,7 @@ public:
 
   ///@{
   /// Points closer than Tolerance x (bounding-box diagonal) are merged by vtkDelaunay3D.
+  /// Default 0.001.
   vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
   vtkGetMacro(Tolerance, double);
   ///@}
@@ -148,6 +151,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::vector<vtkIdType> RemovedTetrahedra;
+  // The defaults live here (the core, dsSeedSurface.h, takes each value as an argument); the
+  // XML's default_values must equal them (Testing/Python/vtkpython_xml_defaults.py).
   double Alpha = 0.0;
   bool UseIntensityRange = false;
   double IntensityRange[2] = { 0.0, 1.0 };

@@ -27,6 +27,12 @@ vtkStandardNewMacro(vtkImageScaleSpaceGradient);
 //------------------------------------------------------------------------------
 vtkImageScaleSpaceGradient::vtkImageScaleSpaceGradient()
 {
+  // The potential's defaults are the core's (dsurf::ScaleSpaceParameters, same names).
+  const dsurf::ScaleSpaceParameters defaults;
+  this->EdgeWeight = defaults.EdgeWeight;
+  this->ImageWeight = defaults.ImageWeight;
+  this->NormalizePotential = defaults.NormalizePotential;
+  this->NumberOfThreads = defaults.NumberOfThreads;
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }

@@ -132,12 +132,15 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  // Sigma and SigmaFraction are this filter's (the core takes the sigma itself; its
+  // ScaleSpaceParameters::Sigma is always given); the other defaults are the core's
+  // (dsurf::ScaleSpaceParameters), copied in the constructor.
   double Sigma = 0.0;
   double SigmaFraction = 1.0 / 6.0;
-  double EdgeWeight = 1.0;
-  double ImageWeight = 0.0;
-  bool NormalizePotential = true;
-  int NumberOfThreads = 0;
+  double EdgeWeight{};
+  double ImageWeight{};
+  bool NormalizePotential{};
+  int NumberOfThreads{};
   double EffectiveSigma = 0.0;
 
 private:

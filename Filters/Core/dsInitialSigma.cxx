@@ -114,7 +114,7 @@ bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry, con
   const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
   ScaleSpaceParameters probeParameters;
   probeParameters.Sigma = voxel;
-  probeParameters.Normalization = EdgeNormalization::Local;
+  probeParameters.EdgeNormalization = EdgeNormalization::Local;
   probeParameters.NumberOfThreads = numberOfThreads;
   ForceField probe;
   if (!ComputeScaleSpaceForce(scalars, geometry, probeParameters, probe, error))

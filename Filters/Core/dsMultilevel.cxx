@@ -48,13 +48,13 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
 {
   const MultilevelParameters& P = this->Parameters;
   const double paper = geometry.MeanExtent() / 6.0;
-  if (P.InitialSigma > 0)
+  if (P.Sigma > 0)
   {
-    sigma = P.InitialSigma;
+    sigma = P.Sigma;
   }
-  else if (P.InitialSigmaFraction > 0)
+  else if (P.SigmaFraction > 0)
   {
-    sigma = P.InitialSigmaFraction * geometry.MeanExtent();
+    sigma = P.SigmaFraction * geometry.MeanExtent();
   }
   else if (!ChooseInitialSigma(scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
@@ -140,12 +140,12 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
     }
   }
   region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
-  if (P.InitialEdgeSigmaRatio > 0)
+  if (P.SubdivideInitialSurface)
   {
     // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
     // and the result is a fresh level-0 mesh for the hierarchy.
     // Edges shorter than two voxels resolve nothing more, whatever sigma is.
-    const double target = std::max(P.InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
+    const double target = std::max(InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
     bool subdivided = false;
     while (mesh.MeanEdgeLength() > target &&
       4LL * mesh.NumberOfPoints() <= P.MaxVertices)
@@ -188,18 +188,18 @@ bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecor
   std::vector<SweepStatistics> batchStats;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
-    // MaxTotalSweeps: the run stops exactly there (the batch is cut short to reach it).
-    const int budget = P.MaxTotalSweeps > 0 ? P.MaxTotalSweeps - sweepCounter : cap;
+    // MaxSweeps: the run stops exactly there (the batch is cut short to reach it).
+    const int budget = P.MaxSweeps > 0 ? P.MaxSweeps - sweepCounter : cap;
     if (budget <= 0)
     {
-      this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
+      this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
       stop = true;
       break;
     }
     batchStats.clear();
     solver.Sweeps(std::min({ batchSize, cap - s, budget }), [&](const SweepStatistics& st) {
       batchStats.push_back(st);
-      if (st.MovedVertices == 0 || st.MeanCorrection < P.Tolerance * rec.MeanEdgeLength)
+      if (st.MovedVertices == 0 || st.MeanCorrection < P.ConvergenceTolerance * rec.MeanEdgeLength)
       {
         rec.Converged = true;
         return false;
@@ -235,17 +235,35 @@ bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecor
       stop = true;
     }
   }
-  if (P.MaxTotalSweeps > 0 && sweepCounter >= P.MaxTotalSweeps && !stop)
+  if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
-    this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxTotalSweeps) + ") sweeps");
+    this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
     stop = true; // no refinement after the budget
   }
   return stop;
 }
 
-bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+/// What the levels of one run share: the refiner, the solver and the force field, this
+/// level's sigma, and the facts about the start the schedule keeps checking.
+struct MultilevelSolver::RunState
 {
-  const MultilevelParameters& P = this->Parameters;
+  RedGreenRefiner Refiner;
+  Solver LevelSolver;
+  ForceField Field;
+  ScaleSpaceParameters FieldParameters;
+  double Voxel = 0;         ///< mean spacing: the finest detail the image shows
+  double Sigma = 0;         ///< this level's
+  double FirstSigma = 0;
+  bool Region = false;      ///< the region force is on
+  bool CheckTopology = false; ///< CheckTopology, always on in Debug builds
+  int EulerStart = 0;
+  bool ClosedStart = false;
+  bool BudgetWarned = false; ///< the MaxVertices warning is given once
+  int SweepCounter = 0;
+};
+
+void MultilevelSolver::ClearResults()
+{
   this->Sweeps.clear();
   this->Levels.clear();
   this->Warnings.clear();
@@ -259,182 +277,225 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
   this->SigmaChoice = InitialSigmaChoice();
   this->UsedRange[0] = this->UsedRange[1] = 0;
   this->RegionOutwardOnly = false;
-  auto fail = [error](const std::string& msg) {
-    if (error)
-    {
-      *error = msg;
-    }
-    return false;
-  };
+}
+
+bool MultilevelSolver::Start(
+  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
   if (!scalars || geometry.NumberOfVoxels() <= 0)
   {
-    return fail("the volume is empty");
+    *error = "the volume is empty";
+    return false;
   }
   if (mesh.Triangles.empty())
   {
-    return fail("the initial surface has no triangles");
+    *error = "the initial surface has no triangles";
+    return false;
   }
-
   // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
-  const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
-  RedGreenRefiner refiner;
+  state.Voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
   std::string msg;
-  if (!refiner.Initialize(mesh, &msg))
+  if (!state.Refiner.Initialize(mesh, &msg))
   {
-    return fail("the initial surface is not a manifold triangle mesh: " + msg);
+    *error = "the initial surface is not a manifold triangle mesh: " + msg;
+    return false;
   }
-  double sigma = 0;
-  if (!this->FirstSigma(scalars, geometry, mesh, sigma, &msg))
+  if (!this->FirstSigma(scalars, geometry, mesh, state.Sigma, error))
   {
-    return fail(msg);
+    return false;
   }
-  const double firstSigma = sigma;
-  bool region = false;
-  if (!this->PrepareStart(scalars, geometry, mesh, refiner, sigma, region, &msg))
+  state.FirstSigma = state.Sigma;
+  if (!this->PrepareStart(scalars, geometry, mesh, state.Refiner, state.Sigma, state.Region, error))
   {
-    return fail(msg);
+    return false;
   }
 #ifndef NDEBUG
-  const bool checkInvariants = true;
+  state.CheckTopology = true;
 #else
-  const bool checkInvariants = P.CheckInvariants;
+  state.CheckTopology = P.CheckTopology;
 #endif
-  const int eulerStart = mesh.EulerCharacteristic();
-  const bool closedStart = mesh.IsClosed();
+  state.EulerStart = mesh.EulerCharacteristic();
+  state.ClosedStart = mesh.IsClosed();
+  state.LevelSolver.SetParameters(P.Solver);
+  state.FieldParameters.EdgeWeight = P.EdgeWeight;
+  state.FieldParameters.ImageWeight = P.ImageWeight;
+  state.FieldParameters.NormalizePotential = true;
+  state.FieldParameters.EdgeNormalization = P.EdgeNormalization;
+  state.FieldParameters.NumberOfThreads = P.Solver.NumberOfThreads;
+  return true;
+}
 
-  Solver solver;
-  solver.SetParameters(P.Solver);
-  ForceField field;
-  ScaleSpaceParameters ssp;
-  ssp.EdgeWeight = P.EdgeWeight;
-  ssp.ImageWeight = P.ImageWeight;
-  ssp.NormalizePotential = true;
-  ssp.Normalization = P.Normalization;
-  ssp.NumberOfThreads = P.Solver.NumberOfThreads;
-
-  const int maxLevels = std::max(0, P.MaxLevels);
-  int sweepCounter = 0;
-  bool budgetWarned = false;
-  for (int level = 0; level <= maxLevels; ++level)
+bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
+  RunState& state, LevelRecord& rec, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
+  const double sigma = state.Sigma;
+  // Force field at this level's sigma (rebuilt only when sigma changed).
+  if (state.Field.Empty() || std::abs(state.Field.Sigma - sigma) > 1e-12 * sigma)
   {
-    // Force field at this level's sigma (rebuilt only when sigma changed).
-    if (field.Empty() || std::abs(field.Sigma - sigma) > 1e-12 * sigma)
+    state.FieldParameters.Sigma = sigma;
+    std::string msg;
+    if (!ComputeScaleSpaceForce(scalars, geometry, state.FieldParameters, state.Field, &msg))
     {
-      ssp.Sigma = sigma;
-      if (!ComputeScaleSpaceForce(scalars, geometry, ssp, field, &msg))
+      *error = "scale-space force: " + msg;
+      return false;
+    }
+  }
+  const double h = mesh.MeanEdgeLength();
+  state.LevelSolver.SetMesh(&mesh);
+  state.LevelSolver.SetForceField(&state.Field, P.ForceWeight * h * sigma);
+  if (state.Region)
+  {
+    // The balloon brings the surface to its object at the coarse scales; as sigma shrinks
+    // the edge force takes over the detail, so the region force shrinks with sigma (at full
+    // strength it presses the surface into every narrow dark gap of the object).
+    const double decay = std::min(1.0, sigma / state.FirstSigma);
+    state.LevelSolver.SetRegionForce(scalars, geometry, this->UsedRange[0], this->UsedRange[1],
+      decay * P.RegionWeight * h, this->RegionOutwardOnly);
+  }
+  rec.Sigma = sigma;
+  rec.Vertices = mesh.NumberOfPoints();
+  rec.Triangles = mesh.NumberOfTriangles();
+  rec.MeanEdgeLength = h;
+  return true;
+}
+
+void MultilevelSolver::EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel)
+{
+  if (lastLevel)
+  {
+    this->SmoothFolds(mesh, rec);
+  }
+  this->ErrorIndicator = solver.ErrorIndicator();
+  this->Displacement = solver.Displacement();
+  this->ExternalForce = solver.ExternalForceMagnitude();
+}
+
+void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
+{
+  // Folds the forces left (two parts of the surface pushed together) are smoothed open on
+  // the surface delivered (dsUntangle.h). Only there: a coarse level's folds are undone by
+  // the finer levels' sweeps, while smoothing two rings of a coarse mesh flattens most of it
+  // (docs/METHOD.md §9.4).
+  rec.Folds = Untangle(mesh);
+  if (rec.Folds.After > 0)
+  {
+    this->Warnings.push_back(std::to_string(rec.Folds.After) + " pairs of triangles still intersect after level " +
+      std::to_string(rec.Level) + " (" + std::to_string(rec.Folds.Before) + " before smoothing them)");
+  }
+}
+
+std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh, double voxel) const
+{
+  const MultilevelParameters& P = this->Parameters;
+  // Adaptively, triangles whose edges are all shorter than a voxel are not split again: the
+  // image has no finer detail for their children to follow. (UniformRefinement splits
+  // everything, as asked.)
+  std::vector<char> marks = MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
+  for (size_t t = 0; t < marks.size() && !P.UniformRefinement; ++t)
+  {
+    if (marks[t])
+    {
+      const auto& tri = mesh.Triangles[t];
+      double longest = 0.0;
+      for (int k = 0; k < 3; ++k)
       {
-        return fail("scale-space force: " + msg);
+        longest = std::max(longest, Norm(mesh.Points[tri[(k + 1) % 3]] - mesh.Points[tri[k]]));
+      }
+      if (longest < voxel)
+      {
+        marks[t] = 0;
       }
     }
-    const double h = mesh.MeanEdgeLength();
-    solver.SetMesh(&mesh);
-    solver.SetForceField(&field, P.ForceWeight * h * sigma);
-    if (region)
-    {
-      // The balloon brings the surface to its object at the coarse scales; as sigma shrinks
-      // the edge force takes over the detail, so the region force shrinks with sigma (at full
-      // strength it presses the surface into every narrow dark gap of the object).
-      const double decay = std::min(1.0, sigma / firstSigma);
-      solver.SetRegionForce(scalars, geometry, this->UsedRange[0], this->UsedRange[1],
-        decay * P.RegionWeight * h, this->RegionOutwardOnly);
-    }
+  }
+  return marks;
+}
 
+bool MultilevelSolver::RefineLevel(TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
+  const std::vector<char> marks = this->MarkForRefinement(mesh, state.Voxel);
+  std::unordered_set<int> splitEdges;
+  for (size_t t = 0; t < marks.size(); ++t)
+  {
+    if (marks[t])
+    {
+      ++rec.MarkedTriangles;
+      for (int e : mesh.TriangleEdges[t])
+      {
+        splitEdges.insert(e);
+      }
+    }
+  }
+  // The vertex budget: each split edge adds a vertex.
+  refined = rec.MarkedTriangles > 0;
+  if (refined &&
+    static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) > P.MaxVertices)
+  {
+    if (!state.BudgetWarned)
+    {
+      this->Warnings.push_back("refinement stopped at level " + std::to_string(rec.Level) +
+        ": the next step would exceed MaxVertices (" + std::to_string(P.MaxVertices) +
+        "); the remaining levels only decrease sigma");
+      state.BudgetWarned = true;
+    }
+    refined = false;
+    rec.MarkedTriangles = 0;
+  }
+  this->Levels.push_back(rec);
+  if (!refined)
+  {
+    return true;
+  }
+  const Prolongation prolongation = P.ButterflyProlongation ? Prolongation::Butterfly : Prolongation::Linear;
+  const RefinementCounts& rc = this->Levels.back().Refinement = state.Refiner.Refine(mesh, marks, prolongation);
+  if (!rc.Ok)
+  {
+    *error = "refinement failed: " + rc.Error;
+    return false;
+  }
+  std::string msg;
+  if (state.CheckTopology &&
+    (!CheckTopologyInvariants(mesh, state.EulerStart, state.ClosedStart, &msg) ||
+      state.Refiner.CountTVertices(mesh) != 0))
+  {
+    *error = "refinement broke a topology invariant at level " + std::to_string(rec.Level + 1) + ": " +
+      (msg.empty() ? std::string("T-vertex") : msg);
+    return false;
+  }
+  return true;
+}
+
+bool MultilevelSolver::RunLevels(
+  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state, std::string* error)
+{
+  const MultilevelParameters& P = this->Parameters;
+  const int maxLevels = std::max(0, P.MaxLevels);
+  for (int level = 0; level <= maxLevels; ++level)
+  {
     LevelRecord rec;
     rec.Level = level;
-    rec.Sigma = sigma;
-    rec.Vertices = mesh.NumberOfPoints();
-    rec.Triangles = mesh.NumberOfTriangles();
-    rec.MeanEdgeLength = h;
-    const bool stop = this->SolveLevel(solver, mesh, rec, sweepCounter);
+    if (!this->SetUpLevel(scalars, geometry, mesh, state, rec, error))
+    {
+      return false;
+    }
+    const bool stop = this->SolveLevel(state.LevelSolver, mesh, rec, state.SweepCounter);
     // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).
-    const bool atFloor = P.HierarchicalSigma && !(sigma > 0.5 * voxel * (1 + 1e-9));
+    const bool atFloor = P.HierarchicalSigma && !(state.Sigma > 0.5 * state.Voxel * (1 + 1e-9));
     const bool lastLevel = stop || level == maxLevels || atFloor;
-    // Folds the forces left (two parts of the surface pushed together) are smoothed open on
-    // the surface delivered (dsUntangle.h). Only there: a coarse level's folds are undone by
-    // the finer levels' sweeps, while smoothing two rings of a coarse mesh flattens most of it
-    // (docs/METHOD.md §9.4).
-    if (lastLevel)
-    {
-      rec.Folds = Untangle(mesh);
-    }
-    if (rec.Folds.After > 0)
-    {
-      this->Warnings.push_back(std::to_string(rec.Folds.After) + " pairs of triangles still intersect after level " +
-        std::to_string(level) + " (" + std::to_string(rec.Folds.Before) + " before smoothing them)");
-    }
-    this->ErrorIndicator = solver.ErrorIndicator();
-    this->Displacement = solver.Displacement();
-    this->ExternalForce = solver.ExternalForceMagnitude();
+    this->EndSweeps(state.LevelSolver, mesh, rec, lastLevel);
     if (lastLevel)
     {
       this->Levels.push_back(rec);
       break;
     }
-
-    // Mark, check the vertex budget, refine. Adaptively, triangles whose edges are all
-    // shorter than a voxel are not split again: the image has no finer detail for their
-    // children to follow. (UniformRefinement splits everything, as asked.)
-    std::vector<char> marks =
-      MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
-    for (size_t t = 0; t < marks.size() && !P.UniformRefinement; ++t)
+    bool refined = false;
+    if (!this->RefineLevel(mesh, state, rec, refined, error))
     {
-      if (marks[t])
-      {
-        const auto& tri = mesh.Triangles[t];
-        double longest = 0.0;
-        for (int k = 0; k < 3; ++k)
-        {
-          longest = std::max(longest, Norm(mesh.Points[tri[(k + 1) % 3]] - mesh.Points[tri[k]]));
-        }
-        if (longest < voxel)
-        {
-          marks[t] = 0;
-        }
-      }
-    }
-    std::unordered_set<int> splitEdges;
-    for (size_t t = 0; t < marks.size(); ++t)
-    {
-      if (marks[t])
-      {
-        ++rec.MarkedTriangles;
-        for (int e : mesh.TriangleEdges[t])
-        {
-          splitEdges.insert(e);
-        }
-      }
-    }
-    bool refine = rec.MarkedTriangles > 0;
-    if (refine &&
-      static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) > P.MaxVertices)
-    {
-      if (!budgetWarned)
-      {
-        this->Warnings.push_back("refinement stopped at level " + std::to_string(level) +
-          ": the next step would exceed MaxVertices (" + std::to_string(P.MaxVertices) +
-          "); the remaining levels only decrease sigma");
-        budgetWarned = true;
-      }
-      refine = false;
-      rec.MarkedTriangles = 0;
-    }
-    this->Levels.push_back(rec);
-    if (refine)
-    {
-      this->Levels.back().Refinement = refiner.Refine(mesh, marks, P.ProlongationMode);
-      const RefinementCounts& rc = this->Levels.back().Refinement;
-      if (!rc.Ok)
-      {
-        return fail("refinement failed: " + rc.Error);
-      }
-      if (checkInvariants &&
-        (!CheckTopologyInvariants(mesh, eulerStart, closedStart, &msg) || refiner.CountTVertices(mesh) != 0))
-      {
-        return fail("refinement broke a topology invariant at level " + std::to_string(level + 1) + ": " +
-          (msg.empty() ? std::string("T-vertex") : msg));
-      }
+      return false;
     }
     // The next level's sigma. Even when nothing was refined (nothing marked, the marked
     // triangles already below a voxel, or the vertex budget reached) the schedule goes on
@@ -442,12 +503,30 @@ bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, 
     // edge lies, voxels off the boundary. Sigma stops at half a voxel, below which the
     // image has nothing more to show; a level that would change neither mesh nor sigma
     // ends the run.
-    const double nextSigma = P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * voxel)) : sigma;
-    if (!refine && !(nextSigma < sigma))
+    const double sigma = state.Sigma;
+    const double nextSigma = P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * state.Voxel)) : sigma;
+    if (!refined && !(nextSigma < sigma))
     {
+      this->SmoothFolds(mesh, this->Levels.back()); // this level's surface is delivered
       break;
     }
-    sigma = nextSigma;
+    state.Sigma = nextSigma;
+  }
+  return true;
+}
+
+bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+{
+  this->ClearResults();
+  std::string msg;
+  RunState state;
+  if (!this->Start(scalars, geometry, mesh, state, &msg) || !this->RunLevels(scalars, geometry, mesh, state, &msg))
+  {
+    if (error)
+    {
+      *error = msg;
+    }
+    return false;
   }
   if (this->Progress)
   {

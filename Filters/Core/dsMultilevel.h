@@ -6,7 +6,7 @@
 //      to [0, 1]); F = ForceWeight * h_l * sigma_l * (-grad P) with h_l the mean edge
 //      length of the level's mesh (docs/METHOD.md §6b: force in edge lengths, scale-normalised);
 //   2. Gauss-Seidel sweeps until the mean correction of a sweep is below
-//      Tolerance * h_l, or MaxSweepsPerLevel sweeps;
+//      ConvergenceTolerance * h_l, or MaxSweepsPerLevel sweeps;
 //   3. unless l == MaxLevels: error estimator e(v) = |internal part of the last
 //      correction| (docs/METHOD.md §6.2); a triangle is marked when the mean e of its corners
 //      exceeds RefinementThreshold * (mean e over all moving vertices of the level)
@@ -15,7 +15,7 @@
 //      1 marks the triangles busier than average. Adaptively, a triangle whose edges are
 //      all shorter than a voxel (mean spacing) is never marked: the image has no finer detail;
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
-//      (dsButterfly.h);
+//      (dsButterfly.h; at edge midpoints with ButterflyProlongation off);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
 //      sigma: it is 4 sigma in the recursive Gaussian), else sigma stays; never below half
 //      a voxel (mean spacing), where the image shows nothing finer.
@@ -47,20 +47,27 @@
 
 namespace dsurf
 {
+/// SubdivideInitialSurface: the start is split until its mean edge length is at most this
+/// many first sigmas (see MultilevelParameters::SubdivideInitialSurface).
+constexpr double InitialEdgeSigmaRatio = 4.0;
+
+/// The parameters of the schedule. Each is named as the vtkDeformableSurfaceFilter property
+/// (and ParaView XML property) it comes from, and its default initialiser is the one home of
+/// that property's default: the filter's constructor copies them.
 struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
 {
   SolverParameters Solver;      ///< tau, gamma, projection, label weights, threads
   double EdgeWeight = 1.0;      ///< w_edge of the potential
   double ImageWeight = 0.0;     ///< w_image of the potential
   double ForceWeight = 1.0;     ///< multiplies h * sigma * (-grad P)
-  /// sigma_0: InitialSigma (physical units) when > 0; else InitialSigmaFraction * the mean
-  /// extent of the volume when > 0 (the paper's 1/6); else (0, the default) chosen from the
-  /// start (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the
-  /// start's (90th-percentile) distance to its nearest edges for any other.
-  double InitialSigmaFraction = 0.0;
-  double InitialSigma = 0.0;
+  /// sigma_0: Sigma (physical units) when > 0; else SigmaFraction * the mean extent of the
+  /// volume when > 0 (the paper's 1/6); else (0, the default) chosen from the start
+  /// (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the start's
+  /// (90th-percentile) distance to its nearest edges for any other.
+  double Sigma = 0.0;
+  double SigmaFraction = 0.0;
   /// How the edge strength is normalised in the potential (dsScaleSpace.h).
-  EdgeNormalization Normalization = EdgeNormalization::GlobalMaximum;
+  dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
   /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. Its range is
   /// IntensityRange when IntensityRange[0] < IntensityRange[1], else estimated from the image
   /// inside the start surface (EstimateIntensityRange).
@@ -77,22 +84,24 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   int SweepBatch = 16;
   /// Stop the whole run after this many sweeps (0: no limit), exactly there, mid-level if
   /// need be (a warning says so); the surface is valid at every sweep.
-  int MaxTotalSweeps = 0;
-  double Tolerance = 1e-3;       ///< stop a level when mean |c| < Tolerance * mean edge length
+  int MaxSweeps = 0;
+  double ConvergenceTolerance = 1e-3; ///< stop a level when mean |c| < this * mean edge length
   double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;
-  Prolongation ProlongationMode = Prolongation::Butterfly;
+  /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
+  /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
+  bool ButterflyProlongation = true;
   /// Before level 0, subdivide the start surface uniformly (1 -> 4, midpoints, so its
   /// shape is kept exactly) while its mean edge length exceeds InitialEdgeSigmaRatio *
   /// sigma_0: a vertex samples the force only where it stands, so a coarse start (a Box
   /// of 12 triangles around a whole volume) needs edges comparable to the first sigma
   /// to be pulled in evenly; never below two voxels (mean spacing), which resolve nothing
-  /// more. 0 turns it off. The subdivided surface counts as level 0.
-  double InitialEdgeSigmaRatio = 4.0;
+  /// more. The subdivided surface counts as level 0.
+  bool SubdivideInitialSurface = true;
   long long MaxVertices = 2000000;
   /// Check the topology invariants after every refinement (always on in Debug builds);
   /// a broken invariant stops the run with an error.
-  bool CheckInvariants = false;
+  bool CheckTopology = false;
 };
 
 /// One row per sweep, for the convergence table.
@@ -184,7 +193,30 @@ private:
   InitialSigmaChoice SigmaChoice;
   double UsedRange[2] = { 0, 0 };
   bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
-  /// sigma_0 by the rule of InitialSigma / InitialSigmaFraction / the start.
+  struct RunState;
+  // Run's steps, in order.
+  void ClearResults();
+  /// Input checks, sigma_0, PrepareStart, and the solver and force-field settings.
+  bool Start(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
+    std::string* error);
+  /// Levels 0..MaxLevels: set up, SolveLevel, EndSweeps, RefineLevel, the next sigma.
+  bool RunLevels(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
+    std::string* error);
+  /// The level's force field (rebuilt when sigma changed), edge and region force scales, and
+  /// rec's sigma, sizes and mean edge length.
+  bool SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
+    LevelRecord& rec, std::string* error);
+  /// After the sweeps: folds smoothed open on the last level, the per-vertex arrays of the
+  /// level kept.
+  void EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel);
+  /// Untangle on the delivered surface (rec.Folds), with a warning for what remains.
+  void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
+  /// Step 3's marks without the triangles already below a voxel (adaptive refinement only).
+  std::vector<char> MarkForRefinement(const TriangleMesh& mesh, double voxel) const;
+  /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
+  /// and check the invariants.
+  bool RefineLevel(TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error);
+  /// sigma_0 by the rule of Sigma / SigmaFraction / the start.
   bool FirstSigma(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
     double& sigma, std::string* error);
   /// Before level 0: closed pieces turned outward and the region force's range (with
@@ -192,7 +224,7 @@ private:
   bool PrepareStart(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
     RedGreenRefiner& refiner, double sigma, bool& region, std::string* error);
   /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
-  /// convergence test, the records, progress and abort, MaxTotalSweeps. True = stop the run.
+  /// convergence test, the records, progress and abort, MaxSweeps. True = stop the run.
   bool SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says why).
   bool RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh);

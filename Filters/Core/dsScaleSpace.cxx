@@ -745,7 +745,7 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
 
     double ge = we, gs = wi, offset = 0.0; // P = -(ge*g + gs*s + offset)
     double gNorm = gmax;
-    if (parameters.NormalizePotential && parameters.Normalization == EdgeNormalization::Local && gmax > 0.0)
+    if (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local && gmax > 0.0)
     {
       gNorm = NormalizeEdgesLocally(potential, force + nx * static_cast<std::ptrdiff_t>(ny) * nz, dims, sv,
         parameters.LocalEdgeFloor * gmax);

@@ -68,7 +68,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   double ImageWeight = 0.0;    ///< w_image
   bool NormalizePotential = true;
   /// With NormalizePotential: how g is normalised (see EdgeNormalization).
-  EdgeNormalization Normalization = EdgeNormalization::GlobalMaximum;
+  dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
   double LocalEdgeFloor = 0.05; ///< Local: the denominator's floor, a fraction of max g
   int NumberOfThreads = 0;     ///< 0 = all the machine has (vtkSMPTools STDThread)
 };

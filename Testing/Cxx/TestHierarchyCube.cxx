@@ -28,7 +28,7 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p)
 {
   Outcome o;
   o.Mesh = dsphantom::EnclosingBox(N, 2);
-  p.CheckInvariants = true; // topology invariants after every level
+  p.CheckTopology = true; // topology invariants after every level
   p.SweepBatch = 1;         // the callback measures the mesh after every sweep
   MultilevelSolver s;
   s.SetParameters(p);
@@ -82,8 +82,8 @@ int TestHierarchyCube(int, char*[])
   // the small sigma here, is turned off for the comparison.
   MultilevelParameters flat = hier;
   flat.HierarchicalSigma = false;
-  flat.InitialSigma = 1.0;
-  flat.InitialEdgeSigmaRatio = 0.0;
+  flat.Sigma = 1.0;
+  flat.SubdivideInitialSurface = false;
   std::cout << "constant sigma 1:" << std::endl;
   const Outcome c = Solve(volume, flat);
   std::cout << "  first sweep with mean |d| < 2: halving " << h.FirstSweepWithin2 << ", constant "

@@ -26,7 +26,7 @@ struct Outcome
 Outcome Solve(const std::vector<float>& volume, MultilevelParameters p, TriangleMesh& mesh, const std::string& name)
 {
   mesh = dsphantom::EnclosingBox(N, 2);
-  p.CheckInvariants = true;
+  p.CheckTopology = true;
   MultilevelSolver s;
   s.SetParameters(p);
   std::string err;
@@ -98,7 +98,7 @@ int TestHierarchySphere(int, char*[])
     TriangleMesh mb, ml;
     const std::string kind = uniform ? "uniform" : "adaptive";
     const Outcome ob = Solve(volume, q, mb, kind + ", butterfly");
-    q.ProlongationMode = Prolongation::Linear;
+    q.ButterflyProlongation = false;
     const Outcome ol = Solve(volume, q, ml, kind + ", linear");
     DS_CHECK_LE(ob.FirstCorrection / ol.FirstCorrection, 0.9,
       kind + ": first-sweep correction after refinement, butterfly / linear");
