@@ -30,6 +30,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStaticPointLocator.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTable.h"
 #include "vtkTriangleFilter.h"
@@ -76,6 +77,28 @@ struct ConvergenceColumns
 
 /// Triangulate and merge coincident points (copies; the input is untouched), then
 /// fill the core mesh. False with a message on bad input.
+/// True when two distinct points of `poly` lie within `tolerance` of each other.
+bool HasNearDuplicatePoints(vtkPolyData* poly, double tolerance)
+{
+  if (poly->GetNumberOfPoints() < 2)
+  {
+    return false;
+  }
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(poly);
+  locator->BuildLocator();
+  std::vector<vtkIdType> mergeMap(poly->GetNumberOfPoints());
+  locator->MergePoints(tolerance, mergeMap.data());
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i)
+  {
+    if (mergeMap[i] != i)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error)
 {
   vtkNew<vtkPolyData> copy;
@@ -84,16 +107,28 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
   triangulate->SetInputData(copy);
   triangulate->PassVertsOff();
   triangulate->PassLinesOff();
+  triangulate->Update();
+  // Points closer than 1e-6 of the diagonal are merged (a writer's round-off splits a
+  // vertex). vtkCleanPolyData with a tolerance takes ~35 s for 640 k points (a
+  // marching-cubes start); exact merging (vtkMergePoints) is linear and gives the same
+  // points in the same order when no two distinct points are that close, which a static
+  // locator checks in about a second. Only then is the tolerance merge run.
   vtkNew<vtkCleanPolyData> clean;
   clean->SetInputConnection(triangulate->GetOutputPort());
   clean->PointMergingOn();
   clean->ToleranceIsAbsoluteOff();
-  clean->SetTolerance(1e-6);
+  clean->SetTolerance(0.0);
   clean->ConvertLinesToPointsOff();
   clean->ConvertPolysToLinesOff();
   clean->ConvertStripsToPolysOff();
   clean->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   clean->Update();
+  constexpr double relativeTolerance = 1e-6;
+  if (HasNearDuplicatePoints(clean->GetOutput(), relativeTolerance * triangulate->GetOutput()->GetLength()))
+  {
+    clean->SetTolerance(relativeTolerance);
+    clean->Update();
+  }
   vtkPolyData* tri = clean->GetOutput();
   if (!tri || tri->GetNumberOfPolys() == 0)
   {
