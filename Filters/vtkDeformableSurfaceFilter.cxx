@@ -596,6 +596,15 @@ int vtkDeformableSurfaceFilter::RequestData(
     vtkErrorMacro("The image is constant (" << range[0] << "): it has no boundary to find.");
     return 1;
   }
+  const std::string nonFinite = dsurf::FirstNonFinite({ { "Tau", this->Tau }, { "Gamma", this->Gamma },
+    { "EdgeWeight", this->EdgeWeight }, { "ImageWeight", this->ImageWeight }, { "Sigma", this->Sigma },
+    { "SigmaFraction", this->SigmaFraction }, { "RegionWeight", this->RegionWeight },
+    { "ConvergenceTolerance", this->ConvergenceTolerance }, { "RefinementThreshold", this->RefinementThreshold } });
+  if (!nonFinite.empty())
+  {
+    vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
+    return 1;
+  }
 
   // --- the initial surface: the input, or the last result (warm start) when only the
   // filter's own parameters changed since ---
