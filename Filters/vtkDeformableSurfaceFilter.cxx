@@ -100,21 +100,11 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     error = "the initial surface has no polygons or triangle strips";
     return false;
   }
+  // The cleaning drops a triangle that names a point twice but may keep its points: only
+  // the points of triangles become vertices (in input order), so none is left without a face.
   const vtkIdType nPts = tri->GetNumberOfPoints();
+  std::vector<int> vertexOf(static_cast<std::size_t>(nPts), -1);
   mesh = dsurf::TriangleMesh();
-  mesh.Points.resize(nPts);
-  for (vtkIdType i = 0; i < nPts; ++i)
-  {
-    tri->GetPoint(i, mesh.Points[i].data());
-    for (double x : mesh.Points[i])
-    {
-      if (!std::isfinite(x))
-      {
-        error = "the initial surface has a non-finite point coordinate";
-        return false;
-      }
-    }
-  }
   mesh.Triangles.reserve(tri->GetNumberOfPolys());
   auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
@@ -126,7 +116,30 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     {
       mesh.Triangles.push_back(
         { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+      vertexOf[ids[0]] = vertexOf[ids[1]] = vertexOf[ids[2]] = 0;
     }
+  }
+  for (vtkIdType i = 0; i < nPts; ++i)
+  {
+    if (vertexOf[i] < 0)
+    {
+      continue;
+    }
+    vertexOf[i] = static_cast<int>(mesh.Points.size());
+    mesh.Points.emplace_back();
+    tri->GetPoint(i, mesh.Points.back().data());
+    for (double x : mesh.Points.back())
+    {
+      if (!std::isfinite(x))
+      {
+        error = "the initial surface has a non-finite point coordinate";
+        return false;
+      }
+    }
+  }
+  for (auto& t : mesh.Triangles)
+  {
+    t = { vertexOf[t[0]], vertexOf[t[1]], vertexOf[t[2]] };
   }
   std::string topologyError;
   if (!mesh.BuildTopology(&topologyError))
