@@ -637,6 +637,13 @@ int vtkDelaunaySeedSurface::RequestData(
   {
     // Too few points for a tetrahedron (a click, or the same click twice): one small sphere
     // around each distinct point.
+    if (finite->GetNumberOfPoints() >= 4)
+    {
+      vtkWarningMacro("The " << finite->GetNumberOfPoints() << " points merge into " << distinct.size()
+                             << " within Tolerance x the bounding-box diagonal ("
+                             << this->Tolerance * std::sqrt(finite->GetLength2())
+                             << "): a seed sphere around each instead of their hull; lower Tolerance to keep them apart.");
+    }
     vtkNew<vtkPoints> centres;
     std::vector<vtkIdType> centreIds;
     for (vtkIdType p : distinct)
