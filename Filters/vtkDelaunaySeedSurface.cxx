@@ -627,6 +627,13 @@ int vtkDelaunaySeedSurface::RequestData(
   {
     return 1;
   }
+  const std::string nonFinite = dsurf::FirstNonFinite({ { "SeedRadius", this->SeedRadius }, { "Alpha", this->Alpha },
+    { "TargetEdgeLength", this->TargetEdgeLength }, { "Tolerance", this->Tolerance } });
+  if (!nonFinite.empty())
+  {
+    vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
+    return 1;
+  }
   if (inputId.empty())
   {
     vtkErrorMacro("No point with finite coordinates: nothing to seed from.");
