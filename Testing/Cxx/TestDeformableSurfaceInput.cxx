@@ -278,28 +278,14 @@ int TestDeformableSurfaceInput(int, char*[])
 
   // --- bad input: a non-manifold edge, no surface, no polygons ---
   {
-    vtkNew<vtkPolyData> fin;
-    vtkNew<vtkPoints> pts;
-    pts->InsertNextPoint(30, 30, 30);
-    pts->InsertNextPoint(34, 30, 30);
-    pts->InsertNextPoint(32, 34, 30);
-    pts->InsertNextPoint(32, 26, 30);
-    pts->InsertNextPoint(32, 30, 34);
-    vtkNew<vtkCellArray> polys;
-    for (vtkIdType third : { 2, 3, 4 })
-    {
-      const vtkIdType ids[3] = { 0, 1, third };
-      polys->InsertNextCell(3, ids);
-    }
-    fin->SetPoints(pts);
-    fin->SetPolys(polys);
+    auto fin = dstest::MakeFin({ 30, 30, 30 });
     std::cout << "(an error message about a non-manifold edge is expected next)" << std::endl;
     const Result r = Deform(image, fin);
     DS_CHECK(r.Errors == 1, "non-manifold edge: one error");
     DS_CHECK(r.Surface->GetNumberOfPoints() == 0, "non-manifold edge: empty output");
 
     vtkNew<vtkPolyData> pointsOnly;
-    pointsOnly->SetPoints(pts);
+    pointsOnly->SetPoints(fin->GetPoints());
     std::cout << "(an error message about a surface without polygons is expected next)" << std::endl;
     const Result e = Deform(image, pointsOnly);
     DS_CHECK(e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
