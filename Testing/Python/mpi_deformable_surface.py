@@ -21,6 +21,7 @@ from vtkmodules.vtkImagingCore import vtkRTAnalyticSource  # noqa: E402
 
 from deformablesurface import vtkDeformableSurfaceFilter  # noqa: E402
 from ds_mpi import per_rank  # noqa: E402
+import ds_invariants  # noqa: E402
 
 simple.LoadPlugin(os.environ["DS_PLUGIN"])
 
@@ -89,7 +90,8 @@ def serial(initial):
     f.SetInitialSurfaceData(initial)
     for name, value in SETTINGS.items():
         getattr(f, "Set" + name)(value)
-    f.Update()
+    ds_invariants.update_filter(f, "serial run")
+    ds_invariants.check_surface(initial, f.GetOutput(), "serial run")
     return f
 
 
@@ -105,6 +107,7 @@ source.SetPhiResolution(SPHERE["resolution"])
 source.Update()
 undivided = serial(source.GetOutput()).GetOutput()
 
+ds_invariants.check_surface(gathered_input, distributed, "distributed run")
 max_dx = 0.0
 if same.GetNumberOfPoints() == distributed.GetNumberOfPoints():
     for i in range(same.GetNumberOfPoints()):

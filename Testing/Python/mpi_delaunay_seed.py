@@ -20,6 +20,7 @@ from vtkmodules.vtkImagingCore import vtkRTAnalyticSource  # noqa: E402
 
 from deformablesurface import vtkDelaunaySeedSurface  # noqa: E402
 from ds_mpi import per_rank  # noqa: E402
+import ds_invariants  # noqa: E402
 
 simple.LoadPlugin(os.environ["DS_PLUGIN"])
 
@@ -68,6 +69,8 @@ def facts(poly):
             key = tuple(sorted((tri[j], tri[(j + 1) % 3])))
             edges[key] = edges.get(key, 0) + 1
     bad = builtins.sum(1 for v in edges.values() if v != 2)
+    if n:  # every seed here is closed, manifold, outward and finite
+        ds_invariants.check_closed_manifold(ds_invariants.surface_facts(poly), "seed")
     volume = 0.0
     if n:
         mass = vtkMassProperties()

@@ -11,6 +11,9 @@ import numpy as np
 
 from deformablesurface import vtkDeformableSurfaceFilter
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ds_invariants  # noqa: E402
+
 POINT_ARRAYS = {"Normals", "Displacement", "ExternalForce", "ErrorIndicator", "RefinementLevel", "VertexLabel"}
 FIELD_ARRAYS = {"Sweeps", "Levels", "InitialSubdivisions", "FinalMeanCorrection", "SelfIntersections",
                 "InitialSigma", "Sigma", "Converged", "WarmStart"}
@@ -35,8 +38,9 @@ for region in (0.0, 0.3):
     f.SetInputData(0, image)
     f.SetInitialSurfaceConnection(start.GetOutputPort())
     f.SetRegionWeight(region)
-    f.Update()
+    ds_invariants.update_filter(f, "RegionWeight %g" % region)
     out = f.GetOutput()
+    ds_invariants.check_surface(start.GetOutput(), out, "RegionWeight %g" % region)
     points = {out.GetPointData().GetArrayName(i) for i in range(out.GetPointData().GetNumberOfArrays())}
     field = {out.GetFieldData().GetArrayName(i) for i in range(out.GetFieldData().GetNumberOfArrays())}
     table = f.GetConvergenceTable()
