@@ -514,6 +514,10 @@ bool Validate(const ImageGeometry& g, double sigma, std::string* error)
     {
       return fail("the spacing must be positive and finite");
     }
+    if (!std::isfinite(g.Origin[a]))
+    {
+      return fail("the image origin must be finite");
+    }
   }
   if (!std::isfinite(sigma) || sigma < 0.0)
   {
