@@ -3,15 +3,15 @@
 // caught through ErrorEvent/WarningEvent observers) and what it outputs (empty, or a surface
 // that keeps the invariants of DSSurfaceInvariants.h), with the inputs bit-identical after the
 // run. Rows: images (no scalars, chosen array missing, 3 components, 1-D, 2-D, 1x1x1, empty,
-// NaN/Inf voxel, constant, negative spacing, singular direction, spacing 1e-6 and 1e6); start
-// surfaces (empty, vertices/lines, lines only, strips, quads, non-manifold fin, NaN coordinate,
-// zero-area and repeated-point triangles, open cap, entirely outside); parameters (Abort from a
-// ProgressEvent observer, NaN and +Inf values, every clamp with its clamped value and a sane
-// run); vtkImageScaleSpaceGradient's parameters; vtkDelaunaySeedSurface from 0-3 points,
-// copies, NaN points, two far clusters and NaN/out-of-range parameters. Cases covered elsewhere
-// with other assertions (TestDeformableSurfaceInput, TestImageScalarsChoice,
-// TestScaleSpaceBadInput, TestDelaunaySeedBadInput) are repeated here so that every row
-// asserts message, output and inputs the same way.
+// NaN/Inf voxel, constant, negative or NaN spacing, NaN origin, singular direction, spacing
+// 1e-6 and 1e6); start surfaces (empty, vertices/lines, lines only, strips, quads, non-manifold
+// fin, NaN coordinate, zero-area and repeated-point triangles, open cap, entirely outside);
+// parameters (Abort from a ProgressEvent observer, NaN and +Inf values, every clamp with its
+// clamped value and a sane run); vtkImageScaleSpaceGradient's parameters; vtkDelaunaySeedSurface
+// from 0-3 points, copies, NaN points, two far clusters and NaN/out-of-range parameters. Cases
+// covered elsewhere with other assertions (TestDeformableSurfaceInput, TestImageScalarsChoice,
+// TestScaleSpaceBadInput, TestDelaunaySeedBadInput) are repeated here so that every row asserts
+// message, output and inputs the same way.
 #include "DSSurfaceInvariants.h"
 #include "SoftBallImage.h"
 #include "TestSolverMeshes.h"
@@ -339,6 +339,10 @@ std::vector<Row> ImageRows()
       start, nullptr, "The image is constant", "", Output::Empty },
     { "negative spacing", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetSpacing(-1, 1, 1); }); },
       start, nullptr, "spacing must be positive", "", Output::Empty, true, "spacing must be positive" },
+    { "NaN spacing", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetSpacing(1, NaN, 1); }); },
+      start, nullptr, "spacing must be positive", "", Output::Empty, true, "spacing must be positive" },
+    { "NaN origin", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetOrigin(0, NaN, 0); }); },
+      start, nullptr, "the image origin must be finite", "", Output::Empty, true, "the image origin must be finite" },
     { "singular direction matrix", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 0); }); },
       start, nullptr, "direction matrix must be a rotation", "", Output::Empty, true, "direction matrix" },
     { "spacing 1e-6", [] { return Ball(1e-6); }, [] { return Start(1e-6); }, nullptr, "", "", Output::Surface, true },
