@@ -9,6 +9,7 @@
 #include "vtkPointData.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace dsurf
 {
@@ -132,5 +133,17 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& vol
     volume.Values = volume.Storage.data();
   }
   return true;
+}
+
+std::string FirstNonFinite(std::initializer_list<std::pair<const char*, double>> parameters)
+{
+  for (const auto& p : parameters)
+  {
+    if (!std::isfinite(p.second))
+    {
+      return p.first;
+    }
+  }
+  return std::string();
 }
 } // namespace dsurf

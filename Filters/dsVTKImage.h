@@ -6,7 +6,9 @@
 
 #include "dsScaleSpace.h"
 
+#include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkDataArray;
@@ -36,6 +38,12 @@ vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, st
 /// extent; spacing, origin and direction honoured) and the values (float input is used
 /// in place, any other type converted). Returns false with a user-facing message.
 bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error);
+
+/// The name of the first of the filter's (name, value) parameters that is not finite, or
+/// empty. vtkSetClampMacro lets NaN through (every comparison with it is false), and a NaN
+/// parameter would silently become a fallback (a Sigma of NaN reads as "choose one"), a solve
+/// that never converges (ConvergenceTolerance) or NaN coordinates (Tau).
+std::string FirstNonFinite(std::initializer_list<std::pair<const char*, double>> parameters);
 } // namespace dsurf
 
 #endif

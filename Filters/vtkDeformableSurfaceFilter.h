@@ -35,7 +35,7 @@
  * Beyond the paper, for real scans (an object among neighbours, a seed near it): the first
  * sigma follows the start (Sigma), a region force pushes the surface through the object's
  * intensity range (RegionWeight, IntensityRange), and folds left by the forces are smoothed
- * open on the delivered surface (dsUntangle.h).
+ * open (dsUntangle.h).
  *
  * Output 0: the surface (triangles, input orientation kept; point order of the merged
  * input) with point arrays Normals, Displacement (|c| of the last sweep), ExternalForce (|F|,
@@ -192,8 +192,8 @@ public:
    * its IntensityRange; 0 turns it off. IntensityRange [lo, hi]
    * with lo < hi is used as given. Otherwise (default [0, 0]) it is estimated from the image
    * inside and just outside the start surface (EstimateIntensityRange), and the force is off
-   * for a start spanning the whole image (nothing outside it to compare with), so a box around
-   * the volume solves the paper's problem unchanged. The range used
+   * for a start spanning the whole image (nothing outside it to compare with) or an open one
+   * (no inside), so a box around the volume solves the paper's problem unchanged. The range used
    * is in the field data IntensityRange. A range matching no voxel turns the force off with a
    * warning. Defaults: RegionWeight 0.3, IntensityRange [0, 0].
    */
@@ -438,6 +438,8 @@ private:
   bool ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume);
   /// The start surface as the core's mesh, consistently oriented; false (an error said why).
   bool StartMesh(vtkPolyData* start, dsurf::TriangleMesh& mesh);
+  /// An error naming the first parameter that is NaN or infinite (the clamps let NaN through).
+  bool ParametersAreFinite();
   /// Run the solver with this filter's parameters, filling the convergence table and the
   /// time steps' snapshots; false (an error said why) when it fails.
   bool Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh, dsurf::MultilevelSolver& solver,

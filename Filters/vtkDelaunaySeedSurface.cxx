@@ -627,6 +627,13 @@ int vtkDelaunaySeedSurface::RequestData(
   {
     return 1;
   }
+  const std::string nonFinite = dsurf::FirstNonFinite({ { "SeedRadius", this->SeedRadius }, { "Alpha", this->Alpha },
+    { "TargetEdgeLength", this->TargetEdgeLength }, { "Tolerance", this->Tolerance } });
+  if (!nonFinite.empty())
+  {
+    vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
+    return 1;
+  }
   if (inputId.empty())
   {
     vtkErrorMacro("No point with finite coordinates: nothing to seed from.");
@@ -637,6 +644,13 @@ int vtkDelaunaySeedSurface::RequestData(
   {
     // Too few points for a tetrahedron (a click, or the same click twice): one small sphere
     // around each distinct point.
+    if (finite->GetNumberOfPoints() >= 4)
+    {
+      vtkWarningMacro("The " << finite->GetNumberOfPoints() << " points merge into " << distinct.size()
+                             << " within Tolerance x the bounding-box diagonal ("
+                             << this->Tolerance * std::sqrt(finite->GetLength2())
+                             << "): a seed sphere around each instead of their hull; lower Tolerance to keep them apart.");
+    }
     vtkNew<vtkPoints> centres;
     std::vector<vtkIdType> centreIds;
     for (vtkIdType p : distinct)

@@ -40,9 +40,10 @@
  * tetrahedra output is empty. Pick one point inside an object and run Deformable Surface with
  * its region force (RegionWeight) to grow it to the object's boundary.
  *
- * Bad input (no finite point, four or more points all coplanar, every tetrahedron removed) gives
- * an error or warning and an empty surface; NaN/inf points are dropped with a warning; duplicate
- * points are merged by vtkDelaunay3D (Tolerance).
+ * Bad input (no finite point, four or more points all coplanar, every tetrahedron removed, a
+ * NaN parameter) gives an error or warning and an empty surface; NaN/inf points are dropped with
+ * a warning; points closer than Tolerance x the bounding-box diagonal are merged, with a warning
+ * when four or more points merge into fewer than four (a seed sphere around each cluster then).
  *
  * Distributed input (pvbatch/pvserver under MPI): the points of every process are gathered on
  * process 0 (through Controller, by default the global controller), which alone tetrahedrises

@@ -88,6 +88,13 @@ int vtkImageScaleSpaceGradient::RequestData(
   }
   const dsurf::ImageGeometry& geometry = volume.Geometry;
 
+  const std::string nonFinite = dsurf::FirstNonFinite({ { "Sigma", this->Sigma },
+    { "SigmaFraction", this->SigmaFraction }, { "EdgeWeight", this->EdgeWeight }, { "ImageWeight", this->ImageWeight } });
+  if (!nonFinite.empty())
+  {
+    vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
+    return 1;
+  }
   double sigma = this->Sigma;
   if (!(sigma > 0.0))
   {

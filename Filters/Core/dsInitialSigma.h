@@ -9,7 +9,7 @@
 //   - a start that spans the image (its bounding box covers at least 90 % of the image's along
 //     every axis: a box around the whole volume) keeps the paper's sigma_0;
 //   - any other start is near its object: along the unit normal of every vertex and triangle
-//     centre, inward and outward up to 2 * the paper's sigma_0, the nearest local maximum of the
+//     centre (every k-th on a start of more than 100 000 of them), inward and outward up to 2 * the paper's sigma_0, the nearest local maximum of the
 //     edge strength (at a probe sigma of 1 voxel, locally normalised, at least 0.2 of the
 //     strongest) is found; D is the 90th percentile of those distances (2 * the paper's sigma_0
 //     where no edge was met), and sigma_0 = D, between one voxel and the paper's sigma_0.

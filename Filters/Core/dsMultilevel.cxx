@@ -81,12 +81,11 @@ bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& ge
     this->Warnings.push_back("the region force is off: the intensity range must be finite");
     return false;
   }
-  if (!(lo < hi) && StartSpansImage(geometry, mesh))
+  if (!(lo < hi) && (StartSpansImage(geometry, mesh) || !mesh.IsClosed()))
   {
-    // A box around the whole volume has no outside to tell its object from: without a
-    // given range the region force stays off (the paper's edge-only method).
-    this->Warnings.push_back("the region force is off: a start spanning the whole image has no "
-                             "outside to estimate the object's intensity range from; give IntensityRange");
+    // A box around the whole volume has no outside to tell its object from, an open surface
+    // no inside: without a given range the region force stays off, as documented, without a
+    // warning (the paper's edge-only method; the output then has no IntensityRange field).
     return false;
   }
   if (!(lo < hi))
@@ -262,6 +261,39 @@ struct MultilevelSolver::RunState
   int SweepCounter = 0;
 };
 
+bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error)
+{
+  // A start far finer than sigma_0 (a million-triangle iso-surface) moves by a fraction of its
+  // tiny edges per sweep: level 0 alone took the 2000-sweep cap (docs/METHOD.md §9.5). The
+  // hierarchy starts coarse instead, and refines again where the image has detail.
+  if (!this->Coarsen || mesh.NumberOfTriangles() <= CoarsenAboveTriangles ||
+    !(mesh.MeanEdgeLength() < 0.5 * state.Sigma))
+  {
+    return true;
+  }
+  TriangleMesh coarse;
+  std::string msg;
+  const bool kept = this->Coarsen(mesh, state.Sigma, coarse) && coarse.BuildTopology(&msg) &&
+    coarse.IsClosed() == mesh.IsClosed() && coarse.EulerCharacteristic() == mesh.EulerCharacteristic() &&
+    coarse.IsConsistentlyOriented() && (coarse.SignedVolume() > 0) == (mesh.SignedVolume() > 0);
+  if (!kept)
+  {
+    this->Warnings.push_back("a coarse copy of the start (" + std::to_string(mesh.NumberOfTriangles()) +
+      " triangles) would change its topology: it is solved as given, which can take long");
+    return true;
+  }
+  this->Warnings.push_back("the start's " + std::to_string(mesh.NumberOfTriangles()) + " triangles (mean edge " +
+    std::to_string(mesh.MeanEdgeLength()) + ") were coarsened to " + std::to_string(coarse.NumberOfTriangles()) +
+    " (mean edge " + std::to_string(coarse.MeanEdgeLength()) + ", about sigma_0) for the first level");
+  mesh = std::move(coarse);
+  if (!state.Refiner.Initialize(mesh, &msg))
+  {
+    *error = "the coarsened initial surface is not a manifold triangle mesh: " + msg;
+    return false;
+  }
+  return true;
+}
+
 void MultilevelSolver::ClearResults()
 {
   this->Sweeps.clear();
@@ -306,6 +338,10 @@ bool MultilevelSolver::Start(
     return false;
   }
   state.FirstSigma = state.Sigma;
+  if (!this->CoarsenStart(mesh, state, error))
+  {
+    return false;
+  }
   if (!this->PrepareStart(scalars, geometry, mesh, state.Refiner, state.Sigma, state.Region, error))
   {
     return false;
@@ -363,7 +399,11 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
 
 void MultilevelSolver::EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel)
 {
-  if (lastLevel)
+  // Folds are smoothed on the delivered surface and after each level whose mesh resolves its
+  // sigma (mean edge <= sigma), where the smoothed rings span about the scale the level sees.
+  // On a coarser mesh two rings are most of the surface: smoothing flattened a 105-vertex
+  // seed across the torus's hole, while the finer levels undo its folds (docs/METHOD.md §9.4).
+  if (lastLevel || rec.MeanEdgeLength <= rec.Sigma)
   {
     this->SmoothFolds(mesh, rec);
   }
@@ -374,10 +414,8 @@ void MultilevelSolver::EndSweeps(const Solver& solver, TriangleMesh& mesh, Level
 
 void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
 {
-  // Folds the forces left (two parts of the surface pushed together) are smoothed open on
-  // the surface delivered (dsUntangle.h). Only there: a coarse level's folds are undone by
-  // the finer levels' sweeps, while smoothing two rings of a coarse mesh flattens most of it
-  // (docs/METHOD.md §9.4).
+  // Folds the forces left (two parts of the surface pushed together) are smoothed open
+  // (dsUntangle.h).
   rec.Folds = Untangle(mesh);
   if (rec.Folds.After > 0)
   {

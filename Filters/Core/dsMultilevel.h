@@ -50,6 +50,9 @@ namespace dsurf
 /// SubdivideInitialSurface: the start is split until its mean edge length is at most this
 /// many first sigmas (see MultilevelParameters::SubdivideInitialSurface).
 constexpr double InitialEdgeSigmaRatio = 4.0;
+/// A start of more triangles than this, with a mean edge below sigma_0 / 2, begins the
+/// hierarchy on a coarse copy (MultilevelSolver::CoarsenStart).
+constexpr int CoarsenAboveTriangles = 100000;
 
 /// The parameters of the schedule. Each is named as the vtkDeformableSurfaceFilter property
 /// (and ParaView XML property) it comes from, and its default initialiser is the one home of
@@ -141,8 +144,12 @@ public:
 
   void SetParameters(const MultilevelParameters& p) { this->Parameters = p; }
   const MultilevelParameters& GetParameters() const { return this->Parameters; }
+  /// Makes `coarse` (Points/Triangles) from `fine` with edges of about `edge` (world units);
+  /// false when it cannot. Used for a start far finer than sigma_0 (CoarsenStart).
+  using CoarsenCallback = std::function<bool(const TriangleMesh& fine, double edge, TriangleMesh& coarse)>;
   void SetProgressCallback(ProgressCallback cb) { this->Progress = std::move(cb); }
   void SetSweepCallback(SweepCallback cb) { this->OnSweep = std::move(cb); }
+  void SetCoarsenCallback(CoarsenCallback cb) { this->Coarsen = std::move(cb); }
 
   /// Deform `mesh` (any closed or open manifold triangle mesh, Points/Triangles set)
   /// toward the boundaries of the volume `scalars` (one float per voxel, x fastest).
@@ -182,6 +189,7 @@ private:
   MultilevelParameters Parameters;
   ProgressCallback Progress;
   SweepCallback OnSweep;
+  CoarsenCallback Coarsen;
   std::vector<SweepRecord> Sweeps;
   std::vector<LevelRecord> Levels;
   std::vector<std::string> Warnings;
@@ -206,16 +214,20 @@ private:
   /// rec's sigma, sizes and mean edge length.
   bool SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
     LevelRecord& rec, std::string* error);
-  /// After the sweeps: folds smoothed open on the last level, the per-vertex arrays of the
-  /// level kept.
+  /// After the sweeps: folds smoothed open (on the last level, and on one whose mesh resolves
+  /// its sigma), the per-vertex arrays of the level kept.
   void EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel);
-  /// Untangle on the delivered surface (rec.Folds), with a warning for what remains.
+  /// Untangle (rec.Folds), with a warning for what remains.
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
   /// Step 3's marks without the triangles already below a voxel (adaptive refinement only).
   std::vector<char> MarkForRefinement(const TriangleMesh& mesh, double voxel) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error);
+  /// A start of more than CoarsenAboveTriangles triangles whose mean edge is below sigma_0 / 2
+  /// is replaced by the Coarsen callback's copy with edges of about sigma_0, when that copy
+  /// keeps the start's topology (closed or not, Euler characteristic, orientation).
+  bool CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error);
   /// sigma_0 by the rule of Sigma / SigmaFraction / the start.
   bool FirstSigma(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
     double& sigma, std::string* error);

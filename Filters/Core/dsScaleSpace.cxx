@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <thread>
 
@@ -513,6 +514,10 @@ bool Validate(const ImageGeometry& g, double sigma, std::string* error)
     {
       return fail("the spacing must be positive and finite");
     }
+    if (!std::isfinite(g.Origin[a]))
+    {
+      return fail("the image origin must be finite");
+    }
   }
   if (!std::isfinite(sigma) || sigma < 0.0)
   {
@@ -783,6 +788,22 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
       }
     });
   });
+  // Finite inputs can still overflow single precision: a weight near VTK_DOUBLE_MAX, or a
+  // sigma so large that the recursive filter's coefficients are not finite.
+  const std::size_t n = static_cast<std::size_t>(geometry.NumberOfVoxels());
+  if (!std::all_of(potential, potential + n, [](float v) { return std::isfinite(v); }) ||
+    !std::all_of(force, force + 3 * n, [](float v) { return std::isfinite(v); }))
+  {
+    if (error)
+    {
+      char text[160];
+      std::snprintf(text, sizeof text,
+        "the force field is not finite: sigma (%g) or the weights (%g, %g) are too large",
+        parameters.Sigma, we, wi);
+      *error = text;
+    }
+    return false;
+  }
   return true;
 }
 

@@ -6,7 +6,8 @@
 // walls together. Where triangles intersect, their vertices and two rings of neighbours are
 // smoothed toward their umbrella centres (x <- x + U(x) / 2, membrane steps that pull a fold
 // open and flat) until no pair intersects or the rounds run out. The multilevel solver calls it
-// on the delivered surface only: on a coarse mesh two rings are most of the surface.
+// on the delivered surface and after levels whose mesh resolves their sigma: on a coarser mesh
+// two rings are most of the surface.
 #ifndef dsUntangle_h
 #define dsUntangle_h
 

@@ -3,7 +3,7 @@
 // stepping back and forth comes from the cache (no new solve: the filter's progress events
 // count solves); a time beyond the end gives the last surface, not an error; a changed
 // parameter solves again. A soft ball of radius 12 in 48^3 from a sphere of radius 16.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "SoftBallImage.h"
 
 #include "vtkCallbackCommand.h"
@@ -93,7 +93,7 @@ int TestAnimateSweeps(int, char*[])
     f->SetInputData(0, image);
     f->SetInitialSurfaceConnection(start->GetOutputPort());
     f->SetMaxSweeps(sweeps);
-    f->Update();
+    dstest::UpdateAndCheckSurface(f, "a plain run of " + std::to_string(sweeps) + " sweeps");
     auto copy = vtkSmartPointer<vtkPolyData>::New();
     copy->DeepCopy(f->GetOutput());
     return copy;
@@ -123,7 +123,7 @@ int TestAnimateSweeps(int, char*[])
   vtkNew<vtkDeformableSurfaceFilter> whole;
   whole->SetInputData(0, image);
   whole->SetInitialSurfaceConnection(start->GetOutputPort());
-  whole->Update();
+  dstest::UpdateAndCheckSurface(whole, "the whole run");
   DS_CHECK(solves->Errors == 0, "no error for a time beyond the end");
   DS_CHECK_LE(MaxDifference(last, whole->GetOutput()), 0.0, "beyond the end: the final surface (max |dx|)");
   DS_CHECK(last->GetPointData()->GetArray("Normals") != nullptr, "the final step carries every array");
@@ -132,6 +132,11 @@ int TestAnimateSweeps(int, char*[])
   std::cout << "convergence table: " << cachedRows << " rows, whole solve " << total << " sweeps" << std::endl;
   DS_CHECK(total > 80, "the solve runs past the last step compared (80 sweeps)");
   DS_CHECK(cachedRows == static_cast<vtkIdType>(total), "the cached convergence table is kept (a row per sweep)");
+  for (const auto& step : { std::make_pair(step1, "time 20"), std::make_pair(step3, "time 60"),
+         std::make_pair(step4, "time 80"), std::make_pair(last, "beyond the end") })
+  {
+    dstest::CheckSurfaceInvariants(start->GetOutput(), step.first, std::string("snapshot at ") + step.second);
+  }
   return dstest::Result("TestAnimateSweeps");
 }
 

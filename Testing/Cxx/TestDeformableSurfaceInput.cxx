@@ -3,7 +3,7 @@
 // modified, an open surface keeps its boundary, two disjoint surfaces both evolve,
 // a non-manifold edge and a missing surface give an error and an empty output,
 // Gamma is clamped, vertices outside the image are warned about.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 
 #include <cmath>
 #include "TestSolverMeshes.h"
@@ -99,9 +99,14 @@ Result Deform(vtkImageData* image, vtkDataObject* surface, int sweeps = 300, dou
   filter->SetMaxSweepsPerLevel(sweeps);
   filter->SetMaxLevels(levels);
   filter->SetSubdivideInitialSurface(subdivide);
-  filter->Update();
+  const std::string label = std::string("Deform, ") + std::to_string(levels) + " level(s)";
+  dstest::UpdateWithInputsUnchanged(filter, label);
   Result r;
   r.Surface = filter->GetOutput();
+  if (r.Surface->GetNumberOfPoints() > 0) // the bad-input cases below assert their empty output
+  {
+    dstest::CheckSurfaceInvariants(vtkPolyData::SafeDownCast(surface), r.Surface, label);
+  }
   r.Errors = errors->Count;
   r.Warnings = warnings->Count;
   return r;
@@ -158,7 +163,7 @@ int TestDeformableSurfaceInput(int, char*[])
     tiny->SetSigma(1e-9);
     tiny->SetMaxLevels(0);
     tiny->SetMaxSweepsPerLevel(5);
-    tiny->Update();
+    dstest::UpdateAndCheckSurface(tiny, "Box, sigma 1e-9");
     std::cout << "Box, sigma 1e-9: " << tiny->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
     DS_CHECK(tiny->GetOutput()->GetNumberOfPoints() == 1538, "subdivision floored at two voxels");
   }
@@ -273,28 +278,14 @@ int TestDeformableSurfaceInput(int, char*[])
 
   // --- bad input: a non-manifold edge, no surface, no polygons ---
   {
-    vtkNew<vtkPolyData> fin;
-    vtkNew<vtkPoints> pts;
-    pts->InsertNextPoint(30, 30, 30);
-    pts->InsertNextPoint(34, 30, 30);
-    pts->InsertNextPoint(32, 34, 30);
-    pts->InsertNextPoint(32, 26, 30);
-    pts->InsertNextPoint(32, 30, 34);
-    vtkNew<vtkCellArray> polys;
-    for (vtkIdType third : { 2, 3, 4 })
-    {
-      const vtkIdType ids[3] = { 0, 1, third };
-      polys->InsertNextCell(3, ids);
-    }
-    fin->SetPoints(pts);
-    fin->SetPolys(polys);
+    auto fin = dstest::MakeFin({ 30, 30, 30 });
     std::cout << "(an error message about a non-manifold edge is expected next)" << std::endl;
     const Result r = Deform(image, fin);
     DS_CHECK(r.Errors == 1, "non-manifold edge: one error");
     DS_CHECK(r.Surface->GetNumberOfPoints() == 0, "non-manifold edge: empty output");
 
     vtkNew<vtkPolyData> pointsOnly;
-    pointsOnly->SetPoints(pts);
+    pointsOnly->SetPoints(fin->GetPoints());
     std::cout << "(an error message about a surface without polygons is expected next)" << std::endl;
     const Result e = Deform(image, pointsOnly);
     DS_CHECK(e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
@@ -329,7 +320,7 @@ int TestDeformableSurfaceInput(int, char*[])
     filter->SetInitialSurfaceData(oneFlipped);
     filter->SetMaxLevels(1);
     filter->SetCheckTopology(true);
-    filter->Update();
+    dstest::UpdateAndCheckSurface(filter, "one reversed triangle");
     std::cout << "one reversed triangle: " << errors->Count << " error(s), " << warnings->Count
               << " warning(s), " << filter->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
     DS_CHECK(errors->Count == 0 && filter->GetOutput()->GetNumberOfPoints() > 0,

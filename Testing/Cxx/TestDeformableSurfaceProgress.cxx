@@ -1,7 +1,7 @@
 // The progress bar and Abort, as ParaView drives them: ProgressEvent values rise
 // from 0 to 1 during the solve, and setting AbortExecute from a progress observer
 // stops the solve early with a valid closed surface (fewer sweeps than the full run).
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 
 #include "vtkCallbackCommand.h"
@@ -79,9 +79,9 @@ int TestDeformableSurfaceProgress(int, char*[])
     cb->SetCallback(OnProgress);
     cb->SetClientData(&log);
     filter->AddObserver(vtkCommand::ProgressEvent, cb);
-    filter->Update();
-    vtkPolyData* out = filter->GetOutput();
     const std::string name = abort ? "aborted at 0.3" : "full run";
+    dstest::UpdateAndCheckSurface(filter, name);
+    vtkPolyData* out = filter->GetOutput();
 
     bool monotone = true;
     for (size_t i = 1; i < log.Values.size(); ++i)

@@ -2,7 +2,7 @@
 // cube phantom (the paper's cube test, one level) keeps well-shaped triangles with the
 // rule, and measurably worse ones when the raw external force is applied
 // (vtkDeformableSurfaceFilter::ProjectExternalForceOff, a test-only switch).
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "TestSolverMeshes.h"
 
 #include "vtkDeformableSurfaceFilter.h"
@@ -114,7 +114,7 @@ Quality Run(vtkImageData* image, vtkPolyData* start, bool rule, double c, double
   filter->SetProjectExternalForce(rule);
   // The paper's rule with the paper's force: the region force (beyond the paper) is off.
   filter->SetRegionWeight(0.0);
-  filter->Update();
+  dstest::UpdateAndCheckSurface(filter, rule ? "with the rule" : "raw force");
   const Quality q = Measure(filter->GetOutput(), c, halfSide);
   const int sweeps = filter->GetOutput()->GetFieldData()->GetArray("Sweeps")->GetTuple1(0);
   std::cout << (rule ? "with the rule" : "raw force    ") << ": " << sweeps

@@ -3,7 +3,7 @@
 // land on the sphere (mean |d| <= 0.15 voxel, max <= 0.4, no self-intersections),
 // with spacing 1 and again with spacing 0.5 and a shifted origin (physical units
 // honoured), and bit-identically for 1 and 2 threads.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "TestSolverMeshes.h"
 
 #include "vtkDeformableSurfaceFilter.h"
@@ -64,7 +64,7 @@ Run Deform(vtkImageData* image, vtkPolyData* start, double sigma, int threads)
   filter->SetConvergenceTolerance(1e-4);
   filter->SetNumberOfThreads(threads);
   const auto t0 = std::chrono::steady_clock::now();
-  filter->Update();
+  dstest::UpdateAndCheckSurface(filter, "sphere phantom, " + std::to_string(threads) + " thread(s)");
   Run run;
   run.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run.Surface = filter->GetOutput();

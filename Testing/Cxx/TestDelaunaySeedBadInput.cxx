@@ -37,7 +37,7 @@ Outcome Run(vtkPoints* points, const std::function<void(vtkDelaunaySeedSurface*)
   {
     configure(seed);
   }
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   Outcome o{ messages->Errors, messages->Warnings, seed->GetOutput()->GetNumberOfCells(),
     seed->GetTetrahedra()->GetNumberOfCells() };
   std::cout << "  -> " << o.Errors << " error(s), " << o.Warnings << " warning(s), " << o.Triangles

@@ -28,7 +28,7 @@ int main()
   vtkNew<dsseedtest::MessageCounter> messages;
   seed->AddObserver(vtkCommand::ErrorEvent, messages);
   seed->SetInputData(cloud);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
 
   std::cout << "Cube corners:" << std::endl;
   vtkPolyData* surface = seed->GetOutput();
@@ -65,18 +65,18 @@ int main()
   vtkNew<dsseedtest::MessageCounter> alphaMessages;
   seed->AddObserver(vtkCommand::WarningEvent, alphaMessages);
   seed->SetAlpha(0.5 * side * std::sqrt(3.0) * 0.99);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   DS_CHECK(seed->GetOutput()->GetNumberOfCells() == 0, "all removed -> empty surface");
   DS_CHECK(alphaMessages->Warnings >= 1, "a warning for the empty surface");
   seed->SetAlpha(0.5 * side * std::sqrt(3.0) * 1.01);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   DS_CHECK(seed->GetOutput()->GetNumberOfCells() == 12, "alpha above circumradius keeps the cube");
 
   // Subdivision: about 2.5 units per edge, still closed, same volume (faces are planar).
   std::cout << "TargetEdgeLength 2.5:" << std::endl;
   seed->SetAlpha(0.0);
   seed->SetTargetEdgeLength(2.5);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto g = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(g, seed->GetOutput()->GetNumberOfPoints(), 2);
   double sum = 0.0;

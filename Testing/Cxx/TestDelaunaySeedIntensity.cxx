@@ -81,7 +81,7 @@ int main()
   seed->SetImageData(image);
   seed->UseIntensityRangeOn();
   seed->SetIntensityRange(50.0, 1000.0);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
 
   std::cout << "Bright ball, IntensityRange [50, 1000]:" << std::endl;
   const auto ball = dsseedtest::Measure(seed->GetOutput());
@@ -125,7 +125,7 @@ int main()
 
   std::cout << "Dark shell, IntensityRange [-10, 50]:" << std::endl;
   seed->SetIntensityRange(-10.0, 50.0);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto shell = dsseedtest::Measure(seed->GetOutput());
   // Box surface and ball surface: two spheres topologically, Euler 4.
   dsseedtest::CheckClosedManifold(shell, seed->GetOutput()->GetNumberOfPoints(), 4);

@@ -67,14 +67,14 @@ int main(int argc, char* argv[])
   for (int a = 1; a < argc; ++a)
   {
     seed->SetAlpha(std::atof(argv[a]));
-    seed->Update();
+    dstest::UpdateWithInputsUnchanged(seed, "seed");
     std::cout << "Alpha " << argv[a] << std::endl;
     dsseedtest::Measure(seed->GetOutput());
   }
 
   std::cout << "No Alpha (convex hull):" << std::endl;
   seed->SetAlpha(0.0);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto hull = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(hull, seed->GetOutput()->GetNumberOfPoints(), 2);
   DS_CHECK_GE(hull.MassVolume / lVolume, 1.3, "hull volume / L volume");
@@ -83,7 +83,7 @@ int main(int argc, char* argv[])
   // spanning the notch are much larger.
   std::cout << "Alpha 9:" << std::endl;
   seed->SetAlpha(9.0);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto carved = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(carved, seed->GetOutput()->GetNumberOfPoints(), 2);
   DS_CHECK_LE(std::abs(carved.MassVolume / lVolume - 1.0), 0.10, "relative volume error");
@@ -93,7 +93,7 @@ int main(int argc, char* argv[])
   std::cout << "Alpha 7 (too small, pinches):" << std::endl;
   const int warningsBefore = messages->Warnings;
   seed->SetAlpha(7.0);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto pinched = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(pinched, seed->GetOutput()->GetNumberOfPoints(), pinched.Euler);
   DS_CHECK(messages->Warnings > warningsBefore, "a warning says how the pinches were resolved");

@@ -61,7 +61,7 @@ int main()
   seed->AddObserver(vtkCommand::ErrorEvent, messages);
   seed->AddObserver(vtkCommand::WarningEvent, messages);
   seed->SetInputData(cloud);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   std::cout << "All tetrahedra (convex hull):" << std::endl;
   const auto hull = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(hull, seed->GetOutput()->GetNumberOfPoints(), 2);
@@ -103,7 +103,7 @@ int main()
             << ", min outside " << minOutside << std::endl;
 
   std::cout << "Hole removed by ID:" << std::endl;
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto byId = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(byId, seed->GetOutput()->GetNumberOfPoints(), 0);
   DS_CHECK_LE(std::abs(byId.MassVolume / torusVolume - 1.0), 0.10, "relative volume error (IDs)");
@@ -119,7 +119,7 @@ int main()
   std::cout << "Hole removed by Alpha = 1.25 r:" << std::endl;
   seed->RemoveAllRemovedTetrahedra();
   seed->SetAlpha(1.25 * r);
-  seed->Update();
+  dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto byAlpha = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(byAlpha, seed->GetOutput()->GetNumberOfPoints(), 0);
   DS_CHECK_LE(std::abs(byAlpha.MassVolume / torusVolume - 1.0), 0.10, "relative volume error (Alpha)");

@@ -3,7 +3,7 @@
 // external force. With the label weight table the vertices on red-green borders stay
 // put (< 1% of their local edge length) and every triangle keeps a min angle >= 20
 // degrees; with all weights = 1 they drift measurably more.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "dsRedGreen.h"
 #include "dsSolver.h"
 
@@ -80,6 +80,7 @@ Drift Run(bool useLabelWeights, int sweeps)
     DS_CHECK(rg.CountTVertices(m) == 0, "no T-vertex");
   }
   const std::vector<Vec3> start = m.Points;
+  const TriangleMesh refined = m;
 
   Solver solver;
   SolverParameters sp;
@@ -92,6 +93,7 @@ Drift Run(bool useLabelWeights, int sweeps)
     solver.Sweep();
   }
 
+  dstest::CheckSurfaceInvariants(refined, m, "sheet after the sweeps");
   Drift d;
   for (int v = 0; v < m.NumberOfPoints(); ++v)
   {

@@ -3,7 +3,7 @@
 // volume. Halving sigma reaches the cube; a constant small sigma (1 voxel) leaves the
 // coarse surface to internal forces until it nears the cube (the paper's Fig. 12); and
 // adaptive refinement matches uniform accuracy with far fewer triangles.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 #include "dsMultilevel.h"
 #include "dsSelfIntersection.h"
@@ -43,6 +43,7 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p)
   std::string err;
   o.Ok = s.Run(volume.data(), dsphantom::Geometry(N), o.Mesh, &err);
   DS_CHECK(o.Ok, err);
+  dstest::CheckSurfaceInvariants(dsphantom::EnclosingBox(N, 2), o.Mesh, "cube phantom");
   o.Sweeps = s.GetTotalSweeps();
   o.Levels = s.GetLevels();
   for (const auto& l : o.Levels)

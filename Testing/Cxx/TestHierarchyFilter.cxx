@@ -3,7 +3,7 @@
 // sphere of radius 32. Checks the output arrays RefinementLevel and VertexLabel, the
 // convergence table's Level and Sigma columns (sigma halves per level), the accuracy,
 // and UniformRefinement / HierarchicalSigma through the filter.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 
 #include "vtkCubeSource.h"
@@ -40,10 +40,10 @@ int TestHierarchyFilter(int, char*[])
     filter->SetInitialSurfaceConnection(box->GetOutputPort());
     filter->SetUniformRefinement(uniform != 0);
     filter->SetCheckTopology(true);
-    filter->Update();
+    const std::string name = uniform ? "uniform" : "adaptive";
+    dstest::UpdateAndCheckSurface(filter, name);
     vtkPolyData* out = filter->GetOutput();
     vtkTable* table = filter->GetConvergenceTable();
-    const std::string name = uniform ? "uniform" : "adaptive";
     DS_CHECK(out->GetNumberOfCells() > 0, name + ": a surface came out");
     vtkDataArray* level = out->GetPointData()->GetArray("RefinementLevel");
     vtkDataArray* label = out->GetPointData()->GetArray("VertexLabel");
@@ -99,7 +99,7 @@ int TestHierarchyFilter(int, char*[])
     filter->SetInputData(0, image);
     filter->SetInitialSurfaceConnection(fine->GetOutputPort());
     filter->SetSigma(2.0);
-    filter->Update();
+    dstest::UpdateAndCheckSurface(filter, "fine start");
     vtkPolyData* out = filter->GetOutput();
     const int levels = static_cast<int>(out->GetFieldData()->GetArray("Levels")->GetTuple1(0));
     const double finalSigma = out->GetFieldData()->GetArray("Sigma")->GetTuple1(0);

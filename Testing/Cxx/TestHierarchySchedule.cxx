@@ -3,7 +3,7 @@
 // after one step must both still end on the true boundary: sigma keeps halving with the
 // same mesh. (Before, the run ended at the coarse sigma, the surface resting ~2.3 voxels
 // inside a ball of radius 16, on the blurred edge of sigma 10.7, and reported success.)
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 
 #include "vtkCommand.h"
@@ -51,7 +51,8 @@ Run Solve(vtkImageData* image, int resolution, long long maxVertices)
   filter->SetInputData(0, image);
   filter->SetInitialSurfaceConnection(start->GetOutputPort());
   filter->SetMaxVertices(maxVertices);
-  filter->Update(); // defaults otherwise: sigma from 1/6 of the extent (10.7), 4 levels
+  // defaults otherwise: sigma from 1/6 of the extent (10.7), 4 levels
+  dstest::UpdateAndCheckSurface(filter, "MaxVertices " + std::to_string(maxVertices));
   vtkPolyData* out = filter->GetOutput();
   Run r;
   r.Points = static_cast<int>(out->GetNumberOfPoints());

@@ -1,7 +1,7 @@
 // The sphere (radius 32 voxels in 128^3) from the box enclosing the volume: accuracy,
 // triangle quality, no self-intersection, invariants after every level; and butterfly
 // prolongation against linear (midpoint) prolongation by the sweeps each needs.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 #include "dsMultilevel.h"
 #include "dsSelfIntersection.h"
@@ -31,6 +31,7 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p, Triangle
   s.SetParameters(p);
   std::string err;
   DS_CHECK(s.Run(volume.data(), dsphantom::Geometry(N), mesh, &err), err);
+  dstest::CheckSurfaceInvariants(dsphantom::EnclosingBox(N, 2), mesh, name);
   std::cout << "  " << name << ": sweeps per level";
   for (const auto& l : s.GetLevels())
   {

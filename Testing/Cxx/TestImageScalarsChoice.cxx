@@ -3,7 +3,7 @@
 // reader had not run when the filter was made), the active point scalars, else the only point
 // array; an error naming the choices when neither exists, and an error naming the array and
 // the choices when the selected one has several components. The output is then empty.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 
 #include "vtkCommand.h"
 #include "vtkDeformableSurfaceFilter.h"
@@ -93,8 +93,12 @@ Outcome Run(vtkImageData* image, const char* selected)
     ds->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, selected);
     gradient->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, selected);
   }
-  ds->Update();
-  gradient->Update();
+  dstest::UpdateWithInputsUnchanged(ds, "Deformable Surface");
+  dstest::UpdateWithInputsUnchanged(gradient, "scale-space gradient");
+  if (ds->GetOutput()->GetNumberOfPoints() > 0) // the error cases assert their empty output
+  {
+    dstest::CheckSurfaceInvariants(start->GetOutput(), ds->GetOutput(), "Deformable Surface");
+  }
   Outcome o;
   o.SurfacePoints = ds->GetOutput()->GetNumberOfPoints();
   o.GradientPoints = gradient->GetOutput()->GetPointData()->GetArray("Force") ? 1 : 0;

@@ -9,7 +9,7 @@
 //   the surface where the edge force alone puts it;
 // - sigma_0: the paper's extent / 6 for a box spanning the image, about the start's distance
 //   to the boundary for a sphere 3 voxels outside it.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "SoftBallImage.h"
 
 #include "vtkCommand.h"
@@ -80,7 +80,7 @@ Result Deform(vtkImageData* image, vtkPolyData* start, const std::function<void(
   {
     configure(filter);
   }
-  filter->Update();
+  dstest::UpdateAndCheckSurface(filter, "region force run");
   vtkPolyData* out = filter->GetOutput();
   Result r;
   r.Warnings = warnings->Count;
@@ -127,7 +127,7 @@ int TestRegionForce(int, char*[])
     vtkNew<vtkDelaunaySeedSurface> seed;
     seed->SetInputData(picked);
     seed->SetSeedRadius(3.0);
-    seed->Update();
+    dstest::UpdateWithInputsUnchanged(seed, "one-click seed");
     DS_CHECK(seed->GetOutput()->GetNumberOfPoints() == 162, "one click: a sphere of 162 points");
     const Result r = Deform(ball, seed->GetOutput(), nullptr);
     DS_CHECK_LE(r.Mean, 0.3, "click grown to the ball: mean |d| (voxels)");

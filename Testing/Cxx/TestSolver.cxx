@@ -1,7 +1,7 @@
 // Unit test of the single-level solver core (dsSolver): colouring, umbrella weights,
 // internal forces without an external field (tau = 1 shrinks, tau = 0 keeps a sphere
 // round), a hand-made force field, determinism over thread counts, fixed boundaries.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "TestSolverMeshes.h"
 
 #include "dsScaleSpace.h"
@@ -173,6 +173,7 @@ int TestSolver(int, char*[])
       prev = mean;
     }
     std::cout << "tau=1: mean radius " << r0 << " -> " << mean << std::endl;
+    dstest::CheckSurfaceInvariants(MakeIcosphere(3, 20, centre), m, "tau=1 after 200 sweeps");
     DS_CHECK_LE(increases, 0, "sweeps where the mean radius did not shrink (tau = 1)");
     DS_CHECK_LE(mean, 0.9 * r0, "mean radius after 200 membrane sweeps");
   }
@@ -195,6 +196,7 @@ int TestSolver(int, char*[])
       worstSpread = std::max(worstSpread, (maxR - minR) / mean);
     }
     std::cout << "tau=0: mean radius after 500 sweeps " << mean << std::endl;
+    dstest::CheckSurfaceInvariants(MakeIcosphere(4, 20, centre), m, "tau=0 after 500 sweeps");
     DS_CHECK_LE(worstSpread, 0.01, "worst (max r - min r) / mean r over 500 thin-plate sweeps");
     DS_CHECK_GE(mean, 19.0, "mean radius after 500 thin-plate sweeps");
   }

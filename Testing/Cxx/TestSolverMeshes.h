@@ -130,6 +130,20 @@ inline vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
   pd->SetPolys(polys);
   return pd;
 }
+
+/// Three triangles on one edge from `corner` to corner + (4, 0, 0): a non-manifold fin, the
+/// start surface the filter must refuse.
+inline vtkSmartPointer<vtkPolyData> MakeFin(const dsurf::Vec3& corner)
+{
+  dsurf::TriangleMesh m;
+  for (const dsurf::Vec3& d : { dsurf::Vec3{ 0, 0, 0 }, dsurf::Vec3{ 4, 0, 0 }, dsurf::Vec3{ 2, 4, 0 },
+         dsurf::Vec3{ 2, -4, 0 }, dsurf::Vec3{ 2, 0, 4 } })
+  {
+    m.Points.push_back(corner + d);
+  }
+  m.Triangles = { { 0, 1, 2 }, { 0, 1, 3 }, { 0, 1, 4 } };
+  return ToPolyData(m);
+}
 } // namespace dstest
 
 #endif

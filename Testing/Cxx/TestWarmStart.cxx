@@ -4,7 +4,7 @@
 // Tau 0.15 warm must take far fewer sweeps than Tau 0.15 cold and end on the same surface
 // (mean |d| to the sphere within 0.05 voxel of the cold run's, both <= 0.2); a new start
 // surface (another radius) makes the next run cold again.
-#include "DSTestHelpers.h"
+#include "DSSurfaceInvariants.h"
 #include "SoftBallImage.h"
 
 #include "vtkDataArray.h"
@@ -32,7 +32,7 @@ struct Run
 
 Run Measure(vtkDeformableSurfaceFilter* f)
 {
-  f->Update();
+  dstest::UpdateAndCheckSurface(f, "warm-start run");
   vtkPolyData* out = f->GetOutput();
   Run r;
   r.Sweeps = static_cast<int>(out->GetFieldData()->GetArray("Sweeps")->GetTuple1(0));

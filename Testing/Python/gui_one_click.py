@@ -89,6 +89,14 @@ def main():
 
     data = servermanager.Fetch(surface, arg1=0)
     problems = []
+    # The invariants every surface keeps (ds_invariants.py, beside this script).
+    import sys
+    sys.path.insert(0, os.path.join(baseline_dir, "..", "Python"))
+    import ds_invariants
+    try:
+        ds_invariants.check_surface(servermanager.Fetch(seed), data, "one click grown")
+    except AssertionError as error:
+        problems.append(str(error))
     if not (5000 <= data.GetNumberOfPoints() <= 50000):
         problems.append("surface of %d points" % data.GetNumberOfPoints())
     bounds = data.GetBounds()

@@ -9,15 +9,19 @@ same mean distance to the ball)."""
 import builtins
 import math
 import os
+import sys
 
-from paraview import servermanager, simple
-from paraview.modules.vtkRemotingCore import vtkProcessModule
-from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkArrayCalculator
-from vtkmodules.vtkFiltersSources import vtkSphereSource
-from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from paraview.modules.vtkRemotingCore import vtkProcessModule  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
+from vtkmodules.vtkFiltersCore import vtkArrayCalculator  # noqa: E402
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+from vtkmodules.vtkImagingCore import vtkRTAnalyticSource  # noqa: E402
 
-from deformablesurface import vtkDeformableSurfaceFilter
+from deformablesurface import vtkDeformableSurfaceFilter  # noqa: E402
+from ds_mpi import per_rank  # noqa: E402
+import ds_invariants  # noqa: E402
 
 simple.LoadPlugin(os.environ["DS_PLUGIN"])
 
@@ -32,47 +36,6 @@ BALL = "255/(1+exp(sqrt(coordsX^2+coordsY^2+coordsZ^2)-%g))" % BALL_RADIUS
 SPHERE = dict(radius=12.0, resolution=16)
 # SigmaFraction is given: the proxy default (0.1666667, seven digits) is not the class default 1/6.
 SETTINGS = dict(MaxLevels=2, SigmaFraction=1.0 / 6.0)
-
-# One vertex per rank carrying that rank's sizes (points/cells, or rows/columns of a table);
-# Fetch appends them on rank 0.
-PER_RANK = """
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
-from vtkmodules.vtkCommonCore import vtkPoints, vtkIntArray
-from vtkmodules.vtkCommonDataModel import vtkCellArray
-c = vtkMultiProcessController.GetGlobalController()
-inp = self.GetInputDataObject(0, 0)
-out = self.GetOutputDataObject(0)
-p = vtkPoints()
-p.InsertNextPoint(0, 0, 0)
-out.SetPoints(p)
-verts = vtkCellArray()
-verts.InsertNextCell(1)
-verts.InsertCellPoint(0)
-out.SetVerts(verts)
-dataset = inp.IsA("vtkDataSet")
-for name, v in (("Rank", c.GetLocalProcessId()),
-                ("Points", inp.GetNumberOfPoints() if dataset else inp.GetNumberOfRows()),
-                ("Cells", inp.GetNumberOfCells() if dataset else inp.GetNumberOfColumns())):
-    a = vtkIntArray()
-    a.SetName(name)
-    a.InsertNextValue(v)
-    out.GetPointData().AddArray(a)
-"""
-
-
-def per_rank(proxy, port=0):
-    """{rank: (points, cells)} of what each rank holds of proxy's output `port`."""
-    reporter = simple.ProgrammableFilter(Input=simple.OutputPort(proxy, port),
-                                         OutputDataSetType="vtkPolyData", Script=PER_RANK)
-    data = servermanager.Fetch(reporter)
-    pd = data.GetPointData()
-    result = {}
-    for i in range(data.GetNumberOfPoints()):
-        result[int(pd.GetArray("Rank").GetValue(i))] = (
-            int(pd.GetArray("Points").GetValue(i)), int(pd.GetArray("Cells").GetValue(i)))
-    simple.Delete(reporter)
-    return result
-
 
 def mean_distance_to_ball(poly):
     n = poly.GetNumberOfPoints()
@@ -127,7 +90,8 @@ def serial(initial):
     f.SetInitialSurfaceData(initial)
     for name, value in SETTINGS.items():
         getattr(f, "Set" + name)(value)
-    f.Update()
+    ds_invariants.update_filter(f, "serial run")
+    ds_invariants.check_surface(initial, f.GetOutput(), "serial run")
     return f
 
 
@@ -143,6 +107,7 @@ source.SetPhiResolution(SPHERE["resolution"])
 source.Update()
 undivided = serial(source.GetOutput()).GetOutput()
 
+ds_invariants.check_surface(gathered_input, distributed, "distributed run")
 max_dx = 0.0
 if same.GetNumberOfPoints() == distributed.GetNumberOfPoints():
     for i in range(same.GetNumberOfPoints()):

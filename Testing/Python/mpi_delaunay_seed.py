@@ -8,15 +8,19 @@ although the image proxy alone would be split too."""
 import builtins
 import math
 import os
+import sys
 
-from paraview import servermanager, simple
-from paraview.modules.vtkRemotingCore import vtkProcessModule
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkDataObject, vtkDataSetAttributes, vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkMassProperties, vtkThreshold
-from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from paraview.modules.vtkRemotingCore import vtkProcessModule  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkDataObject, vtkDataSetAttributes, vtkPolyData  # noqa: E402
+from vtkmodules.vtkFiltersCore import vtkMassProperties, vtkThreshold  # noqa: E402
+from vtkmodules.vtkImagingCore import vtkRTAnalyticSource  # noqa: E402
 
-from deformablesurface import vtkDelaunaySeedSurface
+from deformablesurface import vtkDelaunaySeedSurface  # noqa: E402
+from ds_mpi import per_rank  # noqa: E402
+import ds_invariants  # noqa: E402
 
 simple.LoadPlugin(os.environ["DS_PLUGIN"])
 
@@ -52,41 +56,6 @@ out.SetPoints(pts)
 
 # Programmable filters run their scripts in this interpreter on rank 0 and leave numpy's and
 # vtk.numpy_interface's names (sum, all, split, round, ...) in the globals: builtins.* below.
-# One vertex per rank carrying that rank's point and cell counts; Fetch appends them on rank 0.
-PER_RANK = """
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
-from vtkmodules.vtkCommonCore import vtkPoints, vtkIntArray
-from vtkmodules.vtkCommonDataModel import vtkCellArray
-c = vtkMultiProcessController.GetGlobalController()
-inp = self.GetInputDataObject(0, 0)
-out = self.GetOutputDataObject(0)
-p = vtkPoints()
-p.InsertNextPoint(0, 0, 0)
-out.SetPoints(p)
-verts = vtkCellArray()
-verts.InsertNextCell(1)
-verts.InsertCellPoint(0)
-out.SetVerts(verts)
-for name, v in (("Rank", c.GetLocalProcessId()), ("Points", inp.GetNumberOfPoints()),
-                ("Cells", inp.GetNumberOfCells())):
-    a = vtkIntArray()
-    a.SetName(name)
-    a.InsertNextValue(v)
-    out.GetPointData().AddArray(a)
-"""
-
-
-def per_rank(proxy):
-    """{rank: (points, cells)} of what each rank holds of proxy's output."""
-    reporter = simple.ProgrammableFilter(Input=proxy, OutputDataSetType="vtkPolyData", Script=PER_RANK)
-    data = servermanager.Fetch(reporter)
-    pd = data.GetPointData()
-    result = {}
-    for i in range(data.GetNumberOfPoints()):
-        result[int(pd.GetArray("Rank").GetValue(i))] = (
-            int(pd.GetArray("Points").GetValue(i)), int(pd.GetArray("Cells").GetValue(i)))
-    simple.Delete(reporter)
-    return result
 
 
 def facts(poly):
@@ -100,6 +69,8 @@ def facts(poly):
             key = tuple(sorted((tri[j], tri[(j + 1) % 3])))
             edges[key] = edges.get(key, 0) + 1
     bad = builtins.sum(1 for v in edges.values() if v != 2)
+    if n:  # every seed here is closed, manifold, outward and finite
+        ds_invariants.check_closed_manifold(ds_invariants.surface_facts(poly), "seed")
     volume = 0.0
     if n:
         mass = vtkMassProperties()

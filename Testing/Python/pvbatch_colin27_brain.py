@@ -18,7 +18,9 @@ import sys
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "Examples"))
+sys.path.insert(0, here)
 import demo  # noqa: E402
+import ds_invariants  # noqa: E402
 
 try:
     demo.require_data()
@@ -28,6 +30,9 @@ except RuntimeError as error:
 
 demo.load_plugin(os.environ.get("DS_PLUGIN"))
 result = demo.segment_brain()
+# The invariants every surface keeps (m's topology checks below say the same in its own terms).
+from paraview import servermanager  # noqa: E402
+ds_invariants.check_surface(servermanager.Fetch(result["box"]), result["polydata"], "Colin27 brain")
 m = demo.measure(result)
 print(demo.summary(m))
 

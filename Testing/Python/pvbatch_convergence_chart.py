@@ -5,9 +5,12 @@ chart really draws the series (pixels of the series colour in the saved picture)
 import os
 import sys
 
-from paraview import servermanager, simple
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkIOImage import vtkPNGReader  # noqa: E402
+
+import ds_invariants  # noqa: E402
 
 simple.LoadPlugin(os.environ["DS_PLUGIN"])
 out_dir = os.environ.get("DS_TEST_OUTPUT", ".")
@@ -21,10 +24,11 @@ start = simple.Sphere(Radius=17, ThetaResolution=24, PhiResolution=24)
 surface = simple.DeformableSurface(Input=ball, InitialSurface=start)
 surface.Scalars = ["POINTS", "ball"]
 surface.MaxLevels = 2
-surface.UpdatePipeline()
+ds_invariants.update_proxy(surface, [ball, start], "DeformableSurface")
 
 table = servermanager.Fetch(surface, idx=1)
 polydata = servermanager.Fetch(surface, idx=0)
+ds_invariants.check_surface(servermanager.Fetch(start), polydata, "sphere onto the ball, 3 levels")
 failures = []
 
 

@@ -15,10 +15,14 @@ mismatch the test image and the difference image are left in DS_TEST_OUTPUT."""
 import math
 import os
 import shutil
+import sys
 
-from paraview import servermanager, simple
-from vtkmodules.vtkImagingCore import vtkImageDifference
-from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from vtkmodules.vtkImagingCore import vtkImageDifference  # noqa: E402
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter  # noqa: E402
+
+import ds_invariants  # noqa: E402
 
 BASELINE_NAME = "delaunay_seed.png"
 TOLERANCE = 10.0  # vtkImageDifference thresholded error, as VTK 9.2's regression tests use
@@ -56,10 +60,11 @@ for i in range(NU):
 
 points = simple.PolyLineSource(Points=coords)
 seed = simple.DelaunaySeedSurface(Input=points, Alpha=1.25 * r)
-seed.UpdatePipeline()
+ds_invariants.update_proxy(seed, [points], "DelaunaySeedSurface")
 surface = servermanager.Fetch(seed)
 print("seed: %d triangles, %d points" % (surface.GetNumberOfPolys(), surface.GetNumberOfPoints()))
 assert surface.GetNumberOfPolys() == 2 * len(coords) // 3, "genus-1 seed through every point"
+ds_invariants.check_closed_manifold(ds_invariants.surface_facts(surface), "torus seed", euler=0)
 
 view = simple.CreateView("RenderView")
 view.ViewSize = SIZE

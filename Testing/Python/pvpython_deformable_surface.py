@@ -5,8 +5,11 @@ import math
 import os
 import sys
 
-from paraview.simple import *  # noqa: F401,F403
-from paraview import servermanager
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview.simple import *  # noqa: F401,F403,E402
+from paraview import servermanager  # noqa: E402
+
+import ds_invariants  # noqa: E402
 
 LoadPlugin(os.environ["DS_PLUGIN"], ns=globals())
 
@@ -21,10 +24,11 @@ ds.Sigma = 1.5
 ds.MaxLevels = 0  # single level: the hierarchy has its own tests
 ds.MaxSweepsPerLevel = 1500
 ds.ConvergenceTolerance = 1e-4
-ds.UpdatePipeline()
+ds_invariants.update_proxy(ds, [ball, start], "DeformableSurface")
 
 surface = servermanager.Fetch(ds, arg1=0)
 table = servermanager.Fetch(ds, idx=1)
+ds_invariants.check_surface(servermanager.Fetch(start), surface, "Sphere onto the ball")
 
 n = surface.GetNumberOfPoints()
 dist = [abs(math.sqrt(sum(c * c for c in surface.GetPoint(i))) - 20.0) for i in range(n)]

@@ -5,8 +5,11 @@ import builtins
 import os
 import sys
 
-from paraview import servermanager, simple
-from vtkmodules.vtkFiltersCore import vtkMassProperties
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from vtkmodules.vtkFiltersCore import vtkMassProperties  # noqa: E402
+
+import ds_invariants  # noqa: E402
 
 simple.LoadPlugin(os.environ["DS_PLUGIN"])
 assert hasattr(simple, "DelaunaySeedSurface"), "proxy DelaunaySeedSurface missing"
@@ -38,6 +41,8 @@ def facts(poly):
         volume = mass.GetVolume()
     euler = len(used) - len(edges) + n
     print("  %d triangles, Euler %d, %d bad edges, volume %.3f" % (n, euler, bad, volume))
+    # Every seed here is a valid surface: closed, manifold, outward, finite, its own Euler.
+    ds_invariants.check_closed_manifold(ds_invariants.surface_facts(poly), "seed", euler=euler)
     return n, euler, bad, volume
 
 
@@ -54,7 +59,7 @@ points = simple.TableToPoints(Input=reader, XColumn="x", YColumn="y", ZColumn="z
 seed = simple.DelaunaySeedSurface(Input=points)
 for name in ("RemovedTetrahedra", "Alpha", "UseIntensityRange", "IntensityRange", "TargetEdgeLength", "Tolerance"):
     assert name in seed.ListProperties(), name
-seed.UpdatePipeline()
+ds_invariants.update_proxy(seed, [points], "DelaunaySeedSurface from the CSV")
 print("CSV cube:")
 n, euler, bad, volume = facts(servermanager.Fetch(seed))
 assert n == 12 and euler == 2 and bad == 0 and abs(volume - 1000.0) < 1e-6, "cube surface"

@@ -8,13 +8,17 @@ filter must then take the image's active scalars (or its only point array) by it
 """
 import math
 import os
+import sys
 
-from paraview import servermanager
-from paraview.simple import Box, LoadPlugin, OpenDataFile
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager  # noqa: E402
+from paraview.simple import Box, LoadPlugin, OpenDataFile  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkFiltersCore import vtkArrayCalculator
 from vtkmodules.vtkIOImage import vtkMetaImageWriter, vtkNIFTIImageWriter
-from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter  # noqa: E402
+
+import ds_invariants  # noqa: E402
 
 N = 40             # voxels per axis, spacing 1, origin 0
 CENTER = 19.5      # the grid centre
@@ -66,7 +70,9 @@ def readme_pipeline(path):
     volume = OpenDataFile(path)
     box = Box(XLength=N, YLength=N, ZLength=N, Center=[CENTER] * 3)   # encloses the volume
     surface = DeformableSurface(Input=volume, InitialSurface=box)  # noqa: F821 (from LoadPlugin)
-    surface.UpdatePipeline()
+    ds_invariants.update_proxy(surface, [volume, box], os.path.basename(path))
+    ds_invariants.check_surface(servermanager.Fetch(box), servermanager.Fetch(surface, arg1=0),
+                                os.path.basename(path))
     return surface
 
 

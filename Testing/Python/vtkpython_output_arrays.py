@@ -14,6 +14,9 @@ import numpy as np
 
 from deformablesurface import vtkDeformableSurfaceFilter
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ds_invariants  # noqa: E402
+
 POINT_ARRAYS = {"Normals", "Displacement", "ExternalForce", "ErrorIndicator", "RefinementLevel", "VertexLabel"}
 FIELD_ARRAYS = {"Sweeps", "Levels", "InitialSubdivisions", "FinalMeanCorrection", "SelfIntersections",
                 "InitialSigma", "Sigma", "Converged", "WarmStart"}
@@ -38,8 +41,9 @@ for region in (0.0, 0.3):
     f.SetInputData(0, image)
     f.SetInitialSurfaceConnection(start.GetOutputPort())
     f.SetRegionWeight(region)
-    f.Update()
+    ds_invariants.update_filter(f, "RegionWeight %g" % region)
     out = f.GetOutput()
+    ds_invariants.check_surface(start.GetOutput(), out, "RegionWeight %g" % region)
     point_list = [out.GetPointData().GetArrayName(i) for i in range(out.GetPointData().GetNumberOfArrays())]
     field_list = [out.GetFieldData().GetArrayName(i) for i in range(out.GetFieldData().GetNumberOfArrays())]
     output_order = {"points": point_list, "field": field_list}  # the region-force run's, last
