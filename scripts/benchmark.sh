@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
-# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy ...]   (default: all)
+# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart ...]   (default: all)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
@@ -9,7 +9,7 @@ echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -
 echo "commit:  $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 names=("$@")
 if [ ${#names[@]} -eq 0 ]; then
-  names=(ScaleSpace Solver Hierarchy)
+  names=(ScaleSpace Solver Hierarchy HugeStart)
 fi
 for n in "${names[@]}"; do
   exe="$build/bin/Bench$n"
