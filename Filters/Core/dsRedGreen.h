@@ -99,10 +99,15 @@ public:
   /// would have a T-vertex. 0 after every Refine().
   int CountTVertices(const TriangleMesh& mesh) const;
 
-  /// Labels the refiner's greens imply (same as what Refine() writes), for checks.
-  std::vector<unsigned char> ExpectedLabels(int numberOfPoints) const;
+  /// The vertex labels of docs/METHOD.md §6.4 implied by the current greens: what Refine()
+  /// writes to mesh.Labels (see the class comment for the priority M > C > D > N).
+  std::vector<unsigned char> ComputeLabels(int numberOfPoints) const;
 
 private:
+  class Step; // the working state and phases of one Refine() (dsRedGreen.cxx)
+  /// Empty when Refine() may run on this mesh with these marks, else the reason.
+  std::string CheckRefineInput(const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const;
+
   struct Green
   {
     std::array<int, 3> Parent; ///< corners of the parent, in the mesh orientation
