@@ -112,20 +112,28 @@ public:
   /// |F| before the docs/METHOD.md §5 projection (forceScale applied).
   const std::vector<double>& ExternalForceMagnitude() const { return this->ForceValues; }
 
-  int NumberOfColors() const { return static_cast<int>(this->ClassOffsets.size()) - 1; }
+  int NumberOfColors() const { return static_cast<int>(this->Colors.Offsets.size()) - 1; }
   /// Vertices of colour k: ColorVertices()[ColorOffsets()[k] .. ColorOffsets()[k+1]).
-  const std::vector<int>& ColorOffsets() const { return this->ClassOffsets; }
-  const std::vector<int>& ColorVertices() const { return this->ClassVertices; }
+  const std::vector<int>& ColorOffsets() const { return this->Colors.Offsets; }
+  const std::vector<int>& ColorVertices() const { return this->Colors.Vertices; }
 
   /// The umbrella operator of vertex v with the docs/METHOD.md §6.4 weights (uniform when the
   /// weights of v sum to zero): U(v) = sum w_i q_i / W - v. Exposed for tests.
   Vec3 Umbrella(int v) const;
 
 private:
+  class SweepJob; // the parallel sweeps as StepScheduler steps (dsSolver.cxx)
+  /// Builds the colouring if the mesh changed; false when nothing can move (no topology
+  /// or no labels yet).
+  bool ReadyToSweep();
+  int SerialSweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+  int ParallelSweeps(int numThreads, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+  /// Copies the mesh's points and labels of local vertices [first, last) into the local copy.
+  void RefreshLocal(int first, int last);
   void BuildColoring();
   /// Writes local points and results [first, last) back to the mesh and the outputs.
   void CopyOut(int first, int last);
-  /// Partial statistics of the last sweep over one chunk of WorkVertices.
+  /// Partial statistics of the last sweep over one chunk of LocalColors.Vertices.
   struct ChunkSums
   {
     double Sum = 0, Max = 0;
@@ -156,7 +164,12 @@ private:
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
-  std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
+  /// Vertices of colour k: Vertices[Offsets[k] .. Offsets[k+1]) (CSR), ascending ids.
+  struct ColorClasses
+  {
+    std::vector<int> Offsets{ 0 }, Vertices;
+  };
+  ColorClasses Colors; ///< in mesh ids
   int ColoredPoints = -1; ///< point count the colouring was built for
   std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues; ///< mesh order
 
@@ -173,7 +186,7 @@ private:
     int Outside = 0;
   };
   std::vector<VertexResult> LocalResults;        ///< copied to the mesh order after a call
-  std::vector<int> WorkOffsets{ 0 }, WorkVertices; ///< colour classes in local ids, ascending
+  ColorClasses LocalColors; ///< the same classes in local ids
 };
 } // namespace dsurf
 
