@@ -1,6 +1,7 @@
 #include "dsSolver.h"
 
 #include "dsRegion.h"
+#include "dsSelfIntersectionRule.h"
 #include "dsStepScheduler.h"
 #include "dsThreads.h"
 
@@ -282,15 +283,15 @@ Vec3 Solver::Umbrella(int v) const
   return UmbrellaOf<false>(view, v, -1, &unused);
 }
 
-void Solver::UpdateVertex(int v)
+Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(), this->LocalLabels.data(),
     this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
-  const double tau = this->Parameters.Tau, gamma = this->Parameters.Gamma;
+  const double tau = this->Parameters.Tau;
 
   // U(p), U^2(p) and alpha (docs/METHOD.md §3 with the §6.4 weights).
-  Vec3 u, u2acc{ 0, 0, 0 };
+  Vec3 u2acc{ 0, 0, 0 };
   double alpha = 1.0;
   double unused = 0;
   const auto accumulate = [&](auto allN) {
@@ -318,19 +319,17 @@ void Solver::UpdateVertex(int v)
   const Vec3 u2 = u2acc - u;
   const Vec3& c1 = u;
   const Vec3 c2 = (-1.0 / alpha) * u2;
-  const Vec3 internal = tau * c1 + ((1.0 - tau) * alpha) * c2;
+  return tau * c1 + ((1.0 - tau) * alpha) * c2;
+}
 
-  // External force and the docs/METHOD.md §5 rule: along the umbrella when F points the same
-  // way, otherwise along the normal; the projection keeps F from sliding vertices
-  // tangentially over each other.
+Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
+{
   Vec3 force{ 0, 0, 0 };
-  Vec3 applied{ 0, 0, 0 };
-  int outside = 0;
-  Vec3* points = this->LocalPoints.data();
+  const Vec3& p = this->LocalPoints[v];
   if (this->Field && this->Sampler)
   {
     double f[3] = { 0, 0, 0 };
-    if (this->Sampler(this->Field, points[v].data(), f))
+    if (this->Sampler(this->Field, p.data(), f))
     {
       force = { this->ForceScale * f[0], this->ForceScale * f[1], this->ForceScale * f[2] };
     }
@@ -339,51 +338,47 @@ void Solver::UpdateVertex(int v)
       outside = 1;
     }
   }
-  // The area-weighted normal, computed once: the region force and the projection rule need it.
-  Vec3 normal{ 0, 0, 0 };
-  bool haveNormal = false;
   if (this->RegionScalars)
   {
+    // The region force along the unit normal (dsRegion.h); the normal is kept for the rule.
     bool inside = false;
-    const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, points[v].data(), &inside);
+    const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, p.data(), &inside);
     normal = this->FanNormal(v);
     haveNormal = true;
-    const Vec3& n = normal;
-    const double nn = Norm(n);
+    const double nn = Norm(normal);
     if (inside && nn > 0)
     {
       double speed = RegionSpeed(intensity, this->RegionLow, this->RegionHigh);
       speed = this->RegionOutwardOnly ? std::max(speed, 0.0) : speed;
-      force = force + (this->RegionScale * speed / nn) * n;
+      force = force + (this->RegionScale * speed / nn) * normal;
     }
   }
+  return force;
+}
+
+void Solver::UpdateVertex(int v)
+{
+  Vec3 u;
+  const Vec3 internal = this->InternalCorrection(v, u);
+
+  // External force and the docs/METHOD.md §5 rule (dsSelfIntersectionRule.h).
+  Vec3 force{ 0, 0, 0 };
+  Vec3 applied{ 0, 0, 0 };
+  int outside = 0;
   if ((this->Field && this->Sampler) || this->RegionScalars)
   {
-    if (!this->Parameters.ProjectExternalForce)
-    {
-      applied = force;
-    }
-    else
-    {
-      const double fu = Dot(force, u);
-      if (fu > 0)
-      {
-        applied = (fu / Dot(u, u)) * u;
-      }
-      else
-      {
-        const Vec3 nrm = haveNormal ? normal : this->FanNormal(v);
-        const double nn = Dot(nrm, nrm);
-        if (nn > 0)
-        {
-          applied = (Dot(force, nrm) / nn) * nrm;
-        }
-      }
-    }
+    Vec3 normal{ 0, 0, 0 };
+    bool haveNormal = false;
+    force = this->ExternalForce(v, outside, normal, haveNormal);
+    applied = !this->Parameters.ProjectExternalForce
+      ? force
+      : SelfIntersectionRule(force, u, [&]() { return haveNormal ? normal : this->FanNormal(v); });
   }
 
+  const double gamma = this->Parameters.Gamma;
   const Vec3 c = gamma * (internal + applied);
-  points[v] = points[v] + c;
+  Vec3& point = this->LocalPoints[v];
+  point = point + c;
   VertexResult& result = this->LocalResults[v];
   result.Outside = outside;
   result.ErrorIndicator = gamma * Norm(internal);
@@ -393,15 +388,9 @@ void Solver::UpdateVertex(int v)
 
 Vec3 Solver::FanNormal(int v) const
 {
-  // As TriangleMesh::AreaWeightedNormal, on the local copy.
-  const Vec3* points = this->LocalPoints.data();
-  Vec3 nrm{ 0, 0, 0 };
-  for (int i = this->LocalFanOffsets[v]; i < this->LocalFanOffsets[v + 1]; ++i)
-  {
-    const auto& tri = this->LocalFan[i];
-    nrm = nrm + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
-  }
-  return nrm;
+  const int first = this->LocalFanOffsets[v];
+  return AreaWeightedNormal(this->LocalPoints.data(), this->LocalFanOffsets[v + 1] - first,
+    [this, first](int i) -> const std::array<int, 3>& { return this->LocalFan[first + i]; });
 }
 
 void Solver::CopyOut(int first, int last)

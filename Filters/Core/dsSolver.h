@@ -1,6 +1,6 @@
 // The single-level deformable-surface solver (docs/METHOD.md §3-5): umbrella operators with
 // the label weights of docs/METHOD.md §6.4, one fixed-point step per vertex, Gauss-Seidel
-// in place, and the self-intersection rule for the external force. Plain C++, no
+// in place, and the self-intersection rule for the external force (dsSelfIntersectionRule.h). Plain C++, no
 // pipeline types; the hierarchy (refinement, sigma halving) drives it from outside.
 //
 // Parallel Gauss-Seidel: the vertex graph is coloured at distance 2 (two vertices
@@ -146,6 +146,13 @@ private:
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
   /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);
+  /// The internal part of the correction of local vertex v, tau c1 + (1 - tau) alpha c2
+  /// (docs/METHOD.md §3-4), and its umbrella vector U(v) in `umbrella`.
+  Vec3 InternalCorrection(int v, Vec3& umbrella) const;
+  /// The external force F at local vertex v before the docs/METHOD.md §5 rule: the edge force
+  /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
+  /// region force's fan normal is returned in `normal` (haveNormal) for the rule to reuse.
+  Vec3 ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const;
 
   SolverParameters Parameters;
   TriangleMesh* Mesh = nullptr;

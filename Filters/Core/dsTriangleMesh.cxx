@@ -379,13 +379,9 @@ double TriangleMesh::MeanEdgeLength() const
 
 Vec3 TriangleMesh::AreaWeightedNormal(int v) const
 {
-  Vec3 n{ 0, 0, 0 };
-  for (int i = this->VertexTriangleOffsets[v]; i < this->VertexTriangleOffsets[v + 1]; ++i)
-  {
-    const auto& tri = this->Triangles[this->VertexTriangles[i]];
-    n = n + Cross(this->Points[tri[1]] - this->Points[tri[0]], this->Points[tri[2]] - this->Points[tri[0]]);
-  }
-  return n;
+  const int first = this->VertexTriangleOffsets[v];
+  return dsurf::AreaWeightedNormal(this->Points.data(), this->VertexTriangleOffsets[v + 1] - first,
+    [this, first](int i) -> const std::array<int, 3>& { return this->Triangles[this->VertexTriangles[first + i]]; });
 }
 
 double TriangleMesh::MinAngleDegrees(int t) const

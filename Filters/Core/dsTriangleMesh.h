@@ -39,6 +39,21 @@ inline unsigned long long EdgeKey(int a, int b)
     static_cast<unsigned int>(b);
 }
 
+/// Unnormalised area-weighted normal of a fan of `count` triangles: the sum of their
+/// (b - a) x (c - a), corners(i) giving the corner ids {a, b, c} of the i-th one in
+/// `points`. Used by TriangleMesh::AreaWeightedNormal and the solver's local copy.
+template <class Corners>
+inline Vec3 AreaWeightedNormal(const Vec3* points, int count, const Corners& corners)
+{
+  Vec3 n{ 0, 0, 0 };
+  for (int i = 0; i < count; ++i)
+  {
+    const auto& tri = corners(i);
+    n = n + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+  }
+  return n;
+}
+
 /// Vertex labels of red-green refinement (docs/METHOD.md §6.4). Initial and red vertices are N;
 /// a green split labels its new midpoint M, the ends of the split edge C, the opposite corner D.
 enum VertexLabel : unsigned char
