@@ -6,7 +6,7 @@
 #include "DSTestHelpers.h"
 #include "HierarchyPhantoms.h"
 #include "dsMultilevel.h"
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 using namespace dsurf;
 

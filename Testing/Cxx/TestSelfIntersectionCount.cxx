@@ -1,11 +1,11 @@
-// Unit test of the self-intersection count (dsSelfIntersection): the tri-tri test on
+// Unit test of the self-intersection count (dsSelfIntersectionCount): the tri-tri test on
 // hand-made pairs, a clean icosphere, an icosphere with one vertex pushed through the
 // opposite side, a fold at a shared vertex, and the search against brute force, also on
 // meshes mixing tiny and huge triangles (which once made a uniform grid run out of memory).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 #include <algorithm>
 #include <array>
@@ -84,7 +84,7 @@ void AddTriangle(TriangleMesh& m, const Vec3& a, const Vec3& b, const Vec3& c)
 }
 } // namespace
 
-int TestSelfIntersection(int, char*[])
+int TestSelfIntersectionCount(int, char*[])
 {
   // --- pairs ---
   {
@@ -266,10 +266,10 @@ int TestSelfIntersection(int, char*[])
       "the mixed soup has crossings in both parts");
   }
 
-  return dstest::Result("TestSelfIntersection");
+  return dstest::Result("TestSelfIntersectionCount");
 }
 
 int main(int argc, char* argv[])
 {
-  return TestSelfIntersection(argc, argv);
+  return TestSelfIntersectionCount(argc, argv);
 }
