@@ -611,6 +611,123 @@ double NormalizeEdgesLocally(
   });
   return *std::max_element(maxima.begin(), maxima.end());
 }
+
+/// Calls visit(v, gw) for every voxel v of slice k with gw the world gradient of `values`
+/// there (central differences in index space, one-sided at the border, turned to world).
+template <typename Visit>
+void ForEachWorldGradientOfSlice(
+  const float* values, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
+{
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  const std::ptrdiff_t sx = 1, sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
+  for (int j = 0; j < ny; ++j)
+  {
+    const std::ptrdiff_t row = k * sz + j * sy;
+    for (int i = 0; i < nx; ++i)
+    {
+      const float* v = values + row + i;
+      const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
+      double gw[3];
+      toWorld.Apply(gi, gw);
+      visit(row + i, gw);
+    }
+  }
+}
+
+/// Why ComputeScaleSpaceForceInto cannot run on these inputs; empty when it can.
+std::string CheckForceInputs(const float* scalars, const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, const float* potential, const float* force)
+{
+  std::string error;
+  if (!scalars || !potential || !force)
+  {
+    return "no data";
+  }
+  if (!Validate(geometry, parameters.Sigma, &error))
+  {
+    return error.empty() ? std::string("invalid image geometry") : error;
+  }
+  if (!std::isfinite(parameters.EdgeWeight) || !std::isfinite(parameters.ImageWeight))
+  {
+    return "the weights must be finite";
+  }
+  // One NaN or Inf would spread along every line of the recursive filter and turn the
+  // whole field into NaN.
+  const long long n = geometry.NumberOfVoxels();
+  long long bad = 0;
+  for (long long i = 0; i < n; ++i)
+  {
+    bad += std::isfinite(scalars[i]) ? 0 : 1;
+  }
+  if (bad > 0)
+  {
+    return "the image has " + std::to_string(bad) +
+      " non-finite values (NaN or Inf); replace them first (e.g. with a Calculator or Threshold)";
+  }
+  return std::string();
+}
+
+/// Range of the smoothed image and maximum of its gradient magnitude.
+struct EdgeStatistics
+{
+  double GradientMax = 0, SmoothMin = 0, SmoothMax = 0;
+};
+
+/// g = |grad smooth| into `edges`, with the extrema the normalisation needs.
+EdgeStatistics EdgeMagnitude(const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
+{
+  const int nz = dims[2];
+  std::vector<double> gMax(nz, 0.0), sMin(nz, std::numeric_limits<double>::max()),
+    sMax(nz, std::numeric_limits<double>::lowest());
+  ForEachVoxelSlice(dims, [&](int k) {
+    double gm = 0.0, lo = sMin[k], hi = sMax[k];
+    ForEachWorldGradientOfSlice(smooth, dims, toWorld, k, [&](std::ptrdiff_t v, const double gw[3]) {
+      const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
+      edges[v] = static_cast<float>(g);
+      gm = std::max(gm, g);
+      lo = std::min(lo, static_cast<double>(smooth[v]));
+      hi = std::max(hi, static_cast<double>(smooth[v]));
+    });
+    gMax[k] = gm;
+    sMin[k] = lo;
+    sMax[k] = hi;
+  });
+  EdgeStatistics s;
+  s.GradientMax = *std::max_element(gMax.begin(), gMax.end());
+  s.SmoothMin = *std::min_element(sMin.begin(), sMin.end());
+  s.SmoothMax = *std::max_element(sMax.begin(), sMax.end());
+  return s;
+}
+
+/// P = -(ge g + gs s + offset) in place of g in `potential` (docs/METHOD.md §2, with the
+/// optional normalisation of both terms); `scratch` holds one volume for the local one.
+void CombinePotential(float* potential, const float* smooth, float* scratch, const int dims[3],
+  const double sigmaVoxels[3], const EdgeStatistics& stats, const ScaleSpaceParameters& parameters)
+{
+  const double we = parameters.EdgeWeight, wi = parameters.ImageWeight;
+  double ge = we, gs = wi, offset = 0.0;
+  double gNorm = stats.GradientMax;
+  if (parameters.NormalizePotential && parameters.Normalization == EdgeNormalization::Local &&
+    stats.GradientMax > 0.0)
+  {
+    gNorm =
+      NormalizeEdgesLocally(potential, scratch, dims, sigmaVoxels, parameters.LocalEdgeFloor * stats.GradientMax);
+  }
+  if (parameters.NormalizePotential)
+  {
+    ge = gNorm > 0.0 ? we / gNorm : 0.0;
+    gs = stats.SmoothMax > stats.SmoothMin ? wi / (stats.SmoothMax - stats.SmoothMin) : 0.0;
+    offset = -gs * stats.SmoothMin;
+  }
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  ForEachVoxelSlice(dims, [&](int k) {
+    const std::ptrdiff_t b = k * sz, e = b + sz;
+    for (std::ptrdiff_t v = b; v < e; ++v)
+    {
+      potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
+    }
+  });
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -662,125 +779,37 @@ bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma,
 bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geometry,
   const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error)
 {
-  if (!scalars || !potential || !force)
+  const std::string problem = CheckForceInputs(scalars, geometry, parameters, potential, force);
+  if (!problem.empty())
   {
     if (error)
     {
-      *error = "no data";
+      *error = problem;
     }
     return false;
-  }
-  if (!Validate(geometry, parameters.Sigma, error))
-  {
-    return false;
-  }
-  if (!std::isfinite(parameters.EdgeWeight) || !std::isfinite(parameters.ImageWeight))
-  {
-    if (error)
-    {
-      *error = "the weights must be finite";
-    }
-    return false;
-  }
-  {
-    // One NaN or Inf would spread along every line of the recursive filter and turn the
-    // whole field into NaN.
-    const long long n = geometry.NumberOfVoxels();
-    long long bad = 0;
-    for (long long i = 0; i < n; ++i)
-    {
-      bad += std::isfinite(scalars[i]) ? 0 : 1;
-    }
-    if (bad > 0)
-    {
-      if (error)
-      {
-        *error = "the image has " + std::to_string(bad) +
-          " non-finite values (NaN or Inf); replace them first (e.g. with a Calculator or Threshold)";
-      }
-      return false;
-    }
   }
   const int* dims = geometry.Dimensions;
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const std::ptrdiff_t sx = 1, sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
   const double sv[3] = { parameters.Sigma / geometry.Spacing[0],
     parameters.Sigma / geometry.Spacing[1], parameters.Sigma / geometry.Spacing[2] };
   const GradientToWorld toWorld(geometry);
-  const double we = parameters.EdgeWeight, wi = parameters.ImageWeight;
 
   WithThreads(parameters.NumberOfThreads, [&]() {
-    // The first third of the force buffer holds G_sigma*f until P is known.
+    // The first third of the force buffer holds G_sigma*f until P is known; the rest is
+    // scratch for the local edge normalisation.
     float* smooth = force;
     Smooth(scalars, smooth, dims, sv);
-
-    // g = |grad s| into the potential buffer; per-slice extrema for the normalisation.
-    std::vector<double> gMax(nz, 0.0), sMin(nz, std::numeric_limits<double>::max()),
-      sMax(nz, std::numeric_limits<double>::lowest());
-    ForEachVoxelSlice(dims, [&](int k) {
-      double gm = 0.0, lo = sMin[k], hi = sMax[k];
-      for (int j = 0; j < ny; ++j)
-      {
-        const std::ptrdiff_t row = k * sz + j * sy;
-        for (int i = 0; i < nx; ++i)
-        {
-          const float* v = smooth + row + i;
-          const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
-          double gw[3];
-          toWorld.Apply(gi, gw);
-          const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
-          potential[row + i] = static_cast<float>(g);
-          gm = std::max(gm, g);
-          lo = std::min(lo, static_cast<double>(*v));
-          hi = std::max(hi, static_cast<double>(*v));
-        }
-      }
-      gMax[k] = gm;
-      sMin[k] = lo;
-      sMax[k] = hi;
-    });
-    const double gmax = *std::max_element(gMax.begin(), gMax.end());
-    const double smin = *std::min_element(sMin.begin(), sMin.end());
-    const double smax = *std::max_element(sMax.begin(), sMax.end());
-
-    double ge = we, gs = wi, offset = 0.0; // P = -(ge*g + gs*s + offset)
-    double gNorm = gmax;
-    if (parameters.NormalizePotential && parameters.Normalization == EdgeNormalization::Local && gmax > 0.0)
-    {
-      gNorm = NormalizeEdgesLocally(potential, force + nx * static_cast<std::ptrdiff_t>(ny) * nz, dims, sv,
-        parameters.LocalEdgeFloor * gmax);
-    }
-    if (parameters.NormalizePotential)
-    {
-      ge = gNorm > 0.0 ? we / gNorm : 0.0;
-      gs = smax > smin ? wi / (smax - smin) : 0.0;
-      offset = -gs * smin;
-    }
-    ForEachVoxelSlice(dims, [&](int k) {
-      const std::ptrdiff_t b = k * sz, e = b + sz;
-      for (std::ptrdiff_t v = b; v < e; ++v)
-      {
-        potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
-      }
-    });
+    const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
+    float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
+    CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
 
     // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
     ForEachVoxelSlice(dims, [&](int k) {
-      for (int j = 0; j < ny; ++j)
-      {
-        const std::ptrdiff_t row = k * sz + j * sy;
-        for (int i = 0; i < nx; ++i)
-        {
-          const float* v = potential + row + i;
-          const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
-          double gw[3];
-          toWorld.Apply(gi, gw);
-          float* f = force + 3 * (row + i);
-          f[0] = static_cast<float>(-gw[0]);
-          f[1] = static_cast<float>(-gw[1]);
-          f[2] = static_cast<float>(-gw[2]);
-        }
-      }
+      ForEachWorldGradientOfSlice(potential, dims, toWorld, k, [&](std::ptrdiff_t v, const double gw[3]) {
+        float* f = force + 3 * v;
+        f[0] = static_cast<float>(-gw[0]);
+        f[1] = static_cast<float>(-gw[1]);
+        f[2] = static_cast<float>(-gw[2]);
+      });
     });
   });
   return true;
