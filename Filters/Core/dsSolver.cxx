@@ -102,36 +102,16 @@ void Solver::SetMesh(TriangleMesh* mesh)
   this->BuildColoring();
 }
 
-void Solver::BuildColoring()
+namespace
 {
-  this->Colors.Offsets.assign(1, 0);
-  this->Colors.Vertices.clear();
-  this->ColoredPoints = -1;
-  if (!this->Mesh)
-  {
-    return;
-  }
-  const TriangleMesh& m = *this->Mesh;
+/// Greedy distance-2 colouring in vertex order (deterministic): a vertex takes the
+/// smallest colour not used within two edges, so vertices of one colour neither
+/// share an edge nor appear in each other's U^2 stencil or normal fan. Returns the
+/// number of colours.
+int ColorAtDistanceTwo(const TriangleMesh& m, std::vector<int>& color)
+{
   const int n = m.NumberOfPoints();
-  if (static_cast<int>(m.NeighborOffsets.size()) != n + 1 || static_cast<int>(m.Labels.size()) != n)
-  {
-    return; // no topology yet
-  }
-  this->ColoredPoints = n;
-  this->UniformWeights = true;
-  for (int v = 0; v < n; ++v)
-  {
-    if (m.Labels[v] != LabelN)
-    {
-      this->UniformWeights = false;
-      break;
-    }
-  }
-
-  // Greedy distance-2 colouring in vertex order (deterministic): a vertex takes the
-  // smallest colour not used within two edges, so vertices of one colour neither
-  // share an edge nor appear in each other's U^2 stencil or normal fan.
-  std::vector<int> color(n, -1);
+  color.assign(n, -1);
   std::vector<int> stamp; // stamp[c] == v: colour c is forbidden for v
   int numColors = 0;
   for (int v = 0; v < n; ++v)
@@ -164,12 +144,40 @@ void Solver::BuildColoring()
     }
     color[v] = c;
   }
+  return numColors;
+}
+
+/// Whether vertex v moves in a sweep: not on an open boundary, not isolated.
+bool Moves(const TriangleMesh& m, int v)
+{
+  return !m.BoundaryVertex[v] && m.NeighborOffsets[v + 1] > m.NeighborOffsets[v];
+}
+} // namespace
+
+void Solver::BuildColoring()
+{
+  this->Colors = ColorClasses();
+  this->ColoredPoints = -1;
+  if (!this->Mesh)
+  {
+    return;
+  }
+  const TriangleMesh& m = *this->Mesh;
+  const int n = m.NumberOfPoints();
+  if (static_cast<int>(m.NeighborOffsets.size()) != n + 1 || static_cast<int>(m.Labels.size()) != n)
+  {
+    return; // no topology yet
+  }
+  this->ColoredPoints = n;
+  this->UniformWeights = std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
+  std::vector<int> color;
+  const int numColors = ColorAtDistanceTwo(m, color);
 
   // Colour classes of the vertices that move (CSR, ascending ids within a class).
   std::vector<int> counts(numColors + 1, 0);
   for (int v = 0; v < n; ++v)
   {
-    if (!m.BoundaryVertex[v] && m.NeighborOffsets[v + 1] > m.NeighborOffsets[v])
+    if (Moves(m, v))
     {
       ++counts[color[v] + 1];
     }
@@ -182,7 +190,7 @@ void Solver::BuildColoring()
   this->Colors.Vertices.assign(counts[numColors], -1);
   for (int v = 0; v < n; ++v)
   {
-    if (!m.BoundaryVertex[v] && m.NeighborOffsets[v + 1] > m.NeighborOffsets[v])
+    if (Moves(m, v))
     {
       this->Colors.Vertices[counts[color[v]]++] = v;
     }
@@ -190,7 +198,7 @@ void Solver::BuildColoring()
   this->BuildLocalLayout();
 }
 
-void Solver::BuildLocalLayout()
+void Solver::OrderBreadthFirst()
 {
   const TriangleMesh& m = *this->Mesh;
   const int n = m.NumberOfPoints();
@@ -222,7 +230,12 @@ void Solver::BuildLocalLayout()
       }
     }
   }
+}
 
+void Solver::CopyTopologyToLocal()
+{
+  const TriangleMesh& m = *this->Mesh;
+  const int n = m.NumberOfPoints();
   // Neighbour lists and triangle fans in local ids, each in the mesh's order, so every
   // sum is evaluated in the same order as on the mesh itself.
   this->LocalNeighborOffsets.assign(n + 1, 0);
@@ -248,7 +261,10 @@ void Solver::BuildLocalLayout()
     }
     this->LocalFanOffsets[l + 1] = f;
   }
+}
 
+void Solver::BuildLocalColors()
+{
   // The colour classes in local ids, ascending: a thread's share of a colour is a
   // contiguous run of it, hence a compact region.
   const int numColors = this->NumberOfColors();
@@ -263,7 +279,15 @@ void Solver::BuildLocalLayout()
     std::sort(this->LocalColors.Vertices.begin() + this->Colors.Offsets[c],
       this->LocalColors.Vertices.begin() + this->Colors.Offsets[c + 1]);
   }
+}
 
+void Solver::BuildLocalLayout()
+{
+  this->OrderBreadthFirst();
+  this->CopyTopologyToLocal();
+  this->BuildLocalColors();
+
+  const int n = this->Mesh->NumberOfPoints();
   // Fixed vertices keep 0; moving ones are overwritten by every sweep.
   this->ErrorIndicatorValues.assign(n, 0.0);
   this->DisplacementValues.assign(n, 0.0);

@@ -143,6 +143,9 @@ private:
   SweepStatistics CombineStatistics(const std::vector<ChunkSums>& chunks) const;
   /// Builds the breadth-first copy of the topology used by the sweeps.
   void BuildLocalLayout();
+  void OrderBreadthFirst();   ///< Original and Local
+  void CopyTopologyToLocal(); ///< neighbour lists and fans in local ids
+  void BuildLocalColors();    ///< LocalColors from Colors
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
   /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);

@@ -134,6 +134,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   double MinAngleDegrees(int t) const;
 
 private:
+  /// The steps of BuildTopology(); the first two return why the mesh is invalid, or "".
+  std::string BuildVertexTriangles(); ///< VertexTriangleOffsets / VertexTriangles
+  std::string BuildEdges();           ///< Edges, TriangleEdges, EdgeTriangles, EdgeLookup
+  void BuildRings();                  ///< NeighborOffsets / Neighbors, BoundaryVertex
+
   std::unordered_map<unsigned long long, int> EdgeLookup;
 };
 } // namespace dsurf
