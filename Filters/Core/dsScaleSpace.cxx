@@ -1,6 +1,7 @@
 #include "dsScaleSpace.h"
 
 #include "dsThreads.h"
+#include "dsTrilinear.h"
 
 #include "vtkSMPTools.h"
 
@@ -45,53 +46,23 @@ void ImageGeometry::IndexToWorld(const double ijk[3], double x[3]) const
 
 namespace
 {
-//------------------------------------------------------------------------------
-// Trilinear weights of a continuous index; false outside [0, dim-1].
-struct Cell
-{
-  long long Base;
-  long long Step[3];
-  double T[3];
-};
-
-bool LocateCell(const ImageGeometry& g, const double x[3], Cell& c)
+/// The trilinear cell of world point x. A voxel covers half a spacing around its centre, so
+/// the volume reaches half a voxel beyond the outermost centres (the image bounds); there the
+/// border value is used. A start box at the image bounds thus feels the force at every vertex.
+bool LocateCell(const ImageGeometry& g, const double x[3], TrilinearCell& c)
 {
   double ijk[3];
   g.WorldToIndex(x, ijk);
-  // A voxel covers half a spacing around its centre, so the volume reaches half a voxel
-  // beyond the outermost centres (the image bounds); there the border value is used. A
-  // start box at the image bounds thus feels the force at every vertex.
-  const double tol = 0.5;
-  long long stride = 1;
-  c.Base = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = g.Dimensions[a];
-    if (n <= 0 || !(ijk[a] >= -tol && ijk[a] <= n - 1 + tol))
-    {
-      return false;
-    }
-    long long i0 = 0;
-    double t = 0.0;
-    if (n > 1)
-    {
-      const double v = std::min(std::max(ijk[a], 0.0), static_cast<double>(n - 1));
-      i0 = std::min(static_cast<long long>(v), static_cast<long long>(n - 2));
-      t = v - static_cast<double>(i0);
-    }
-    c.Base += i0 * stride;
-    c.Step[a] = n > 1 ? stride : 0;
-    c.T[a] = t;
-    stride *= n;
-  }
-  return true;
+  const int lo[3] = { 0, 0, 0 };
+  const int hi[3] = { g.Dimensions[0] - 1, g.Dimensions[1] - 1, g.Dimensions[2] - 1 };
+  return LocateTrilinearCell(ijk, lo, hi, 0.5, c);
 }
 } // namespace
 
 bool ForceField::SampleForce(const double x[3], double f[3]) const
 {
   f[0] = f[1] = f[2] = 0.0;
-  Cell c;
+  TrilinearCell c;
   if (this->Force.empty() || !LocateCell(this->Geometry, x, c))
   {
     return false;
@@ -99,10 +70,8 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
   const float* F = this->Force.data();
   for (int corner = 0; corner < 8; ++corner)
   {
-    const int bi = corner & 1, bj = (corner >> 1) & 1, bk = (corner >> 2) & 1;
-    const double w = (bi ? c.T[0] : 1.0 - c.T[0]) * (bj ? c.T[1] : 1.0 - c.T[1]) *
-      (bk ? c.T[2] : 1.0 - c.T[2]);
-    const float* v = F + 3 * (c.Base + bi * c.Step[0] + bj * c.Step[1] + bk * c.Step[2]);
+    const double w = c.Weight(corner);
+    const float* v = F + 3 * c.Corner(corner);
     f[0] += w * v[0];
     f[1] += w * v[1];
     f[2] += w * v[2];
@@ -112,7 +81,7 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
 
 double SampleVolume(const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
 {
-  Cell c;
+  TrilinearCell c;
   const bool in = values && LocateCell(geometry, x, c);
   if (inside)
   {
@@ -125,10 +94,7 @@ double SampleVolume(const float* values, const ImageGeometry& geometry, const do
   double v = 0.0;
   for (int corner = 0; corner < 8; ++corner)
   {
-    const int bi = corner & 1, bj = (corner >> 1) & 1, bk = (corner >> 2) & 1;
-    const double w = (bi ? c.T[0] : 1.0 - c.T[0]) * (bj ? c.T[1] : 1.0 - c.T[1]) *
-      (bk ? c.T[2] : 1.0 - c.T[2]);
-    v += w * values[c.Base + bi * c.Step[0] + bj * c.Step[1] + bk * c.Step[2]];
+    v += c.Weight(corner) * values[c.Corner(corner)];
   }
   return v;
 }
