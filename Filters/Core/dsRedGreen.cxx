@@ -317,8 +317,8 @@ void RedGreenRefiner::Step::RedSplit(int i)
   this->RemoveOwner(i);
   this->Base[i].Alive = false;
   // Corner children keep the parent's orientation; m[k] lies on edge (v[k], v[k+1]).
-  const std::array<int, 3> children[4] = { { v[0], m[0], m[2] }, { m[0], v[1], m[1] }, { m[2], m[1], v[2] },
-    { m[0], m[1], m[2] } };
+  std::array<int, 3> children[4];
+  SplitInFour(v, m, children);
   const int firstChild = static_cast<int>(this->Base.size());
   for (const auto& c : children)
   {

@@ -44,33 +44,6 @@ struct UnionFind
   }
 };
 
-SeedPoint Sub(const SeedPoint& a, const SeedPoint& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-double Dot(const SeedPoint& a, const SeedPoint& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-SeedPoint Cross(const SeedPoint& a, const SeedPoint& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-double Distance(const SeedPoint& a, const SeedPoint& b)
-{
-  const SeedPoint d = Sub(a, b);
-  return std::sqrt(Dot(d, d));
-}
-
-std::uint64_t EdgeKey(std::int64_t a, std::int64_t b)
-{
-  if (a > b)
-  {
-    std::swap(a, b);
-  }
-  return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b);
-}
-
 // Face-to-face adjacency of the whole tetrahedrisation (independent of which are kept):
 // neighbour[4t+k] = 4t'+k' of the tetrahedron across face k of t, or -1 on the hull.
 std::vector<std::int64_t> FaceNeighbours(const std::vector<SeedTet>& tets)
@@ -322,7 +295,7 @@ void BuildFanSurface(const BoundaryFaces& faces, const std::vector<std::int64_t>
 std::int64_t RemovePinchTetrahedra(
   const SeedSurface& surface, const BoundaryFaces& faces, std::vector<unsigned char>& status)
 {
-  std::unordered_map<std::uint64_t, int> edgeUse;
+  std::unordered_map<unsigned long long, int> edgeUse;
   edgeUse.reserve(static_cast<std::size_t>(3 * faces.Count()));
   for (const SeedTriangle& tri : surface.Triangles)
   {
@@ -354,7 +327,7 @@ std::int64_t RemovePinchTetrahedra(
 std::unordered_map<std::int64_t, std::int64_t> CountPinches(
   const SeedSurface& surface, const BoundaryFaces& faces, SeedBoundaryReport& report)
 {
-  std::unordered_map<std::uint64_t, int> originalEdgeUse;
+  std::unordered_map<unsigned long long, int> originalEdgeUse;
   for (std::int64_t f = 0; f < faces.Count(); ++f)
   {
     for (int j = 0; j < 3; ++j)
@@ -410,7 +383,7 @@ void SeparateSplitCopies(const std::vector<SeedPoint>& points,
         {
           ring[p][i] += q[i];
         }
-        length[p] += Distance(q, points[surface.SourcePoint[p]]);
+        length[p] += Norm(q - points[surface.SourcePoint[p]]);
         ++count[p];
       }
     }
@@ -457,13 +430,13 @@ std::int64_t CountComponents(const SeedSurface& surface)
 
 double SeedTetSignedVolume(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
 {
-  return Dot(Sub(b, a), Cross(Sub(c, a), Sub(d, a))) / 6.0;
+  return Dot(b - a, Cross(c - a, d - a)) / 6.0;
 }
 
 double SeedTetCircumradius(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
 {
   // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
-  const SeedPoint u = Sub(b, a), v = Sub(c, a), w = Sub(d, a);
+  const SeedPoint u = b - a, v = c - a, w = d - a;
   const SeedPoint vw = Cross(v, w), wu = Cross(w, u), uv = Cross(u, v);
   const double det = 2.0 * Dot(u, vw);
   const double scale = std::max({ Dot(u, u), Dot(v, v), Dot(w, w) });
@@ -554,18 +527,13 @@ SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points, const std:
 
 double SeedMeanEdgeLength(const SeedSurface& surface)
 {
-  // Interior edges are seen twice (once per side), which leaves the mean unchanged.
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (const SeedTriangle& tri : surface.Triangles)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      sum += Distance(surface.Points[tri[j]], surface.Points[tri[(j + 1) % 3]]);
-      ++n;
-    }
-  }
-  return n > 0 ? sum / static_cast<double>(n) : 0.0;
+  // Over half-edges: interior edges are seen twice (once per side), which leaves the mean
+  // unchanged, and no edge list is needed.
+  return MeanLength(surface.Points, 3 * surface.Triangles.size(), [&surface](std::size_t h) {
+    const SeedTriangle& tri = surface.Triangles[h / 3];
+    const int j = static_cast<int>(h % 3);
+    return std::array<std::int64_t, 2>{ tri[j], tri[(j + 1) % 3] };
+  });
 }
 
 int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTriangles)
@@ -578,7 +546,7 @@ int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTr
   while (SeedMeanEdgeLength(surface) > std::sqrt(2.0) * target &&
     static_cast<std::int64_t>(surface.Triangles.size()) * 4 <= maxTriangles)
   {
-    std::unordered_map<std::uint64_t, std::int64_t> midpoint;
+    std::unordered_map<unsigned long long, std::int64_t> midpoint;
     midpoint.reserve(surface.Triangles.size() * 2);
     auto mid = [&](std::int64_t a, std::int64_t b) {
       const auto inserted = midpoint.emplace(EdgeKey(a, b), static_cast<std::int64_t>(surface.Points.size()));
@@ -595,11 +563,10 @@ int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTr
     finer.reserve(surface.Triangles.size() * 4);
     for (const SeedTriangle& t : surface.Triangles)
     {
-      const std::int64_t m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
-      finer.push_back({ t[0], m01, m20 });
-      finer.push_back({ m01, t[1], m12 });
-      finer.push_back({ m20, m12, t[2] });
-      finer.push_back({ m01, m12, m20 });
+      const std::int64_t m[3] = { mid(t[0], t[1]), mid(t[1], t[2]), mid(t[2], t[0]) };
+      SeedTriangle children[4];
+      SplitInFour(t, m, children);
+      finer.insert(finer.end(), children, children + 4);
     }
     surface.Triangles.swap(finer);
     ++steps;

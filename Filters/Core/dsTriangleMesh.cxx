@@ -390,16 +390,7 @@ double TriangleMesh::SignedVolume() const
 
 double TriangleMesh::MeanEdgeLength() const
 {
-  if (this->Edges.empty())
-  {
-    return 0.0;
-  }
-  double sum = 0.0;
-  for (const auto& e : this->Edges)
-  {
-    sum += Norm(this->Points[e[1]] - this->Points[e[0]]);
-  }
-  return sum / static_cast<double>(this->Edges.size());
+  return MeanLength(this->Points, this->Edges.size(), [this](std::size_t e) { return this->Edges[e]; });
 }
 
 Vec3 TriangleMesh::AreaWeightedNormal(int v) const
