@@ -33,7 +33,6 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>

@@ -1,6 +1,5 @@
 #include "dsRedGreen.h"
 
-#include <algorithm>
 #include <deque>
 
 namespace dsurf
