@@ -13,8 +13,9 @@
 // green pair 1 -> 2. No T-vertices remain; points are never removed or reordered
 // (new ones are appended), so per-point state of the caller stays valid.
 //
-// Labels (docs/METHOD.md §6.4) are recomputed from the greens after every step: all N, then for
-// each green its midpoint M, the ends of its split edge C, its opposite corner D.
+// Labels (docs/METHOD.md §6.4) are recomputed from the greens after every step
+// (ComputeLabels): all N, then for each green its midpoint M, the ends of its split edge C,
+// its opposite corner D.
 // An undone green's M is an ordinary N vertex of the red split, and its C / D revert
 // to N unless another green still uses them. A vertex can play several roles in the
 // rare cascading cases docs/METHOD.md §6.4 allows us to ignore; then M wins over C, C over D

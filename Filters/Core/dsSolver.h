@@ -1,7 +1,8 @@
 // The single-level deformable-surface solver (docs/METHOD.md §3-5): umbrella operators with
 // the label weights of docs/METHOD.md §6.4, one fixed-point step per vertex, Gauss-Seidel
-// in place, and the self-intersection rule for the external force (dsSelfIntersectionRule.h). Plain C++, no
-// pipeline types; the hierarchy (refinement, sigma halving) drives it from outside.
+// in place, and the self-intersection rule for the external force (dsSelfIntersectionRule.h).
+// Plain C++, no pipeline types; the hierarchy (refinement, sigma halving) drives it from
+// outside. The parallel sweeps run as steps of a StepScheduler (dsStepScheduler.h).
 //
 // Parallel Gauss-Seidel: the vertex graph is coloured at distance 2 (two vertices
 // of one colour share no edge and no U^2 stencil), colours are swept in sequence and
