@@ -1,6 +1,6 @@
 // Unit test of the self-intersection count (dsSelfIntersectionCount): the tri-tri test on
 // hand-made pairs, a clean icosphere, an icosphere with one vertex pushed through the
-// opposite side, a fold at a shared vertex, and the BVH search and classification against
+// opposite side, a fold at a shared vertex, a random fan at one vertex, and the BVH search and classification against
 // an independent brute-force oracle (orientation signs, below), also on meshes mixing tiny
 // and huge triangles (which once made a uniform grid run out of memory).
 #include "DSTestHelpers.h"
@@ -268,6 +268,29 @@ int TestSelfIntersectionCount(int, char*[])
     const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, false);
     std::cout << "  BVH pairs " << pairs.size() << ", brute-force pairs " << brute.size() << std::endl;
     DS_CHECK(pairs == brute, "BVH search finds exactly the brute-force pairs");
+  }
+
+  // --- random fan: triangles that all share one vertex, so every pair is decided by the
+  // shared-vertex rule; some fold through each other, most do not ---
+  {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    TriangleMesh m;
+    m.Points.push_back({ 0, 0, 0 });
+    for (int t = 0; t < 150; ++t)
+    {
+      m.Points.push_back({ u(rng), u(rng), u(rng) });
+      m.Points.push_back({ u(rng), u(rng), u(rng) });
+      m.Triangles.push_back({ 0, 2 * t + 1, 2 * t + 2 });
+    }
+    std::vector<std::pair<int, int>> pairs;
+    const int found = CountSelfIntersections(m, &pairs);
+    const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, false);
+    const int all = 150 * 149 / 2;
+    std::cout << "  fan of 150 triangles at one vertex: BVH " << found << ", oracle " << brute.size() << " of "
+              << all << " pairs" << std::endl;
+    DS_CHECK(pairs == brute, "BVH pairs equal the oracle on a random fan at one shared vertex");
+    DS_CHECK(found > 0 && found < all, "the fan has overlapping and separate pairs");
   }
 
   // --- random triangle soup: grid = brute force ---
