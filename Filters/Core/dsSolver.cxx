@@ -307,7 +307,7 @@ Vec3 Solver::Umbrella(int v) const
   return UmbrellaOf<false>(view, v, -1, &unused);
 }
 
-Vec3 Solver::InternalCorrection(int v, Vec3& u) const
+inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(), this->LocalLabels.data(),
     this->LocalPoints.data() };
@@ -346,7 +346,7 @@ Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   return tau * c1 + ((1.0 - tau) * alpha) * c2;
 }
 
-Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
+inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
 {
   Vec3 force{ 0, 0, 0 };
   const Vec3& p = this->LocalPoints[v];
