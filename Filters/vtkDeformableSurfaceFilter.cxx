@@ -3,7 +3,7 @@
 #include "dsMultilevel.h"
 #include "dsScaleSpace.h"
 #include "dsVTKImage.h"
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
 

@@ -1,6 +1,7 @@
 #include "vtkDelaunaySeedSurface.h"
 
 #include "dsSeedSurface.h"
+#include "dsTrilinear.h"
 #include "dsVTKImage.h"
 
 #include "vtkCellArray.h"
@@ -32,7 +33,6 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -43,39 +43,27 @@ vtkCxxSetObjectMacro(vtkDelaunaySeedSurface, Controller, vtkMultiProcessControll
 
 namespace
 {
-// Trilinear value of component 0 of the image's scalars at a physical point; false outside.
+// Trilinear value of component 0 of the image's scalars at a physical point (dsTrilinear.h);
+// false outside the image's extent. Read as double: no float conversion of the intensities.
 bool SampleImage(vtkImageData* image, vtkDataArray* scalars, const double x[3], double& value)
 {
   double ijk[3];
   image->TransformPhysicalPointToContinuousIndex(x, ijk);
   const int* ext = image->GetExtent();
-  int base[3];
-  double frac[3];
-  for (int d = 0; d < 3; ++d)
+  const int lo[3] = { ext[0], ext[2], ext[4] };
+  const int hi[3] = { ext[1], ext[3], ext[5] };
+  dsurf::TrilinearCell cell;
+  if (!dsurf::LocateTrilinearCell(ijk, lo, hi, 1e-9, cell))
   {
-    const double lo = ext[2 * d], hi = ext[2 * d + 1];
-    if (!(ijk[d] >= lo - 1e-9 && ijk[d] <= hi + 1e-9))
-    {
-      return false;
-    }
-    const double c = std::min(std::max(ijk[d], lo), hi);
-    base[d] = std::min(static_cast<int>(std::floor(c)), std::max(ext[2 * d + 1] - 1, ext[2 * d]));
-    frac[d] = ext[2 * d + 1] > ext[2 * d] ? c - base[d] : 0.0;
+    return false;
   }
   value = 0.0;
   for (int corner = 0; corner < 8; ++corner)
   {
-    int idx[3];
-    double w = 1.0;
-    for (int d = 0; d < 3; ++d)
-    {
-      const int up = (corner >> d) & 1;
-      idx[d] = std::min(base[d] + up, ext[2 * d + 1]);
-      w *= up ? frac[d] : 1.0 - frac[d];
-    }
+    const double w = cell.Weight(corner);
     if (w != 0.0)
     {
-      value += w * scalars->GetComponent(image->ComputePointId(idx), 0);
+      value += w * scalars->GetComponent(cell.Corner(corner), 0);
     }
   }
   return true;

@@ -3,24 +3,18 @@
 #include "dsScaleSpace.h"
 #include "dsVTKImage.h"
 
-#include "vtkArrayDispatch.h"
 #include "vtkCellData.h"
-#include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
-#include <vector>
 
 vtkStandardNewMacro(vtkImageScaleSpaceGradient);
 

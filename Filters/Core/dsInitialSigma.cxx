@@ -1,7 +1,6 @@
 #include "dsInitialSigma.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <vector>
 

@@ -1,6 +1,5 @@
 #include "dsRedGreen.h"
 
-#include <algorithm>
 #include <deque>
 
 namespace dsurf
@@ -64,7 +63,7 @@ int RedGreenRefiner::CountTVertices(const TriangleMesh& mesh) const
   return count;
 }
 
-std::vector<unsigned char> RedGreenRefiner::ExpectedLabels(int numberOfPoints) const
+std::vector<unsigned char> RedGreenRefiner::ComputeLabels(int numberOfPoints) const
 {
   // Priority M > C > D > N (see the class comment): rank by a number and keep the max.
   static const int rank[4] = { 0, 2, 3, 1 }; // N, C, M, D
@@ -85,228 +84,274 @@ std::vector<unsigned char> RedGreenRefiner::ExpectedLabels(int numberOfPoints) c
   return labels;
 }
 
-RefinementCounts RedGreenRefiner::Refine(
-  TriangleMesh& mesh, const std::vector<char>& markedTriangles, Prolongation mode)
+/// The working state of one Refine() call: the base mesh (greens merged into their
+/// parents), which base triangles own each whole edge, the new points, and the red
+/// closure queue. The phases of Refine() are its member functions.
+class RedGreenRefiner::Step
 {
-  RefinementCounts counts;
-  const int nOldPoints = mesh.NumberOfPoints();
-  const int nOldTriangles = mesh.NumberOfTriangles();
-  if (this->ExpectedPoints < 0)
+public:
+  Step(RedGreenRefiner& refiner, const TriangleMesh& mesh)
+    : Refiner(refiner)
+    , Mesh(mesh)
+    , OldPoints(mesh.NumberOfPoints())
   {
-    counts.Error = "the refiner was not initialised on this mesh";
-    return counts;
-  }
-  if (nOldPoints != this->ExpectedPoints || nOldTriangles != this->ExpectedTriangles ||
-    static_cast<int>(mesh.TriangleEdges.size()) != nOldTriangles)
-  {
-    counts.Error = "the mesh connectivity changed since the last refinement";
-    return counts;
-  }
-  if (static_cast<int>(markedTriangles.size()) != nOldTriangles)
-  {
-    counts.Error = "one mark per triangle is needed";
-    return counts;
   }
 
-  // --- 1. The base mesh: plain triangles as they are, each green pair as its parent.
-  std::vector<BaseTriangle> base;
-  base.reserve(static_cast<size_t>(nOldTriangles) * 2);
-  std::vector<char> baseMarked;
-  for (int t = 0; t < nOldTriangles; ++t)
-  {
-    if (this->TriangleGreen[t] < 0)
-    {
-      base.push_back({ mesh.Triangles[t], true, -1 });
-      baseMarked.push_back(markedTriangles[t] ? 1 : 0);
-    }
-  }
-  std::vector<char> greenMarked(this->Greens.size(), 0);
-  for (int t = 0; t < nOldTriangles; ++t)
-  {
-    if (this->TriangleGreen[t] >= 0 && markedTriangles[t])
-    {
-      greenMarked[this->TriangleGreen[t]] = 1;
-    }
-  }
-  for (size_t g = 0; g < this->Greens.size(); ++g)
-  {
-    base.push_back({ this->Greens[g].Parent, true, static_cast<int>(g) });
-    baseMarked.push_back(greenMarked[g]);
-  }
+  void BuildBase(const std::vector<char>& markedTriangles);
+  void RedSplitAndClose(RefinementCounts& counts);
+  std::vector<Vec3> PlaceNewPoints(Prolongation mode, RefinementCounts& counts) const;
+  void EmitConforming(std::vector<std::array<int, 3>>& triangles, std::vector<int>& triangleGreen,
+    std::vector<Green>& greens, RefinementCounts& counts) const;
 
-  // Edge -> the (at most two) alive base triangles that have it as a whole edge.
-  std::unordered_map<unsigned long long, std::array<int, 2>> owners;
-  owners.reserve(base.size() * 4);
-  auto addOwner = [&](int i) {
-    for (int k = 0; k < 3; ++k)
+  /// Edge (a, b) of each new point, in creation order.
+  const std::vector<std::array<int, 2>>& NewPointEdges() const { return this->NewEdges; }
+
+private:
+  void AddOwner(int i);
+  void RemoveOwner(int i);
+  int MidpointOf(int a, int b) const;
+  bool NeedsRed(int i) const;
+  int GetOrCreateMidpoint(int a, int b);
+  void Enqueue(int i);
+  void EnqueueIfNeeded(int i);
+  void EnqueueOwnersOf(int a, int b);
+  void CheckCoarserOwner(int x, int y);
+  void RedSplit(int i);
+
+  RedGreenRefiner& Refiner;
+  const TriangleMesh& Mesh;
+  const int OldPoints;
+  std::vector<BaseTriangle> Base;
+  std::vector<char> BaseMarked;
+  /// Edge -> the (at most two) alive base triangles that have it as a whole edge.
+  std::unordered_map<unsigned long long, std::array<int, 2>> Owners;
+  /// New points: created in order, positions filled after the closure.
+  std::vector<std::array<int, 2>> NewEdges;
+  std::deque<int> Queue;
+  std::vector<char> Queued;
+};
+
+// --- 1. The base mesh: plain triangles as they are, each green pair as its parent.
+void RedGreenRefiner::Step::BuildBase(const std::vector<char>& markedTriangles)
+{
+  const int nOldTriangles = this->Mesh.NumberOfTriangles();
+  const std::vector<int>& triangleGreen = this->Refiner.TriangleGreen;
+  const std::vector<Green>& oldGreens = this->Refiner.Greens;
+  this->Base.reserve(static_cast<size_t>(nOldTriangles) * 2);
+  for (int t = 0; t < nOldTriangles; ++t)
+  {
+    if (triangleGreen[t] < 0)
     {
-      auto ins = owners.emplace(EdgeKey(base[i].V[k], base[i].V[(k + 1) % 3]), std::array<int, 2>{ i, -1 });
-      if (!ins.second)
-      {
-        auto& o = ins.first->second;
-        (o[0] == -1 ? o[0] : o[1]) = i;
-      }
+      this->Base.push_back({ this->Mesh.Triangles[t], true, -1 });
+      this->BaseMarked.push_back(markedTriangles[t] ? 1 : 0);
     }
-  };
-  auto removeOwner = [&](int i) {
-    for (int k = 0; k < 3; ++k)
+  }
+  std::vector<char> greenMarked(oldGreens.size(), 0);
+  for (int t = 0; t < nOldTriangles; ++t)
+  {
+    if (triangleGreen[t] >= 0 && markedTriangles[t])
     {
-      auto it = owners.find(EdgeKey(base[i].V[k], base[i].V[(k + 1) % 3]));
-      if (it != owners.end())
+      greenMarked[triangleGreen[t]] = 1;
+    }
+  }
+  for (size_t g = 0; g < oldGreens.size(); ++g)
+  {
+    this->Base.push_back({ oldGreens[g].Parent, true, static_cast<int>(g) });
+    this->BaseMarked.push_back(greenMarked[g]);
+  }
+  this->Owners.reserve(this->Base.size() * 4);
+  for (int i = 0; i < static_cast<int>(this->Base.size()); ++i)
+  {
+    this->AddOwner(i);
+  }
+}
+
+void RedGreenRefiner::Step::AddOwner(int i)
+{
+  const std::array<int, 3>& v = this->Base[i].V;
+  for (int k = 0; k < 3; ++k)
+  {
+    auto ins = this->Owners.emplace(EdgeKey(v[k], v[(k + 1) % 3]), std::array<int, 2>{ i, -1 });
+    if (!ins.second)
+    {
+      auto& o = ins.first->second;
+      (o[0] == -1 ? o[0] : o[1]) = i;
+    }
+  }
+}
+
+void RedGreenRefiner::Step::RemoveOwner(int i)
+{
+  const std::array<int, 3>& v = this->Base[i].V;
+  for (int k = 0; k < 3; ++k)
+  {
+    auto it = this->Owners.find(EdgeKey(v[k], v[(k + 1) % 3]));
+    if (it != this->Owners.end())
+    {
+      for (int& o : it->second)
       {
-        for (int& o : it->second)
+        if (o == i)
         {
-          if (o == i)
-          {
-            o = -1;
-          }
+          o = -1;
         }
       }
     }
-  };
-  for (int i = 0; i < static_cast<int>(base.size()); ++i)
-  {
-    addOwner(i);
   }
+}
 
-  auto midpointOf = [&](int a, int b) {
-    auto it = this->Midpoints.find(EdgeKey(a, b));
-    return it == this->Midpoints.end() ? -1 : it->second;
-  };
-  // Red is needed with two or more split edges, or with a split edge whose half is split
-  // again (the other side is two levels finer: a green here would keep a T-vertex).
-  auto needsRed = [&](int i) {
-    int split = 0;
-    for (int k = 0; k < 3; ++k)
+int RedGreenRefiner::Step::MidpointOf(int a, int b) const
+{
+  auto it = this->Refiner.Midpoints.find(EdgeKey(a, b));
+  return it == this->Refiner.Midpoints.end() ? -1 : it->second;
+}
+
+// Red is needed with two or more split edges, or with a split edge whose half is split
+// again (the other side is two levels finer: a green here would keep a T-vertex).
+bool RedGreenRefiner::Step::NeedsRed(int i) const
+{
+  int split = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const int a = this->Base[i].V[k], b = this->Base[i].V[(k + 1) % 3];
+    const int m = this->MidpointOf(a, b);
+    if (m >= 0)
     {
-      const int a = base[i].V[k], b = base[i].V[(k + 1) % 3];
-      const int m = midpointOf(a, b);
-      if (m >= 0)
+      ++split;
+      if (this->MidpointOf(a, m) >= 0 || this->MidpointOf(m, b) >= 0)
       {
-        ++split;
-        if (midpointOf(a, m) >= 0 || midpointOf(m, b) >= 0)
-        {
-          return true;
-        }
+        return true;
       }
     }
-    return split >= 2;
-  };
-
-  // New points: created in order, positions filled after the closure.
-  std::vector<std::array<int, 2>> newPointEdges;
-  auto getOrCreateMidpoint = [&](int a, int b) {
-    const unsigned long long key = EdgeKey(a, b);
-    auto it = this->Midpoints.find(key);
-    if (it != this->Midpoints.end())
-    {
-      return it->second;
-    }
-    const int m = nOldPoints + static_cast<int>(newPointEdges.size());
-    newPointEdges.push_back({ a, b });
-    this->Midpoints.emplace(key, m);
-    return m;
-  };
-
-  // --- 2. Red splits of the marked triangles, closure to a fixed point.
-  std::deque<int> queue;
-  std::vector<char> queued(base.size(), 0);
-  auto enqueue = [&](int i) {
-    if (i >= 0 && base[i].Alive && !queued[i])
-    {
-      queued[i] = 1;
-      queue.push_back(i);
-    }
-  };
-  auto enqueueIfNeeded = [&](int i) {
-    if (i >= 0 && base[i].Alive && !queued[i] && needsRed(i))
-    {
-      enqueue(i);
-    }
-  };
-  // The coarse triangle holding edge (p, q) whose midpoint is x, when x is a midpoint
-  // and the other end is one of p, q: splitting (x, y) may force that triangle red.
-  auto checkCoarserOwner = [&](int x, int y) {
-    const std::array<int, 2> pe = x < nOldPoints ? this->ParentEdge[x] : newPointEdges[x - nOldPoints];
-    if (pe[0] >= 0 && (pe[0] == y || pe[1] == y))
-    {
-      auto it = owners.find(EdgeKey(pe[0], pe[1]));
-      if (it != owners.end())
-      {
-        enqueueIfNeeded(it->second[0]);
-        enqueueIfNeeded(it->second[1]);
-      }
-    }
-  };
-
-  for (int i = 0; i < static_cast<int>(base.size()); ++i)
-  {
-    if (baseMarked[i])
-    {
-      enqueue(i);
-    }
   }
+  return split >= 2;
+}
+
+int RedGreenRefiner::Step::GetOrCreateMidpoint(int a, int b)
+{
+  const unsigned long long key = EdgeKey(a, b);
+  auto it = this->Refiner.Midpoints.find(key);
+  if (it != this->Refiner.Midpoints.end())
+  {
+    return it->second;
+  }
+  const int m = this->OldPoints + static_cast<int>(this->NewEdges.size());
+  this->NewEdges.push_back({ a, b });
+  this->Refiner.Midpoints.emplace(key, m);
+  return m;
+}
+
+void RedGreenRefiner::Step::Enqueue(int i)
+{
+  if (i >= 0 && this->Base[i].Alive && !this->Queued[i])
+  {
+    this->Queued[i] = 1;
+    this->Queue.push_back(i);
+  }
+}
+
+void RedGreenRefiner::Step::EnqueueIfNeeded(int i)
+{
+  if (i >= 0 && this->Base[i].Alive && !this->Queued[i] && this->NeedsRed(i))
+  {
+    this->Enqueue(i);
+  }
+}
+
+void RedGreenRefiner::Step::EnqueueOwnersOf(int a, int b)
+{
+  auto it = this->Owners.find(EdgeKey(a, b));
+  if (it != this->Owners.end())
+  {
+    this->EnqueueIfNeeded(it->second[0]);
+    this->EnqueueIfNeeded(it->second[1]);
+  }
+}
+
+// The coarse triangle holding edge (p, q) whose midpoint is x, when x is a midpoint
+// and the other end is one of p, q: splitting (x, y) may force that triangle red.
+void RedGreenRefiner::Step::CheckCoarserOwner(int x, int y)
+{
+  const std::array<int, 2> pe =
+    x < this->OldPoints ? this->Refiner.ParentEdge[x] : this->NewEdges[x - this->OldPoints];
+  if (pe[0] >= 0 && (pe[0] == y || pe[1] == y))
+  {
+    this->EnqueueOwnersOf(pe[0], pe[1]);
+  }
+}
+
+// --- 2. Red splits of the marked triangles, closure to a fixed point.
+void RedGreenRefiner::Step::RedSplitAndClose(RefinementCounts& counts)
+{
+  this->Queued.assign(this->Base.size(), 0);
   int markedRed = 0;
-  for (int i = 0; i < static_cast<int>(base.size()); ++i)
+  for (int i = 0; i < static_cast<int>(this->Base.size()); ++i)
   {
-    markedRed += baseMarked[i] ? 1 : 0;
+    if (this->BaseMarked[i])
+    {
+      this->Enqueue(i);
+      ++markedRed;
+    }
   }
-  while (!queue.empty())
+  while (!this->Queue.empty())
   {
-    const int i = queue.front();
-    queue.pop_front();
-    if (!base[i].Alive)
+    const int i = this->Queue.front();
+    this->Queue.pop_front();
+    if (this->Base[i].Alive)
     {
-      continue;
-    }
-    const std::array<int, 3> v = base[i].V;
-    int m[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      m[k] = getOrCreateMidpoint(v[k], v[(k + 1) % 3]);
-    }
-    removeOwner(i);
-    base[i].Alive = false;
-    ++counts.RedSplits;
-    // Corner children keep the parent's orientation; m[k] lies on edge (v[k], v[k+1]).
-    const std::array<int, 3> children[4] = { { v[0], m[0], m[2] }, { m[0], v[1], m[1] },
-      { m[2], m[1], v[2] }, { m[0], m[1], m[2] } };
-    const int firstChild = static_cast<int>(base.size());
-    for (const auto& c : children)
-    {
-      base.push_back({ c, true, -1 });
-      queued.push_back(0);
-      addOwner(static_cast<int>(base.size()) - 1);
-    }
-    // Same-level or coarser neighbours across the split edges now see a split edge.
-    for (int k = 0; k < 3; ++k)
-    {
-      auto it = owners.find(EdgeKey(v[k], v[(k + 1) % 3]));
-      if (it != owners.end())
-      {
-        enqueueIfNeeded(it->second[0]);
-        enqueueIfNeeded(it->second[1]);
-      }
-      // v[k], v[k+1] may be midpoints of a coarser edge: splitting (v[k], v[k+1]) puts a
-      // quarter point on that coarse triangle's edge.
-      checkCoarserOwner(v[k], v[(k + 1) % 3]);
-      checkCoarserOwner(v[(k + 1) % 3], v[k]);
-    }
-    // Children next to a finer region (their edge's half is already split) go red too.
-    for (int c = 0; c < 4; ++c)
-    {
-      enqueueIfNeeded(firstChild + c);
+      this->RedSplit(i);
+      ++counts.RedSplits;
     }
   }
   counts.ClosureRedSplits = counts.RedSplits - markedRed;
+}
 
-  // --- 3. Positions of the new points, on the mesh before this step.
-  const int nNew = static_cast<int>(newPointEdges.size());
+void RedGreenRefiner::Step::RedSplit(int i)
+{
+  const std::array<int, 3> v = this->Base[i].V;
+  int m[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    m[k] = this->GetOrCreateMidpoint(v[k], v[(k + 1) % 3]);
+  }
+  this->RemoveOwner(i);
+  this->Base[i].Alive = false;
+  // Corner children keep the parent's orientation; m[k] lies on edge (v[k], v[k+1]).
+  std::array<int, 3> children[4];
+  SplitInFour(v, m, children);
+  const int firstChild = static_cast<int>(this->Base.size());
+  for (const auto& c : children)
+  {
+    this->Base.push_back({ c, true, -1 });
+    this->Queued.push_back(0);
+    this->AddOwner(static_cast<int>(this->Base.size()) - 1);
+  }
+  // Same-level or coarser neighbours across the split edges now see a split edge.
+  for (int k = 0; k < 3; ++k)
+  {
+    this->EnqueueOwnersOf(v[k], v[(k + 1) % 3]);
+    // v[k], v[k+1] may be midpoints of a coarser edge: splitting (v[k], v[k+1]) puts a
+    // quarter point on that coarse triangle's edge.
+    this->CheckCoarserOwner(v[k], v[(k + 1) % 3]);
+    this->CheckCoarserOwner(v[(k + 1) % 3], v[k]);
+  }
+  // Children next to a finer region (their edge's half is already split) go red too.
+  for (int c = 0; c < 4; ++c)
+  {
+    this->EnqueueIfNeeded(firstChild + c);
+  }
+}
+
+// --- 3. Positions of the new points, on the mesh before this step.
+std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(Prolongation mode, RefinementCounts& counts) const
+{
+  const TriangleMesh& mesh = this->Mesh;
+  const int nOldPoints = this->OldPoints;
+  const int nNew = static_cast<int>(this->NewEdges.size());
   std::vector<Vec3> newPoints(nNew);
-  const std::vector<char> greenFlags = this->GreenFlags();
+  const std::vector<char> greenFlags = this->Refiner.GreenFlags();
   for (int j = 0; j < nNew; ++j)
   {
-    const int a = newPointEdges[j][0], b = newPointEdges[j][1];
+    const int a = this->NewEdges[j][0], b = this->NewEdges[j][1];
     const Vec3& pa = a < nOldPoints ? mesh.Points[a] : newPoints[a - nOldPoints];
     const Vec3& pb = b < nOldPoints ? mesh.Points[b] : newPoints[b - nOldPoints];
     const int e = (a < nOldPoints && b < nOldPoints) ? mesh.FindEdge(a, b) : -1;
@@ -333,21 +378,23 @@ RefinementCounts RedGreenRefiner::Refine(
     counts.FallbackVertices = 0;
   }
   counts.NewVertices = nNew;
+  return newPoints;
+}
 
-  // --- 4. Emit the conforming mesh: plain triangles and green pairs.
-  for (const auto& b : base)
+// --- 4. Emit the conforming mesh: plain triangles and green pairs.
+void RedGreenRefiner::Step::EmitConforming(std::vector<std::array<int, 3>>& triangles,
+  std::vector<int>& triangleGreen, std::vector<Green>& greens, RefinementCounts& counts) const
+{
+  for (const auto& b : this->Base)
   {
     if (b.OldGreen >= 0 && !b.Alive)
     {
       ++counts.UndoneGreens;
     }
   }
-  std::vector<std::array<int, 3>> triangles;
-  triangles.reserve(base.size());
-  std::vector<int> triangleGreen;
-  triangleGreen.reserve(base.size());
-  std::vector<Green> greens;
-  for (const auto& b : base)
+  triangles.reserve(this->Base.size());
+  triangleGreen.reserve(this->Base.size());
+  for (const auto& b : this->Base)
   {
     if (!b.Alive)
     {
@@ -356,7 +403,7 @@ RefinementCounts RedGreenRefiner::Refine(
     int splitCorner = -1, mid = -1;
     for (int k = 0; k < 3; ++k)
     {
-      const int mk = midpointOf(b.V[k], b.V[(k + 1) % 3]);
+      const int mk = this->MidpointOf(b.V[k], b.V[(k + 1) % 3]);
       if (mk >= 0)
       {
         splitCorner = k;
@@ -378,16 +425,55 @@ RefinementCounts RedGreenRefiner::Refine(
     triangleGreen.push_back(g);
   }
   counts.Greens = static_cast<int>(greens.size());
+}
+
+std::string RedGreenRefiner::CheckRefineInput(const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const
+{
+  if (this->ExpectedPoints < 0)
+  {
+    return "the refiner was not initialised on this mesh";
+  }
+  const int nOldTriangles = mesh.NumberOfTriangles();
+  if (mesh.NumberOfPoints() != this->ExpectedPoints || nOldTriangles != this->ExpectedTriangles ||
+    static_cast<int>(mesh.TriangleEdges.size()) != nOldTriangles)
+  {
+    return "the mesh connectivity changed since the last refinement";
+  }
+  if (static_cast<int>(markedTriangles.size()) != nOldTriangles)
+  {
+    return "one mark per triangle is needed";
+  }
+  return std::string();
+}
+
+RefinementCounts RedGreenRefiner::Refine(
+  TriangleMesh& mesh, const std::vector<char>& markedTriangles, Prolongation mode)
+{
+  RefinementCounts counts;
+  counts.Error = this->CheckRefineInput(mesh, markedTriangles);
+  if (!counts.Error.empty())
+  {
+    return counts;
+  }
+  Step step(*this, mesh);
+  step.BuildBase(markedTriangles);
+  step.RedSplitAndClose(counts);
+  const std::vector<Vec3> newPoints = step.PlaceNewPoints(mode, counts);
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> triangleGreen;
+  std::vector<Green> greens;
+  step.EmitConforming(triangles, triangleGreen, greens, counts);
 
   // --- 5. Commit.
   ++this->Level;
   mesh.Points.insert(mesh.Points.end(), newPoints.begin(), newPoints.end());
   mesh.Triangles.swap(triangles);
   mesh.Levels.resize(mesh.Points.size(), this->Level);
+  const auto& newPointEdges = step.NewPointEdges();
   this->ParentEdge.insert(this->ParentEdge.end(), newPointEdges.begin(), newPointEdges.end());
   this->Greens.swap(greens);
   this->TriangleGreen.swap(triangleGreen);
-  mesh.Labels = this->ExpectedLabels(mesh.NumberOfPoints());
+  mesh.Labels = this->ComputeLabels(mesh.NumberOfPoints());
   std::string error;
   if (!mesh.BuildTopology(&error))
   {

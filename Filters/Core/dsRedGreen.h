@@ -13,8 +13,9 @@
 // green pair 1 -> 2. No T-vertices remain; points are never removed or reordered
 // (new ones are appended), so per-point state of the caller stays valid.
 //
-// Labels (docs/METHOD.md §6.4) are recomputed from the greens after every step: all N, then for
-// each green its midpoint M, the ends of its split edge C, its opposite corner D.
+// Labels (docs/METHOD.md §6.4) are recomputed from the greens after every step
+// (ComputeLabels): all N, then for each green its midpoint M, the ends of its split edge C,
+// its opposite corner D.
 // An undone green's M is an ordinary N vertex of the red split, and its C / D revert
 // to N unless another green still uses them. A vertex can play several roles in the
 // rare cascading cases docs/METHOD.md §6.4 allows us to ignore; then M wins over C, C over D
@@ -99,10 +100,15 @@ public:
   /// would have a T-vertex. 0 after every Refine().
   int CountTVertices(const TriangleMesh& mesh) const;
 
-  /// Labels the refiner's greens imply (same as what Refine() writes), for checks.
-  std::vector<unsigned char> ExpectedLabels(int numberOfPoints) const;
+  /// The vertex labels of docs/METHOD.md §6.4 implied by the current greens: what Refine()
+  /// writes to mesh.Labels (see the class comment for the priority M > C > D > N).
+  std::vector<unsigned char> ComputeLabels(int numberOfPoints) const;
 
 private:
+  class Step; // the working state and phases of one Refine() (dsRedGreen.cxx)
+  /// Empty when Refine() may run on this mesh with these marks, else the reason.
+  std::string CheckRefineInput(const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const;
+
   struct Green
   {
     std::array<int, 3> Parent; ///< corners of the parent, in the mesh orientation

@@ -1,6 +1,7 @@
 #include "dsScaleSpace.h"
 
 #include "dsThreads.h"
+#include "dsTrilinear.h"
 
 #include "vtkSMPTools.h"
 
@@ -9,7 +10,6 @@
 #include <cstddef>
 #include <cstdio>
 #include <limits>
-#include <thread>
 
 namespace dsurf
 {
@@ -46,53 +46,23 @@ void ImageGeometry::IndexToWorld(const double ijk[3], double x[3]) const
 
 namespace
 {
-//------------------------------------------------------------------------------
-// Trilinear weights of a continuous index; false outside [0, dim-1].
-struct Cell
-{
-  long long Base;
-  long long Step[3];
-  double T[3];
-};
-
-bool LocateCell(const ImageGeometry& g, const double x[3], Cell& c)
+/// The trilinear cell of world point x. A voxel covers half a spacing around its centre, so
+/// the volume reaches half a voxel beyond the outermost centres (the image bounds); there the
+/// border value is used. A start box at the image bounds thus feels the force at every vertex.
+bool LocateCell(const ImageGeometry& g, const double x[3], TrilinearCell& c)
 {
   double ijk[3];
   g.WorldToIndex(x, ijk);
-  // A voxel covers half a spacing around its centre, so the volume reaches half a voxel
-  // beyond the outermost centres (the image bounds); there the border value is used. A
-  // start box at the image bounds thus feels the force at every vertex.
-  const double tol = 0.5;
-  long long stride = 1;
-  c.Base = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const int n = g.Dimensions[a];
-    if (n <= 0 || !(ijk[a] >= -tol && ijk[a] <= n - 1 + tol))
-    {
-      return false;
-    }
-    long long i0 = 0;
-    double t = 0.0;
-    if (n > 1)
-    {
-      const double v = std::min(std::max(ijk[a], 0.0), static_cast<double>(n - 1));
-      i0 = std::min(static_cast<long long>(v), static_cast<long long>(n - 2));
-      t = v - static_cast<double>(i0);
-    }
-    c.Base += i0 * stride;
-    c.Step[a] = n > 1 ? stride : 0;
-    c.T[a] = t;
-    stride *= n;
-  }
-  return true;
+  const int lo[3] = { 0, 0, 0 };
+  const int hi[3] = { g.Dimensions[0] - 1, g.Dimensions[1] - 1, g.Dimensions[2] - 1 };
+  return LocateTrilinearCell(ijk, lo, hi, 0.5, c);
 }
 } // namespace
 
 bool ForceField::SampleForce(const double x[3], double f[3]) const
 {
   f[0] = f[1] = f[2] = 0.0;
-  Cell c;
+  TrilinearCell c;
   if (this->Force.empty() || !LocateCell(this->Geometry, x, c))
   {
     return false;
@@ -100,10 +70,8 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
   const float* F = this->Force.data();
   for (int corner = 0; corner < 8; ++corner)
   {
-    const int bi = corner & 1, bj = (corner >> 1) & 1, bk = (corner >> 2) & 1;
-    const double w = (bi ? c.T[0] : 1.0 - c.T[0]) * (bj ? c.T[1] : 1.0 - c.T[1]) *
-      (bk ? c.T[2] : 1.0 - c.T[2]);
-    const float* v = F + 3 * (c.Base + bi * c.Step[0] + bj * c.Step[1] + bk * c.Step[2]);
+    const double w = c.Weight(corner);
+    const float* v = F + 3 * c.Corner(corner);
     f[0] += w * v[0];
     f[1] += w * v[1];
     f[2] += w * v[2];
@@ -113,7 +81,7 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
 
 double SampleVolume(const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
 {
-  Cell c;
+  TrilinearCell c;
   const bool in = values && LocateCell(geometry, x, c);
   if (inside)
   {
@@ -126,10 +94,7 @@ double SampleVolume(const float* values, const ImageGeometry& geometry, const do
   double v = 0.0;
   for (int corner = 0; corner < 8; ++corner)
   {
-    const int bi = corner & 1, bj = (corner >> 1) & 1, bk = (corner >> 2) & 1;
-    const double w = (bi ? c.T[0] : 1.0 - c.T[0]) * (bj ? c.T[1] : 1.0 - c.T[1]) *
-      (bk ? c.T[2] : 1.0 - c.T[2]);
-    v += w * values[c.Base + bi * c.Step[0] + bj * c.Step[1] + bk * c.Step[2]];
+    v += c.Weight(corner) * values[c.Corner(corner)];
   }
   return v;
 }
@@ -616,6 +581,123 @@ double NormalizeEdgesLocally(
   });
   return *std::max_element(maxima.begin(), maxima.end());
 }
+
+/// Calls visit(v, gw) for every voxel v of slice k with gw the world gradient of `values`
+/// there (central differences in index space, one-sided at the border, turned to world).
+template <typename Visit>
+void ForEachWorldGradientOfSlice(
+  const float* values, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
+{
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  const std::ptrdiff_t sx = 1, sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
+  for (int j = 0; j < ny; ++j)
+  {
+    const std::ptrdiff_t row = k * sz + j * sy;
+    for (int i = 0; i < nx; ++i)
+    {
+      const float* v = values + row + i;
+      const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
+      double gw[3];
+      toWorld.Apply(gi, gw);
+      visit(row + i, gw);
+    }
+  }
+}
+
+/// Why ComputeScaleSpaceForceInto cannot run on these inputs; empty when it can.
+std::string CheckForceInputs(const float* scalars, const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, const float* potential, const float* force)
+{
+  std::string error;
+  if (!scalars || !potential || !force)
+  {
+    return "no data";
+  }
+  if (!Validate(geometry, parameters.Sigma, &error))
+  {
+    return error.empty() ? std::string("invalid image geometry") : error;
+  }
+  if (!std::isfinite(parameters.EdgeWeight) || !std::isfinite(parameters.ImageWeight))
+  {
+    return "the weights must be finite";
+  }
+  // One NaN or Inf would spread along every line of the recursive filter and turn the
+  // whole field into NaN.
+  const long long n = geometry.NumberOfVoxels();
+  long long bad = 0;
+  for (long long i = 0; i < n; ++i)
+  {
+    bad += std::isfinite(scalars[i]) ? 0 : 1;
+  }
+  if (bad > 0)
+  {
+    return "the image has " + std::to_string(bad) +
+      " non-finite values (NaN or Inf); replace them first (e.g. with a Calculator or Threshold)";
+  }
+  return std::string();
+}
+
+/// Range of the smoothed image and maximum of its gradient magnitude.
+struct EdgeStatistics
+{
+  double GradientMax = 0, SmoothMin = 0, SmoothMax = 0;
+};
+
+/// g = |grad smooth| into `edges`, with the extrema the normalisation needs.
+EdgeStatistics EdgeMagnitude(const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
+{
+  const int nz = dims[2];
+  std::vector<double> gMax(nz, 0.0), sMin(nz, std::numeric_limits<double>::max()),
+    sMax(nz, std::numeric_limits<double>::lowest());
+  ForEachVoxelSlice(dims, [&](int k) {
+    double gm = 0.0, lo = sMin[k], hi = sMax[k];
+    ForEachWorldGradientOfSlice(smooth, dims, toWorld, k, [&](std::ptrdiff_t v, const double gw[3]) {
+      const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
+      edges[v] = static_cast<float>(g);
+      gm = std::max(gm, g);
+      lo = std::min(lo, static_cast<double>(smooth[v]));
+      hi = std::max(hi, static_cast<double>(smooth[v]));
+    });
+    gMax[k] = gm;
+    sMin[k] = lo;
+    sMax[k] = hi;
+  });
+  EdgeStatistics s;
+  s.GradientMax = *std::max_element(gMax.begin(), gMax.end());
+  s.SmoothMin = *std::min_element(sMin.begin(), sMin.end());
+  s.SmoothMax = *std::max_element(sMax.begin(), sMax.end());
+  return s;
+}
+
+/// P = -(ge g + gs s + offset) in place of g in `potential` (docs/METHOD.md §2, with the
+/// optional normalisation of both terms); `scratch` holds one volume for the local one.
+void CombinePotential(float* potential, const float* smooth, float* scratch, const int dims[3],
+  const double sigmaVoxels[3], const EdgeStatistics& stats, const ScaleSpaceParameters& parameters)
+{
+  const double we = parameters.EdgeWeight, wi = parameters.ImageWeight;
+  double ge = we, gs = wi, offset = 0.0;
+  double gNorm = stats.GradientMax;
+  if (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local &&
+    stats.GradientMax > 0.0)
+  {
+    gNorm =
+      NormalizeEdgesLocally(potential, scratch, dims, sigmaVoxels, parameters.LocalEdgeFloor * stats.GradientMax);
+  }
+  if (parameters.NormalizePotential)
+  {
+    ge = gNorm > 0.0 ? we / gNorm : 0.0;
+    gs = stats.SmoothMax > stats.SmoothMin ? wi / (stats.SmoothMax - stats.SmoothMin) : 0.0;
+    offset = -gs * stats.SmoothMin;
+  }
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  ForEachVoxelSlice(dims, [&](int k) {
+    const std::ptrdiff_t b = k * sz, e = b + sz;
+    for (std::ptrdiff_t v = b; v < e; ++v)
+    {
+      potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
+    }
+  });
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -667,125 +749,37 @@ bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma,
 bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geometry,
   const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error)
 {
-  if (!scalars || !potential || !force)
+  const std::string problem = CheckForceInputs(scalars, geometry, parameters, potential, force);
+  if (!problem.empty())
   {
     if (error)
     {
-      *error = "no data";
+      *error = problem;
     }
     return false;
-  }
-  if (!Validate(geometry, parameters.Sigma, error))
-  {
-    return false;
-  }
-  if (!std::isfinite(parameters.EdgeWeight) || !std::isfinite(parameters.ImageWeight))
-  {
-    if (error)
-    {
-      *error = "the weights must be finite";
-    }
-    return false;
-  }
-  {
-    // One NaN or Inf would spread along every line of the recursive filter and turn the
-    // whole field into NaN.
-    const long long n = geometry.NumberOfVoxels();
-    long long bad = 0;
-    for (long long i = 0; i < n; ++i)
-    {
-      bad += std::isfinite(scalars[i]) ? 0 : 1;
-    }
-    if (bad > 0)
-    {
-      if (error)
-      {
-        *error = "the image has " + std::to_string(bad) +
-          " non-finite values (NaN or Inf); replace them first (e.g. with a Calculator or Threshold)";
-      }
-      return false;
-    }
   }
   const int* dims = geometry.Dimensions;
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const std::ptrdiff_t sx = 1, sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
   const double sv[3] = { parameters.Sigma / geometry.Spacing[0],
     parameters.Sigma / geometry.Spacing[1], parameters.Sigma / geometry.Spacing[2] };
   const GradientToWorld toWorld(geometry);
-  const double we = parameters.EdgeWeight, wi = parameters.ImageWeight;
 
   WithThreads(parameters.NumberOfThreads, [&]() {
-    // The first third of the force buffer holds G_sigma*f until P is known.
+    // The first third of the force buffer holds G_sigma*f until P is known; the rest is
+    // scratch for the local edge normalisation.
     float* smooth = force;
     Smooth(scalars, smooth, dims, sv);
-
-    // g = |grad s| into the potential buffer; per-slice extrema for the normalisation.
-    std::vector<double> gMax(nz, 0.0), sMin(nz, std::numeric_limits<double>::max()),
-      sMax(nz, std::numeric_limits<double>::lowest());
-    ForEachVoxelSlice(dims, [&](int k) {
-      double gm = 0.0, lo = sMin[k], hi = sMax[k];
-      for (int j = 0; j < ny; ++j)
-      {
-        const std::ptrdiff_t row = k * sz + j * sy;
-        for (int i = 0; i < nx; ++i)
-        {
-          const float* v = smooth + row + i;
-          const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
-          double gw[3];
-          toWorld.Apply(gi, gw);
-          const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
-          potential[row + i] = static_cast<float>(g);
-          gm = std::max(gm, g);
-          lo = std::min(lo, static_cast<double>(*v));
-          hi = std::max(hi, static_cast<double>(*v));
-        }
-      }
-      gMax[k] = gm;
-      sMin[k] = lo;
-      sMax[k] = hi;
-    });
-    const double gmax = *std::max_element(gMax.begin(), gMax.end());
-    const double smin = *std::min_element(sMin.begin(), sMin.end());
-    const double smax = *std::max_element(sMax.begin(), sMax.end());
-
-    double ge = we, gs = wi, offset = 0.0; // P = -(ge*g + gs*s + offset)
-    double gNorm = gmax;
-    if (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local && gmax > 0.0)
-    {
-      gNorm = NormalizeEdgesLocally(potential, force + nx * static_cast<std::ptrdiff_t>(ny) * nz, dims, sv,
-        parameters.LocalEdgeFloor * gmax);
-    }
-    if (parameters.NormalizePotential)
-    {
-      ge = gNorm > 0.0 ? we / gNorm : 0.0;
-      gs = smax > smin ? wi / (smax - smin) : 0.0;
-      offset = -gs * smin;
-    }
-    ForEachVoxelSlice(dims, [&](int k) {
-      const std::ptrdiff_t b = k * sz, e = b + sz;
-      for (std::ptrdiff_t v = b; v < e; ++v)
-      {
-        potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
-      }
-    });
+    const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
+    float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
+    CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
 
     // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
     ForEachVoxelSlice(dims, [&](int k) {
-      for (int j = 0; j < ny; ++j)
-      {
-        const std::ptrdiff_t row = k * sz + j * sy;
-        for (int i = 0; i < nx; ++i)
-        {
-          const float* v = potential + row + i;
-          const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
-          double gw[3];
-          toWorld.Apply(gi, gw);
-          float* f = force + 3 * (row + i);
-          f[0] = static_cast<float>(-gw[0]);
-          f[1] = static_cast<float>(-gw[1]);
-          f[2] = static_cast<float>(-gw[2]);
-        }
-      }
+      ForEachWorldGradientOfSlice(potential, dims, toWorld, k, [&](std::ptrdiff_t v, const double gw[3]) {
+        float* f = force + 3 * v;
+        f[0] = static_cast<float>(-gw[0]);
+        f[1] = static_cast<float>(-gw[1]);
+        f[2] = static_cast<float>(-gw[2]);
+      });
     });
   });
   // Finite inputs can still overflow single precision: a weight near VTK_DOUBLE_MAX, or a
@@ -799,7 +793,7 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
       char text[160];
       std::snprintf(text, sizeof text,
         "the force field is not finite: sigma (%g) or the weights (%g, %g) are too large",
-        parameters.Sigma, we, wi);
+        parameters.Sigma, parameters.EdgeWeight, parameters.ImageWeight);
       *error = text;
     }
     return false;

@@ -44,33 +44,6 @@ struct UnionFind
   }
 };
 
-SeedPoint Sub(const SeedPoint& a, const SeedPoint& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-double Dot(const SeedPoint& a, const SeedPoint& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-SeedPoint Cross(const SeedPoint& a, const SeedPoint& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-double Distance(const SeedPoint& a, const SeedPoint& b)
-{
-  const SeedPoint d = Sub(a, b);
-  return std::sqrt(Dot(d, d));
-}
-
-std::uint64_t EdgeKey(std::int64_t a, std::int64_t b)
-{
-  if (a > b)
-  {
-    std::swap(a, b);
-  }
-  return (static_cast<std::uint64_t>(a) << 32) ^ static_cast<std::uint64_t>(b);
-}
-
 // Face-to-face adjacency of the whole tetrahedrisation (independent of which are kept):
 // neighbour[4t+k] = 4t'+k' of the tetrahedron across face k of t, or -1 on the hull.
 std::vector<std::int64_t> FaceNeighbours(const std::vector<SeedTet>& tets)
@@ -113,17 +86,357 @@ bool IsKept(const std::vector<unsigned char>& status, std::int64_t slot)
 {
   return slot >= 0 && status[slot / 4] == SeedKept;
 }
+
+/// Positively oriented copies of the tetrahedra (so each face's outward order comes from
+/// kFace), and which of them are flat (|volume| <= degenerateVolume).
+std::vector<SeedTet> OrientPositively(const std::vector<SeedPoint>& points, const std::vector<SeedTet>& inTets,
+  double degenerateVolume, std::vector<char>& flat)
+{
+  std::vector<SeedTet> tets = inTets;
+  flat.assign(tets.size(), 0);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    SeedTet& c = tets[t];
+    const double vol = SeedTetSignedVolume(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
+    if (vol < 0)
+    {
+      std::swap(c[0], c[1]);
+    }
+    flat[t] = std::abs(vol) <= degenerateVolume ? 1 : 0;
+  }
+  return tets;
+}
+
+/// Peels the flat kept tetrahedra that touch the boundary (status SeedRemovedDegenerate):
+/// their faces have no outward side. Returns how many were peeled.
+std::int64_t PeelFlatTetrahedra(
+  const std::vector<char>& flat, const std::vector<std::int64_t>& neighbour, std::vector<unsigned char>& status)
+{
+  const std::int64_t nTets = static_cast<std::int64_t>(flat.size());
+  std::int64_t peeled = 0;
+  std::vector<std::int64_t> queue;
+  for (std::int64_t t = 0; t < nTets; ++t)
+  {
+    if (flat[t] && status[t] == SeedKept)
+    {
+      queue.push_back(t);
+    }
+  }
+  while (!queue.empty())
+  {
+    const std::int64_t t = queue.back();
+    queue.pop_back();
+    if (status[t] != SeedKept)
+    {
+      continue;
+    }
+    bool exposed = false;
+    for (int k = 0; k < 4; ++k)
+    {
+      exposed = exposed || !IsKept(status, neighbour[4 * t + k]);
+    }
+    if (exposed)
+    {
+      status[t] = SeedRemovedDegenerate;
+      ++peeled;
+      for (int k = 0; k < 4; ++k)
+      {
+        const std::int64_t nb = neighbour[4 * t + k];
+        if (nb >= 0 && flat[nb / 4] && status[nb / 4] == SeedKept)
+        {
+          queue.push_back(nb / 4);
+        }
+      }
+    }
+  }
+  return peeled;
+}
+
+/// The boundary faces of the kept tetrahedra, outward: face f is face slot
+/// Slot[f] = 4t+k (face k of tetrahedron t); SlotFace is the inverse (-1: not boundary).
+struct BoundaryFaces
+{
+  std::vector<std::int64_t> Slot;
+  std::vector<std::int64_t> SlotFace;
+  const std::vector<SeedTet>* Tets = nullptr;
+
+  std::int64_t Count() const { return static_cast<std::int64_t>(this->Slot.size()); }
+  /// Corner j of face f (input point id), in outward order.
+  std::int64_t Vertex(std::int64_t f, int j) const
+  {
+    const std::int64_t slot = this->Slot[f];
+    return (*this->Tets)[slot / 4][kFace[slot % 4][j]];
+  }
+};
+
+BoundaryFaces CollectBoundaryFaces(const std::vector<SeedTet>& tets, const std::vector<std::int64_t>& neighbour,
+  const std::vector<unsigned char>& status, std::int64_t& keptTetrahedra)
+{
+  BoundaryFaces faces;
+  faces.Tets = &tets;
+  faces.SlotFace.assign(4 * tets.size(), -1);
+  keptTetrahedra = 0;
+  for (std::int64_t t = 0; t < static_cast<std::int64_t>(tets.size()); ++t)
+  {
+    if (status[t] != SeedKept)
+    {
+      continue;
+    }
+    ++keptTetrahedra;
+    for (int k = 0; k < 4; ++k)
+    {
+      if (!IsKept(status, neighbour[4 * t + k]))
+      {
+        faces.SlotFace[4 * t + k] = faces.Count();
+        faces.Slot.push_back(4 * t + k);
+      }
+    }
+  }
+  return faces;
+}
+
+/// Pairs the faces across each edge by walking through the kept tetrahedra of one solid
+/// wedge around the edge: the pairing is then manifold even where 4+ faces meet.
+/// partner[3f+j] = the face across edge (corner j, corner j+1) of face f, or -1.
+std::vector<std::int64_t> PairFacesAcrossEdges(const BoundaryFaces& faces, const std::vector<SeedTet>& tets,
+  const std::vector<std::int64_t>& neighbour, const std::vector<unsigned char>& status)
+{
+  const std::int64_t nFaces = faces.Count();
+  const std::int64_t nTets = static_cast<std::int64_t>(tets.size());
+  std::vector<std::int64_t> partner(3 * nFaces, -1);
+  for (std::int64_t f = 0; f < nFaces; ++f)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      const std::int64_t u = faces.Vertex(f, j), w = faces.Vertex(f, (j + 1) % 3);
+      std::int64_t slot = faces.Slot[f];
+      for (std::int64_t step = 0; step <= nTets; ++step)
+      {
+        const std::int64_t t = slot / 4;
+        const int k = static_cast<int>(slot % 4);
+        // The current face holds u, w and a third corner x; the next face around the edge
+        // in this tetrahedron is the one opposite x.
+        int x = -1;
+        for (int c = 0; c < 4; ++c)
+        {
+          if (c != k && tets[t][c] != u && tets[t][c] != w)
+          {
+            x = c;
+          }
+        }
+        const std::int64_t next = 4 * t + x;
+        const std::int64_t nb = neighbour[next];
+        if (!IsKept(status, nb))
+        {
+          partner[3 * f + j] = faces.SlotFace[next];
+          break;
+        }
+        slot = nb;
+      }
+    }
+  }
+  return partner;
+}
+
+/// One output point per fan: the corners (f, j) are joined across paired edges, and each
+/// class of corners becomes one point, numbered in order of first use.
+void BuildFanSurface(const BoundaryFaces& faces, const std::vector<std::int64_t>& partner,
+  const std::vector<SeedPoint>& points, SeedSurface& surface)
+{
+  const std::int64_t nFaces = faces.Count();
+  UnionFind corners(3 * nFaces);
+  for (std::int64_t f = 0; f < nFaces; ++f)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      const std::int64_t g = partner[3 * f + j];
+      if (g < 0)
+      {
+        continue;
+      }
+      const std::int64_t u = faces.Vertex(f, j), w = faces.Vertex(f, (j + 1) % 3);
+      for (int i = 0; i < 3; ++i)
+      {
+        const std::int64_t gv = faces.Vertex(g, i);
+        if (gv == u)
+        {
+          corners.Union(3 * f + j, 3 * g + i);
+        }
+        else if (gv == w)
+        {
+          corners.Union(3 * f + (j + 1) % 3, 3 * g + i);
+        }
+      }
+    }
+  }
+  std::vector<std::int64_t> classPoint(3 * nFaces, -1);
+  surface.Points.clear();
+  surface.SourcePoint.clear();
+  surface.Triangles.assign(static_cast<std::size_t>(nFaces), SeedTriangle());
+  for (std::int64_t f = 0; f < nFaces; ++f)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      const std::int64_t root = corners.Find(3 * f + j);
+      if (classPoint[root] < 0)
+      {
+        classPoint[root] = static_cast<std::int64_t>(surface.Points.size());
+        surface.SourcePoint.push_back(faces.Vertex(f, j));
+        surface.Points.push_back(points[faces.Vertex(f, j)]);
+      }
+      surface.Triangles[f][j] = classPoint[root];
+    }
+  }
+}
+
+/// Every undirected edge of the surface must have exactly two faces. If not, two sheets
+/// still share an edge: one kept tetrahedron there is removed (SeedRemovedByPinch).
+/// Returns how many were removed (0: the surface is a 2-manifold).
+std::int64_t RemovePinchTetrahedra(
+  const SeedSurface& surface, const BoundaryFaces& faces, std::vector<unsigned char>& status)
+{
+  std::unordered_map<unsigned long long, int> edgeUse;
+  edgeUse.reserve(static_cast<std::size_t>(3 * faces.Count()));
+  for (const SeedTriangle& tri : surface.Triangles)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      ++edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])];
+    }
+  }
+  std::int64_t removed = 0;
+  for (std::int64_t f = 0; f < faces.Count(); ++f)
+  {
+    const SeedTriangle& tri = surface.Triangles[f];
+    for (int j = 0; j < 3; ++j)
+    {
+      if (edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] != 2 && status[faces.Slot[f] / 4] == SeedKept)
+      {
+        status[faces.Slot[f] / 4] = SeedRemovedByPinch;
+        ++removed;
+        // One removal per edge is enough; mark the edge as handled.
+        edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] = 2;
+      }
+    }
+  }
+  return removed;
+}
+
+/// The pinch counts of the report, on the original vertex numbering; returns the number
+/// of output copies of each input point.
+std::unordered_map<std::int64_t, std::int64_t> CountPinches(
+  const SeedSurface& surface, const BoundaryFaces& faces, SeedBoundaryReport& report)
+{
+  std::unordered_map<unsigned long long, int> originalEdgeUse;
+  for (std::int64_t f = 0; f < faces.Count(); ++f)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      ++originalEdgeUse[EdgeKey(faces.Vertex(f, j), faces.Vertex(f, (j + 1) % 3))];
+    }
+  }
+  report.PinchedEdges = 0;
+  for (const auto& e : originalEdgeUse)
+  {
+    report.PinchedEdges += e.second > 2 ? 1 : 0;
+  }
+  std::unordered_map<std::int64_t, std::int64_t> copies;
+  for (std::int64_t source : surface.SourcePoint)
+  {
+    ++copies[source];
+  }
+  report.PinchedVertices = 0;
+  report.VertexCopiesAdded = 0;
+  for (const auto& c : copies)
+  {
+    if (c.second > 1)
+    {
+      ++report.PinchedVertices;
+      report.VertexCopiesAdded += c.second - 1;
+    }
+  }
+  return copies;
+}
+
+/// Moves the copies of a split vertex into their own fans, by 2% of the fan's mean edge
+/// length toward its ring centroid, so that the sheets are no longer geometrically glued.
+void SeparateSplitCopies(const std::vector<SeedPoint>& points,
+  std::unordered_map<std::int64_t, std::int64_t>& copies, SeedSurface& surface)
+{
+  const std::size_t nPoints = surface.Points.size();
+  std::vector<SeedPoint> ring(nPoints, SeedPoint{ 0, 0, 0 });
+  std::vector<double> length(nPoints, 0.0);
+  std::vector<int> count(nPoints, 0);
+  for (const SeedTriangle& tri : surface.Triangles)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      const std::int64_t p = tri[j];
+      if (copies[surface.SourcePoint[p]] < 2)
+      {
+        continue;
+      }
+      for (int o = 1; o < 3; ++o)
+      {
+        const SeedPoint& q = points[surface.SourcePoint[tri[(j + o) % 3]]];
+        for (int i = 0; i < 3; ++i)
+        {
+          ring[p][i] += q[i];
+        }
+        length[p] += Norm(q - points[surface.SourcePoint[p]]);
+        ++count[p];
+      }
+    }
+  }
+  for (std::size_t p = 0; p < nPoints; ++p)
+  {
+    if (count[p] == 0)
+    {
+      continue;
+    }
+    SeedPoint dir;
+    for (int i = 0; i < 3; ++i)
+    {
+      dir[i] = ring[p][i] / count[p] - surface.Points[p][i];
+    }
+    const double norm = std::sqrt(Dot(dir, dir));
+    if (norm > 0)
+    {
+      const double shift = 0.02 * length[p] / count[p];
+      for (int i = 0; i < 3; ++i)
+      {
+        surface.Points[p][i] += shift * dir[i] / norm;
+      }
+    }
+  }
+}
+
+std::int64_t CountComponents(const SeedSurface& surface)
+{
+  UnionFind parts(static_cast<std::int64_t>(surface.Points.size()));
+  for (const SeedTriangle& tri : surface.Triangles)
+  {
+    parts.Union(tri[0], tri[1]);
+    parts.Union(tri[0], tri[2]);
+  }
+  std::int64_t components = 0;
+  for (std::size_t p = 0; p < surface.Points.size(); ++p)
+  {
+    components += parts.Find(static_cast<std::int64_t>(p)) == static_cast<std::int64_t>(p) ? 1 : 0;
+  }
+  return components;
+}
 } // namespace
 
 double SeedTetSignedVolume(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
 {
-  return Dot(Sub(b, a), Cross(Sub(c, a), Sub(d, a))) / 6.0;
+  return Dot(b - a, Cross(c - a, d - a)) / 6.0;
 }
 
 double SeedTetCircumradius(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
 {
   // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
-  const SeedPoint u = Sub(b, a), v = Sub(c, a), w = Sub(d, a);
+  const SeedPoint u = b - a, v = c - a, w = d - a;
   const SeedPoint vw = Cross(v, w), wu = Cross(w, u), uv = Cross(u, v);
   const double det = 2.0 * Dot(u, vw);
   const double scale = std::max({ Dot(u, u), Dot(v, v), Dot(w, w) });
@@ -179,299 +492,32 @@ SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points, const std:
   {
     status.assign(inTets.size(), SeedKept);
   }
-
-  // Positively oriented copies, so each face's outward order comes from kFace.
-  std::vector<SeedTet> tets = inTets;
-  std::vector<char> flat(tets.size(), 0);
-  for (std::int64_t t = 0; t < nTets; ++t)
-  {
-    SeedTet& c = tets[t];
-    const double vol = SeedTetSignedVolume(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
-    if (vol < 0)
-    {
-      std::swap(c[0], c[1]);
-    }
-    flat[t] = std::abs(vol) <= degenerateVolume ? 1 : 0;
-  }
+  std::vector<char> flat;
+  const std::vector<SeedTet> tets = OrientPositively(points, inTets, degenerateVolume, flat);
   const std::vector<std::int64_t> neighbour = FaceNeighbours(tets);
 
   // A tetrahedron can be removed for a pinch only a bounded number of times in total.
   for (std::int64_t attempt = 0; attempt <= nTets; ++attempt)
   {
-    // Peel flat tetrahedra that touch the boundary: their faces have no outward side.
-    std::vector<std::int64_t> queue;
-    for (std::int64_t t = 0; t < nTets; ++t)
-    {
-      if (flat[t] && status[t] == SeedKept)
-      {
-        queue.push_back(t);
-      }
-    }
-    while (!queue.empty())
-    {
-      const std::int64_t t = queue.back();
-      queue.pop_back();
-      if (status[t] != SeedKept)
-      {
-        continue;
-      }
-      bool exposed = false;
-      for (int k = 0; k < 4; ++k)
-      {
-        exposed = exposed || !IsKept(status, neighbour[4 * t + k]);
-      }
-      if (exposed)
-      {
-        status[t] = SeedRemovedDegenerate;
-        ++report.DegenerateRemoved;
-        for (int k = 0; k < 4; ++k)
-        {
-          const std::int64_t nb = neighbour[4 * t + k];
-          if (nb >= 0 && flat[nb / 4] && status[nb / 4] == SeedKept)
-          {
-            queue.push_back(nb / 4);
-          }
-        }
-      }
-    }
-
-    // Boundary faces, outward.
-    std::vector<std::int64_t> faceSlot;        // boundary face -> 4t+k
-    std::vector<std::int64_t> slotFace(4 * tets.size(), -1);
-    report.KeptTetrahedra = 0;
-    for (std::int64_t t = 0; t < nTets; ++t)
-    {
-      if (status[t] != SeedKept)
-      {
-        continue;
-      }
-      ++report.KeptTetrahedra;
-      for (int k = 0; k < 4; ++k)
-      {
-        if (!IsKept(status, neighbour[4 * t + k]))
-        {
-          slotFace[4 * t + k] = static_cast<std::int64_t>(faceSlot.size());
-          faceSlot.push_back(4 * t + k);
-        }
-      }
-    }
-    const std::int64_t nFaces = static_cast<std::int64_t>(faceSlot.size());
-    if (nFaces == 0)
+    report.DegenerateRemoved += PeelFlatTetrahedra(flat, neighbour, status);
+    const BoundaryFaces faces = CollectBoundaryFaces(tets, neighbour, status, report.KeptTetrahedra);
+    if (faces.Count() == 0)
     {
       return surface;
     }
-    auto faceVertex = [&](std::int64_t f, int j) {
-      const std::int64_t slot = faceSlot[f];
-      return tets[slot / 4][kFace[slot % 4][j]];
-    };
-
-    // Pair the faces across each edge by walking through the kept tetrahedra of one solid
-    // wedge around the edge: the pairing is then manifold even where 4+ faces meet.
-    std::vector<std::int64_t> partner(3 * nFaces, -1);
-    for (std::int64_t f = 0; f < nFaces; ++f)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        const std::int64_t u = faceVertex(f, j), w = faceVertex(f, (j + 1) % 3);
-        std::int64_t slot = faceSlot[f];
-        for (std::int64_t step = 0; step <= nTets; ++step)
-        {
-          const std::int64_t t = slot / 4;
-          const int k = static_cast<int>(slot % 4);
-          // The current face holds u, w and a third corner x; the next face around the edge
-          // in this tetrahedron is the one opposite x.
-          int x = -1;
-          for (int c = 0; c < 4; ++c)
-          {
-            if (c != k && tets[t][c] != u && tets[t][c] != w)
-            {
-              x = c;
-            }
-          }
-          const std::int64_t next = 4 * t + x;
-          const std::int64_t nb = neighbour[next];
-          if (!IsKept(status, nb))
-          {
-            partner[3 * f + j] = slotFace[next];
-            break;
-          }
-          slot = nb;
-        }
-      }
-    }
-
-    // One vertex copy per fan: corners (f, j) are joined across paired edges.
-    UnionFind corners(3 * nFaces);
-    for (std::int64_t f = 0; f < nFaces; ++f)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        const std::int64_t g = partner[3 * f + j];
-        if (g < 0)
-        {
-          continue;
-        }
-        const std::int64_t u = faceVertex(f, j), w = faceVertex(f, (j + 1) % 3);
-        for (int i = 0; i < 3; ++i)
-        {
-          const std::int64_t gv = faceVertex(g, i);
-          if (gv == u)
-          {
-            corners.Union(3 * f + j, 3 * g + i);
-          }
-          else if (gv == w)
-          {
-            corners.Union(3 * f + (j + 1) % 3, 3 * g + i);
-          }
-        }
-      }
-    }
-
-    // New point per corner class, numbered in order of first use.
-    std::vector<std::int64_t> classPoint(3 * nFaces, -1);
-    surface.Points.clear();
-    surface.SourcePoint.clear();
-    surface.Triangles.assign(static_cast<std::size_t>(nFaces), SeedTriangle());
-    for (std::int64_t f = 0; f < nFaces; ++f)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        const std::int64_t root = corners.Find(3 * f + j);
-        if (classPoint[root] < 0)
-        {
-          classPoint[root] = static_cast<std::int64_t>(surface.Points.size());
-          surface.SourcePoint.push_back(faceVertex(f, j));
-          surface.Points.push_back(points[faceVertex(f, j)]);
-        }
-        surface.Triangles[f][j] = classPoint[root];
-      }
-    }
-
-    // Every undirected edge of the new numbering must have exactly two faces. If not, two
-    // sheets still share an edge: remove a kept tetrahedron there and extract again.
-    std::unordered_map<std::uint64_t, int> edgeUse;
-    edgeUse.reserve(static_cast<std::size_t>(3 * nFaces));
-    for (const SeedTriangle& tri : surface.Triangles)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        ++edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])];
-      }
-    }
-    std::int64_t removedNow = 0;
-    for (std::int64_t f = 0; f < nFaces; ++f)
-    {
-      const SeedTriangle& tri = surface.Triangles[f];
-      for (int j = 0; j < 3; ++j)
-      {
-        if (edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] != 2 && status[faceSlot[f] / 4] == SeedKept)
-        {
-          status[faceSlot[f] / 4] = SeedRemovedByPinch;
-          ++removedNow;
-          // One removal per edge is enough; mark the edge as handled.
-          edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] = 2;
-        }
-      }
-    }
+    BuildFanSurface(faces, PairFacesAcrossEdges(faces, tets, neighbour, status), points, surface);
+    const std::int64_t removedNow = RemovePinchTetrahedra(surface, faces, status);
     if (removedNow > 0)
     {
       report.PinchTetsRemoved += removedNow;
-      continue;
+      continue; // extract again without them
     }
-
-    // Counts for the report, on the original vertex numbering.
-    std::unordered_map<std::uint64_t, int> originalEdgeUse;
-    for (std::int64_t f = 0; f < nFaces; ++f)
-    {
-      for (int j = 0; j < 3; ++j)
-      {
-        ++originalEdgeUse[EdgeKey(faceVertex(f, j), faceVertex(f, (j + 1) % 3))];
-      }
-    }
-    report.PinchedEdges = 0;
-    for (const auto& e : originalEdgeUse)
-    {
-      report.PinchedEdges += e.second > 2 ? 1 : 0;
-    }
-    std::unordered_map<std::int64_t, std::int64_t> copies;
-    for (std::int64_t source : surface.SourcePoint)
-    {
-      ++copies[source];
-    }
-    report.PinchedVertices = 0;
-    report.VertexCopiesAdded = 0;
-    for (const auto& c : copies)
-    {
-      if (c.second > 1)
-      {
-        ++report.PinchedVertices;
-        report.VertexCopiesAdded += c.second - 1;
-      }
-    }
-
-    // Move the copies of a split vertex into their own fans, a little, so that the sheets
-    // are no longer geometrically glued.
+    std::unordered_map<std::int64_t, std::int64_t> copies = CountPinches(surface, faces, report);
     if (report.VertexCopiesAdded > 0)
     {
-      const std::size_t nPoints = surface.Points.size();
-      std::vector<SeedPoint> ring(nPoints, SeedPoint{ 0, 0, 0 });
-      std::vector<double> length(nPoints, 0.0);
-      std::vector<int> count(nPoints, 0);
-      for (const SeedTriangle& tri : surface.Triangles)
-      {
-        for (int j = 0; j < 3; ++j)
-        {
-          const std::int64_t p = tri[j];
-          if (copies[surface.SourcePoint[p]] < 2)
-          {
-            continue;
-          }
-          for (int o = 1; o < 3; ++o)
-          {
-            const SeedPoint& q = points[surface.SourcePoint[tri[(j + o) % 3]]];
-            for (int i = 0; i < 3; ++i)
-            {
-              ring[p][i] += q[i];
-            }
-            length[p] += Distance(q, points[surface.SourcePoint[p]]);
-            ++count[p];
-          }
-        }
-      }
-      for (std::size_t p = 0; p < nPoints; ++p)
-      {
-        if (count[p] == 0)
-        {
-          continue;
-        }
-        SeedPoint dir;
-        for (int i = 0; i < 3; ++i)
-        {
-          dir[i] = ring[p][i] / count[p] - surface.Points[p][i];
-        }
-        const double norm = std::sqrt(Dot(dir, dir));
-        if (norm > 0)
-        {
-          const double shift = 0.02 * length[p] / count[p];
-          for (int i = 0; i < 3; ++i)
-          {
-            surface.Points[p][i] += shift * dir[i] / norm;
-          }
-        }
-      }
+      SeparateSplitCopies(points, copies, surface);
     }
-
-    UnionFind parts(static_cast<std::int64_t>(surface.Points.size()));
-    for (const SeedTriangle& tri : surface.Triangles)
-    {
-      parts.Union(tri[0], tri[1]);
-      parts.Union(tri[0], tri[2]);
-    }
-    report.Components = 0;
-    for (std::size_t p = 0; p < surface.Points.size(); ++p)
-    {
-      report.Components += parts.Find(static_cast<std::int64_t>(p)) == static_cast<std::int64_t>(p) ? 1 : 0;
-    }
+    report.Components = CountComponents(surface);
     return surface;
   }
   // Unreachable in practice: every attempt removes at least one tetrahedron.
@@ -481,18 +527,13 @@ SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points, const std:
 
 double SeedMeanEdgeLength(const SeedSurface& surface)
 {
-  // Interior edges are seen twice (once per side), which leaves the mean unchanged.
-  double sum = 0.0;
-  std::size_t n = 0;
-  for (const SeedTriangle& tri : surface.Triangles)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      sum += Distance(surface.Points[tri[j]], surface.Points[tri[(j + 1) % 3]]);
-      ++n;
-    }
-  }
-  return n > 0 ? sum / static_cast<double>(n) : 0.0;
+  // Over half-edges: interior edges are seen twice (once per side), which leaves the mean
+  // unchanged, and no edge list is needed.
+  return MeanLength(surface.Points, 3 * surface.Triangles.size(), [&surface](std::size_t h) {
+    const SeedTriangle& tri = surface.Triangles[h / 3];
+    const int j = static_cast<int>(h % 3);
+    return std::array<std::int64_t, 2>{ tri[j], tri[(j + 1) % 3] };
+  });
 }
 
 int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTriangles)
@@ -505,7 +546,7 @@ int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTr
   while (SeedMeanEdgeLength(surface) > std::sqrt(2.0) * target &&
     static_cast<std::int64_t>(surface.Triangles.size()) * 4 <= maxTriangles)
   {
-    std::unordered_map<std::uint64_t, std::int64_t> midpoint;
+    std::unordered_map<unsigned long long, std::int64_t> midpoint;
     midpoint.reserve(surface.Triangles.size() * 2);
     auto mid = [&](std::int64_t a, std::int64_t b) {
       const auto inserted = midpoint.emplace(EdgeKey(a, b), static_cast<std::int64_t>(surface.Points.size()));
@@ -522,11 +563,10 @@ int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTr
     finer.reserve(surface.Triangles.size() * 4);
     for (const SeedTriangle& t : surface.Triangles)
     {
-      const std::int64_t m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
-      finer.push_back({ t[0], m01, m20 });
-      finer.push_back({ m01, t[1], m12 });
-      finer.push_back({ m20, m12, t[2] });
-      finer.push_back({ m01, m12, m20 });
+      const std::int64_t m[3] = { mid(t[0], t[1]), mid(t[1], t[2]), mid(t[2], t[0]) };
+      SeedTriangle children[4];
+      SplitInFour(t, m, children);
+      finer.insert(finer.end(), children, children + 4);
     }
     surface.Triangles.swap(finer);
     ++steps;

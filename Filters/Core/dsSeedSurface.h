@@ -1,11 +1,14 @@
 // The plain-C++ core of vtkDelaunaySeedSurface: per-tetrahedron measures, the boundary
 // of a set of kept tetrahedra as a closed 2-manifold outward-oriented triangle surface
 // (with pinch resolution), and uniform midpoint subdivision to a target edge length.
-// No pipeline types: points are xyz triples, cells are index tuples.
+// No pipeline types: points are xyz triples, cells are index tuples (64-bit: the seed is
+// built from VTK ids; the solver's TriangleMesh uses int). Edge keys, mean edge length and
+// the 1 -> 4 split are shared with TriangleMesh (dsTriangleMesh.h).
 #ifndef dsSeedSurface_h
 #define dsSeedSurface_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsTriangleMesh.h"                 // Vec3
 
 #include <array>
 #include <cstdint>
@@ -14,7 +17,7 @@
 
 namespace dsurf
 {
-using SeedPoint = std::array<double, 3>;
+using SeedPoint = Vec3; ///< the point type of TriangleMesh, with its arithmetic
 using SeedTet = std::array<std::int64_t, 4>;
 using SeedTriangle = std::array<std::int64_t, 3>;
 

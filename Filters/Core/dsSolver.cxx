@@ -1,15 +1,12 @@
 #include "dsSolver.h"
 
 #include "dsRegion.h"
+#include "dsSelfIntersectionRule.h"
+#include "dsStepScheduler.h"
 #include "dsThreads.h"
 
-#include "vtkSMPTools.h"
-
 #include <algorithm>
-#include <atomic>
 #include <functional>
-#include <memory>
-#include <thread>
 
 namespace dsurf
 {
@@ -97,22 +94,6 @@ inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOthe
   return { s0 - p[0], s1 - p[1], s2 - p[2] };
 }
 
-/// Spin briefly, then give the core away: the other thread is usually microseconds
-/// from done, but on a loaded machine it may be descheduled.
-inline void WaitPause(int& spins)
-{
-  if (++spins < 256)
-  {
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
-#endif
-  }
-  else
-  {
-    std::this_thread::yield();
-  }
-}
-
 } // namespace
 
 void Solver::SetMesh(TriangleMesh* mesh)
@@ -121,36 +102,16 @@ void Solver::SetMesh(TriangleMesh* mesh)
   this->BuildColoring();
 }
 
-void Solver::BuildColoring()
+namespace
 {
-  this->ClassOffsets.assign(1, 0);
-  this->ClassVertices.clear();
-  this->ColoredPoints = -1;
-  if (!this->Mesh)
-  {
-    return;
-  }
-  const TriangleMesh& m = *this->Mesh;
+/// Greedy distance-2 colouring in vertex order (deterministic): a vertex takes the
+/// smallest colour not used within two edges, so vertices of one colour neither
+/// share an edge nor appear in each other's U^2 stencil or normal fan. Returns the
+/// number of colours.
+int ColorAtDistanceTwo(const TriangleMesh& m, std::vector<int>& color)
+{
   const int n = m.NumberOfPoints();
-  if (static_cast<int>(m.NeighborOffsets.size()) != n + 1 || static_cast<int>(m.Labels.size()) != n)
-  {
-    return; // no topology yet
-  }
-  this->ColoredPoints = n;
-  this->UniformWeights = true;
-  for (int v = 0; v < n; ++v)
-  {
-    if (m.Labels[v] != LabelN)
-    {
-      this->UniformWeights = false;
-      break;
-    }
-  }
-
-  // Greedy distance-2 colouring in vertex order (deterministic): a vertex takes the
-  // smallest colour not used within two edges, so vertices of one colour neither
-  // share an edge nor appear in each other's U^2 stencil or normal fan.
-  std::vector<int> color(n, -1);
+  color.assign(n, -1);
   std::vector<int> stamp; // stamp[c] == v: colour c is forbidden for v
   int numColors = 0;
   for (int v = 0; v < n; ++v)
@@ -183,12 +144,40 @@ void Solver::BuildColoring()
     }
     color[v] = c;
   }
+  return numColors;
+}
+
+/// Whether vertex v moves in a sweep: not on an open boundary, not isolated.
+bool Moves(const TriangleMesh& m, int v)
+{
+  return !m.BoundaryVertex[v] && m.NeighborOffsets[v + 1] > m.NeighborOffsets[v];
+}
+} // namespace
+
+void Solver::BuildColoring()
+{
+  this->Colors = ColorClasses();
+  this->ColoredPoints = -1;
+  if (!this->Mesh)
+  {
+    return;
+  }
+  const TriangleMesh& m = *this->Mesh;
+  const int n = m.NumberOfPoints();
+  if (static_cast<int>(m.NeighborOffsets.size()) != n + 1 || static_cast<int>(m.Labels.size()) != n)
+  {
+    return; // no topology yet
+  }
+  this->ColoredPoints = n;
+  this->UniformWeights = std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
+  std::vector<int> color;
+  const int numColors = ColorAtDistanceTwo(m, color);
 
   // Colour classes of the vertices that move (CSR, ascending ids within a class).
   std::vector<int> counts(numColors + 1, 0);
   for (int v = 0; v < n; ++v)
   {
-    if (!m.BoundaryVertex[v] && m.NeighborOffsets[v + 1] > m.NeighborOffsets[v])
+    if (Moves(m, v))
     {
       ++counts[color[v] + 1];
     }
@@ -197,19 +186,19 @@ void Solver::BuildColoring()
   {
     counts[c + 1] += counts[c];
   }
-  this->ClassOffsets = counts;
-  this->ClassVertices.assign(counts[numColors], -1);
+  this->Colors.Offsets = counts;
+  this->Colors.Vertices.assign(counts[numColors], -1);
   for (int v = 0; v < n; ++v)
   {
-    if (!m.BoundaryVertex[v] && m.NeighborOffsets[v + 1] > m.NeighborOffsets[v])
+    if (Moves(m, v))
     {
-      this->ClassVertices[counts[color[v]]++] = v;
+      this->Colors.Vertices[counts[color[v]]++] = v;
     }
   }
   this->BuildLocalLayout();
 }
 
-void Solver::BuildLocalLayout()
+void Solver::OrderBreadthFirst()
 {
   const TriangleMesh& m = *this->Mesh;
   const int n = m.NumberOfPoints();
@@ -241,7 +230,12 @@ void Solver::BuildLocalLayout()
       }
     }
   }
+}
 
+void Solver::CopyTopologyToLocal()
+{
+  const TriangleMesh& m = *this->Mesh;
+  const int n = m.NumberOfPoints();
   // Neighbour lists and triangle fans in local ids, each in the mesh's order, so every
   // sum is evaluated in the same order as on the mesh itself.
   this->LocalNeighborOffsets.assign(n + 1, 0);
@@ -267,22 +261,33 @@ void Solver::BuildLocalLayout()
     }
     this->LocalFanOffsets[l + 1] = f;
   }
+}
 
+void Solver::BuildLocalColors()
+{
   // The colour classes in local ids, ascending: a thread's share of a colour is a
   // contiguous run of it, hence a compact region.
   const int numColors = this->NumberOfColors();
-  this->WorkOffsets = this->ClassOffsets;
-  this->WorkVertices.resize(this->ClassVertices.size());
+  this->LocalColors.Offsets = this->Colors.Offsets;
+  this->LocalColors.Vertices.resize(this->Colors.Vertices.size());
   for (int c = 0; c < numColors; ++c)
   {
-    for (int k = this->ClassOffsets[c]; k < this->ClassOffsets[c + 1]; ++k)
+    for (int k = this->Colors.Offsets[c]; k < this->Colors.Offsets[c + 1]; ++k)
     {
-      this->WorkVertices[k] = this->Local[this->ClassVertices[k]];
+      this->LocalColors.Vertices[k] = this->Local[this->Colors.Vertices[k]];
     }
-    std::sort(this->WorkVertices.begin() + this->ClassOffsets[c],
-      this->WorkVertices.begin() + this->ClassOffsets[c + 1]);
+    std::sort(this->LocalColors.Vertices.begin() + this->Colors.Offsets[c],
+      this->LocalColors.Vertices.begin() + this->Colors.Offsets[c + 1]);
   }
+}
 
+void Solver::BuildLocalLayout()
+{
+  this->OrderBreadthFirst();
+  this->CopyTopologyToLocal();
+  this->BuildLocalColors();
+
+  const int n = this->Mesh->NumberOfPoints();
   // Fixed vertices keep 0; moving ones are overwritten by every sweep.
   this->ErrorIndicatorValues.assign(n, 0.0);
   this->DisplacementValues.assign(n, 0.0);
@@ -302,15 +307,15 @@ Vec3 Solver::Umbrella(int v) const
   return UmbrellaOf<false>(view, v, -1, &unused);
 }
 
-void Solver::UpdateVertex(int v)
+inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(), this->LocalLabels.data(),
     this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
-  const double tau = this->Parameters.Tau, gamma = this->Parameters.Gamma;
+  const double tau = this->Parameters.Tau;
 
   // U(p), U^2(p) and alpha (docs/METHOD.md §3 with the §6.4 weights).
-  Vec3 u, u2acc{ 0, 0, 0 };
+  Vec3 u2acc{ 0, 0, 0 };
   double alpha = 1.0;
   double unused = 0;
   const auto accumulate = [&](auto allN) {
@@ -338,19 +343,17 @@ void Solver::UpdateVertex(int v)
   const Vec3 u2 = u2acc - u;
   const Vec3& c1 = u;
   const Vec3 c2 = (-1.0 / alpha) * u2;
-  const Vec3 internal = tau * c1 + ((1.0 - tau) * alpha) * c2;
+  return tau * c1 + ((1.0 - tau) * alpha) * c2;
+}
 
-  // External force and the docs/METHOD.md §5 rule: along the umbrella when F points the same
-  // way, otherwise along the normal; the projection keeps F from sliding vertices
-  // tangentially over each other.
+inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
+{
   Vec3 force{ 0, 0, 0 };
-  Vec3 applied{ 0, 0, 0 };
-  int outside = 0;
-  Vec3* points = this->LocalPoints.data();
+  const Vec3& p = this->LocalPoints[v];
   if (this->Field && this->Sampler)
   {
     double f[3] = { 0, 0, 0 };
-    if (this->Sampler(this->Field, points[v].data(), f))
+    if (this->Sampler(this->Field, p.data(), f))
     {
       force = { this->ForceScale * f[0], this->ForceScale * f[1], this->ForceScale * f[2] };
     }
@@ -359,51 +362,47 @@ void Solver::UpdateVertex(int v)
       outside = 1;
     }
   }
-  // The area-weighted normal, computed once: the region force and the projection rule need it.
-  Vec3 normal{ 0, 0, 0 };
-  bool haveNormal = false;
   if (this->RegionScalars)
   {
+    // The region force along the unit normal (dsRegion.h); the normal is kept for the rule.
     bool inside = false;
-    const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, points[v].data(), &inside);
+    const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, p.data(), &inside);
     normal = this->FanNormal(v);
     haveNormal = true;
-    const Vec3& n = normal;
-    const double nn = Norm(n);
+    const double nn = Norm(normal);
     if (inside && nn > 0)
     {
       double speed = RegionSpeed(intensity, this->RegionLow, this->RegionHigh);
       speed = this->RegionOutwardOnly ? std::max(speed, 0.0) : speed;
-      force = force + (this->RegionScale * speed / nn) * n;
+      force = force + (this->RegionScale * speed / nn) * normal;
     }
   }
+  return force;
+}
+
+void Solver::UpdateVertex(int v)
+{
+  Vec3 u;
+  const Vec3 internal = this->InternalCorrection(v, u);
+
+  // External force and the docs/METHOD.md §5 rule (dsSelfIntersectionRule.h).
+  Vec3 force{ 0, 0, 0 };
+  Vec3 applied{ 0, 0, 0 };
+  int outside = 0;
   if ((this->Field && this->Sampler) || this->RegionScalars)
   {
-    if (!this->Parameters.ProjectExternalForce)
-    {
-      applied = force;
-    }
-    else
-    {
-      const double fu = Dot(force, u);
-      if (fu > 0)
-      {
-        applied = (fu / Dot(u, u)) * u;
-      }
-      else
-      {
-        const Vec3 nrm = haveNormal ? normal : this->FanNormal(v);
-        const double nn = Dot(nrm, nrm);
-        if (nn > 0)
-        {
-          applied = (Dot(force, nrm) / nn) * nrm;
-        }
-      }
-    }
+    Vec3 normal{ 0, 0, 0 };
+    bool haveNormal = false;
+    force = this->ExternalForce(v, outside, normal, haveNormal);
+    applied = !this->Parameters.ProjectExternalForce
+      ? force
+      : SelfIntersectionRule(force, u, [&]() { return haveNormal ? normal : this->FanNormal(v); });
   }
 
+  const double gamma = this->Parameters.Gamma;
   const Vec3 c = gamma * (internal + applied);
-  points[v] = points[v] + c;
+  Vec3& point = this->LocalPoints[v];
+  point = point + c;
   VertexResult& result = this->LocalResults[v];
   result.Outside = outside;
   result.ErrorIndicator = gamma * Norm(internal);
@@ -413,15 +412,9 @@ void Solver::UpdateVertex(int v)
 
 Vec3 Solver::FanNormal(int v) const
 {
-  // As TriangleMesh::AreaWeightedNormal, on the local copy.
-  const Vec3* points = this->LocalPoints.data();
-  Vec3 nrm{ 0, 0, 0 };
-  for (int i = this->LocalFanOffsets[v]; i < this->LocalFanOffsets[v + 1]; ++i)
-  {
-    const auto& tri = this->LocalFan[i];
-    nrm = nrm + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
-  }
-  return nrm;
+  const int first = this->LocalFanOffsets[v];
+  return AreaWeightedNormal(this->LocalPoints.data(), this->LocalFanOffsets[v + 1] - first,
+    [this, first](int i) -> const std::array<int, 3>& { return this->LocalFan[first + i]; });
 }
 
 void Solver::CopyOut(int first, int last)
@@ -458,13 +451,13 @@ constexpr int StatisticsChunk = 256;
 
 void Solver::ChunkStatistics(int chunk, ChunkSums& out) const
 {
-  const int total = this->ClassOffsets.back();
+  const int total = this->Colors.Offsets.back();
   const int first = chunk * StatisticsChunk, last = std::min(first + StatisticsChunk, total);
   double sum = 0, maxC = 0;
   int outside = 0;
   for (int k = first; k < last; ++k)
   {
-    const VertexResult& result = this->LocalResults[this->WorkVertices[k]];
+    const VertexResult& result = this->LocalResults[this->LocalColors.Vertices[k]];
     sum += result.Displacement;
     maxC = std::max(maxC, result.Displacement);
     outside += result.Outside;
@@ -477,7 +470,7 @@ void Solver::ChunkStatistics(int chunk, ChunkSums& out) const
 SweepStatistics Solver::CombineStatistics(const std::vector<ChunkSums>& chunks) const
 {
   SweepStatistics stats;
-  const int total = this->ClassOffsets.back();
+  const int total = this->Colors.Offsets.back();
   double sum = 0;
   for (const ChunkSums& c : chunks)
   {
@@ -490,192 +483,151 @@ SweepStatistics Solver::CombineStatistics(const std::vector<ChunkSums>& chunks) 
   return stats;
 }
 
-int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+void Solver::RefreshLocal(int first, int last)
 {
-  if (!this->Mesh || maxSweeps <= 0)
+  // The caller may have moved points (or relabelled them) since the last call.
+  const TriangleMesh& m = *this->Mesh;
+  for (int l = first; l < last; ++l)
   {
-    return 0;
+    const int v = this->Original[l];
+    this->LocalPoints[l] = m.Points[v];
+    this->LocalLabels[l] = m.Labels[v];
   }
-  TriangleMesh& m = *this->Mesh;
+}
+
+bool Solver::ReadyToSweep()
+{
+  if (!this->Mesh)
+  {
+    return false;
+  }
+  const TriangleMesh& m = *this->Mesh;
   const int n = m.NumberOfPoints();
   if (static_cast<int>(m.NeighborOffsets.size()) != n + 1)
   {
-    return 0; // no topology: nothing can move
+    return false; // no topology: nothing can move
   }
   if (this->ColoredPoints != n)
   {
     this->BuildColoring();
-    if (this->ColoredPoints != n)
-    {
-      return 0; // no labels yet: nothing was coloured
-    }
   }
+  return this->ColoredPoints == n; // else no labels yet: nothing was coloured
+}
 
-  const int numColors = this->NumberOfColors();
+int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+{
+  if (maxSweeps <= 0 || !this->ReadyToSweep())
+  {
+    return 0;
+  }
   const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
-  const int total = this->ClassOffsets.back();
+  if (numThreads <= 1 || this->Colors.Offsets.back() < 256)
+  {
+    return this->SerialSweeps(maxSweeps, afterSweep);
+  }
+  return this->ParallelSweeps(numThreads, maxSweeps, afterSweep);
+}
+
+int Solver::SerialSweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+{
+  const int n = this->Mesh->NumberOfPoints();
+  const int total = this->Colors.Offsets.back();
   const int numChunks = (total + StatisticsChunk - 1) / StatisticsChunk;
   std::vector<ChunkSums> chunks(numChunks);
-  // The caller may have moved points (or relabelled them) since the last call.
-  const auto refresh = [&](int first, int last) {
-    for (int l = first; l < last; ++l)
-    {
-      const int v = this->Original[l];
-      this->LocalPoints[l] = m.Points[v];
-      this->LocalLabels[l] = m.Labels[v];
-    }
-  };
-  if (numThreads <= 1 || total < 256)
+  this->RefreshLocal(0, n);
+  for (int sweep = 1;; ++sweep)
   {
-    refresh(0, n);
-    for (int sweep = 0; sweep < maxSweeps;)
+    for (int k = 0; k < total; ++k)
     {
-      for (int k = 0; k < total; ++k)
+      this->UpdateVertex(this->LocalColors.Vertices[k]);
+    }
+    for (int c = 0; c < numChunks; ++c)
+    {
+      this->ChunkStatistics(c, chunks[c]);
+    }
+    if (!afterSweep(this->CombineStatistics(chunks)) || sweep == maxSweeps)
+    {
+      this->CopyOut(0, n);
+      return sweep;
+    }
+  }
+}
+
+/// The parallel sweeps as steps of a StepScheduler: step 0 copies the mesh into the local
+/// layout; then per sweep one step per colour (its vertices updated in place) and one for
+/// the statistics, which ends with the caller's callback; the step after the last sweep
+/// copies the results back to the mesh.
+class Solver::SweepJob : public StepScheduler::Job
+{
+public:
+  SweepJob(Solver& solver, int blocks, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+    : S(solver)
+    , Blocks(blocks)
+    , MaxSweeps(maxSweeps)
+    , AfterSweep(afterSweep)
+    , Points(solver.Mesh->NumberOfPoints())
+    , StepsPerSweep(solver.NumberOfColors() + 1)
+    , Chunks((solver.Colors.Offsets.back() + StatisticsChunk - 1) / StatisticsChunk)
+  {
+  }
+
+  void RunBlock(long long step, int block) override
+  {
+    int first = 0, last = 0;
+    if (this->Finishing || step == 0)
+    {
+      StepScheduler::BlockRange(this->Points, block, this->Blocks, first, last);
+      this->Finishing ? this->S.CopyOut(first, last) : this->S.RefreshLocal(first, last);
+      return;
+    }
+    const int phase = static_cast<int>((step - 1) % this->StepsPerSweep);
+    if (phase == this->StepsPerSweep - 1)
+    {
+      StepScheduler::BlockRange(static_cast<long long>(this->Chunks.size()), block, this->Blocks, first, last);
+      for (int c = first; c < last; ++c)
       {
-        this->UpdateVertex(this->WorkVertices[k]);
+        this->S.ChunkStatistics(c, this->Chunks[c]);
       }
-      for (int c = 0; c < numChunks; ++c)
-      {
-        this->ChunkStatistics(c, chunks[c]);
-      }
-      ++sweep;
-      if (!afterSweep(this->CombineStatistics(chunks)) || sweep == maxSweeps)
-      {
-        this->CopyOut(0, n);
-        return sweep;
-      }
+      return;
+    }
+    const int cBegin = this->S.LocalColors.Offsets[phase];
+    StepScheduler::BlockRange(this->S.LocalColors.Offsets[phase + 1] - cBegin, block, this->Blocks, first, last);
+    for (int k = cBegin + first; k < cBegin + last; ++k)
+    {
+      this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
     }
   }
 
-  // One parallel region for all the sweeps: VTK 9.2's STDThread backend starts its
-  // threads on every For, which costs about as much as a quarter of a sweep of 12 288
-  // triangles. The region is a sequence of steps: the copy of the mesh into the local
-  // layout, then per sweep one step per colour and one for the statistics, and last the
-  // copy of the results back to the mesh. Each step
-  // is cut into blocks, `perThread` consecutive ones per thread (its region): thread t
-  // first takes the blocks of its own region (the same part of the surface in every
-  // step and sweep, so its points stay in its cache), then blocks left in the other
-  // regions, then waits for the step to finish. A thread waits only for blocks a
-  // running thread has taken, so this cannot deadlock even if the backend ran the jobs
-  // one after another, and the share of a thread descheduled on a busy machine is
-  // taken over. Counters live on their own cache lines: a thread touches another's
-  // only to take over its work or to see whether the step is done.
-  constexpr int perThread = 8;
-  const int blocks = numThreads * perThread;
-  const int stepsPerSweep = numColors + 1;
-  struct alignas(64) ThreadSlot
+  bool HasEnd(long long step) const override
   {
-    std::atomic<long long> Next{ 0 };     ///< blocks of this region taken, over all steps
-    std::atomic<long long> Finished{ 0 }; ///< blocks this thread completed, over all steps
-  };
-  std::unique_ptr<ThreadSlot[]> slots(new ThreadSlot[numThreads]);
-  alignas(64) std::atomic<long long> statisticsBlocks{ 0 };
-  std::atomic<bool> stop{ false };
-  int sweepsDone = 0; // written by the thread that completes a sweep's statistics
+    return step > 0 && (step - 1) % this->StepsPerSweep == this->StepsPerSweep - 1;
+  }
 
-  // Runs block b of a step; returns false if the block's completion was already
-  // counted (the last statistics block, which counts only after the callback).
-  const auto runBlock = [&](long long step, int b, ThreadSlot& mine, bool copyOut) {
-    if (copyOut)
-    {
-      this->CopyOut(static_cast<int>(static_cast<long long>(n) * b / blocks),
-        static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
-      return true;
-    }
-    if (step == 0)
-    {
-      refresh(static_cast<int>(static_cast<long long>(n) * b / blocks),
-        static_cast<int>(static_cast<long long>(n) * (b + 1) / blocks));
-      return true;
-    }
-    const int phase = static_cast<int>((step - 1) % stepsPerSweep);
-    if (phase == numColors)
-    {
-      for (int c = static_cast<int>(static_cast<long long>(numChunks) * b / blocks);
-           c < static_cast<long long>(numChunks) * (b + 1) / blocks; ++c)
-      {
-        this->ChunkStatistics(c, chunks[c]);
-      }
-      const long long sweepIndex = (step - 1) / stepsPerSweep;
-      if (statisticsBlocks.fetch_add(1, std::memory_order_acq_rel) + 1 == (sweepIndex + 1) * blocks)
-      {
-        // Every chunk is summed: combine, report, then let the others go on.
-        ++sweepsDone;
-        if (!afterSweep(this->CombineStatistics(chunks)) || sweepsDone >= maxSweeps)
-        {
-          stop.store(true, std::memory_order_relaxed);
-        }
-        mine.Finished.fetch_add(1, std::memory_order_release);
-        return false;
-      }
-      return true;
-    }
-    const int cBegin = this->WorkOffsets[phase];
-    const long long size = this->WorkOffsets[phase + 1] - cBegin;
-    const int first = cBegin + static_cast<int>(size * b / blocks);
-    const int last = cBegin + static_cast<int>(size * (b + 1) / blocks);
-    for (int k = first; k < last; ++k)
-    {
-      this->UpdateVertex(this->WorkVertices[k]);
-    }
-    return true;
-  };
-  const auto take = [&](int region, long long step) {
-    ThreadSlot& slot = slots[region];
-    long long k = slot.Next.load(std::memory_order_relaxed);
-    while (k < (step + 1) * perThread)
-    {
-      if (slot.Next.compare_exchange_weak(k, k + 1, std::memory_order_acquire))
-      {
-        return region * perThread + static_cast<int>(k - step * perThread);
-      }
-    }
-    return -1;
-  };
-  const auto worker = [&](vtkIdType jobBegin, vtkIdType jobEnd) {
-    for (vtkIdType job = jobBegin; job < jobEnd; ++job)
-    {
-      const int t = static_cast<int>(job);
-      ThreadSlot& mine = slots[t];
-      bool copyOut = false; // the last step: write the results back to the mesh
-      for (long long step = 0;; ++step)
-      {
-        for (int r = 0; r < numThreads; ++r)
-        {
-          const int region = (t + r) % numThreads;
-          for (int b = take(region, step); b >= 0; b = take(region, step))
-          {
-            if (runBlock(step, b, mine, copyOut))
-            {
-              mine.Finished.fetch_add(1, std::memory_order_release);
-            }
-          }
-        }
-        if (copyOut)
-        {
-          break; // the For returns when every block is done
-        }
-        const long long target = (step + 1) * blocks;
-        int spins = 0;
-        for (;;)
-        {
-          long long finished = 0;
-          for (int r = 0; r < numThreads; ++r)
-          {
-            finished += slots[r].Finished.load(std::memory_order_acquire);
-          }
-          if (finished >= target)
-          {
-            break;
-          }
-          WaitPause(spins);
-        }
-        copyOut = step > 0 && (step - 1) % stepsPerSweep == numColors && stop.load(std::memory_order_relaxed);
-      }
-    }
-  };
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads, "STDThread", false },
-    [&]() { vtkSMPTools::For(0, numThreads, 1, worker); });
-  return sweepsDone;
+  bool EndStep(long long) override
+  {
+    // Every chunk is summed: combine and report; the other threads wait meanwhile.
+    ++this->SweepsDone;
+    this->Finishing = !this->AfterSweep(this->S.CombineStatistics(this->Chunks)) || this->SweepsDone >= this->MaxSweeps;
+    return this->Finishing;
+  }
+
+  int SweepsDone = 0;
+
+private:
+  Solver& S;
+  const int Blocks, MaxSweeps;
+  const std::function<bool(const SweepStatistics&)>& AfterSweep;
+  const int Points, StepsPerSweep;
+  std::vector<ChunkSums> Chunks;
+  bool Finishing = false; ///< the last step: write the results back to the mesh
+};
+
+int Solver::ParallelSweeps(
+  int numThreads, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+{
+  const StepScheduler scheduler(numThreads);
+  SweepJob job(*this, scheduler.NumberOfBlocks(), maxSweeps, afterSweep);
+  scheduler.Run(job);
+  return job.SweepsDone;
 }
 } // namespace dsurf

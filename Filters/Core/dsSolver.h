@@ -1,7 +1,8 @@
 // The single-level deformable-surface solver (docs/METHOD.md §3-5): umbrella operators with
 // the label weights of docs/METHOD.md §6.4, one fixed-point step per vertex, Gauss-Seidel
-// in place, and the self-intersection rule for the external force. Plain C++, no
-// pipeline types; the hierarchy (refinement, sigma halving) drives it from outside.
+// in place, and the self-intersection rule for the external force (dsSelfIntersectionRule.h).
+// Plain C++, no pipeline types; the hierarchy (refinement, sigma halving) drives it from
+// outside. The parallel sweeps run as steps of a StepScheduler (dsStepScheduler.h).
 //
 // Parallel Gauss-Seidel: the vertex graph is coloured at distance 2 (two vertices
 // of one colour share no edge and no U^2 stencil), colours are swept in sequence and
@@ -112,20 +113,28 @@ public:
   /// |F| before the docs/METHOD.md §5 projection (forceScale applied).
   const std::vector<double>& ExternalForceMagnitude() const { return this->ForceValues; }
 
-  int NumberOfColors() const { return static_cast<int>(this->ClassOffsets.size()) - 1; }
+  int NumberOfColors() const { return static_cast<int>(this->Colors.Offsets.size()) - 1; }
   /// Vertices of colour k: ColorVertices()[ColorOffsets()[k] .. ColorOffsets()[k+1]).
-  const std::vector<int>& ColorOffsets() const { return this->ClassOffsets; }
-  const std::vector<int>& ColorVertices() const { return this->ClassVertices; }
+  const std::vector<int>& ColorOffsets() const { return this->Colors.Offsets; }
+  const std::vector<int>& ColorVertices() const { return this->Colors.Vertices; }
 
   /// The umbrella operator of vertex v with the docs/METHOD.md §6.4 weights (uniform when the
   /// weights of v sum to zero): U(v) = sum w_i q_i / W - v. Exposed for tests.
   Vec3 Umbrella(int v) const;
 
 private:
+  class SweepJob; // the parallel sweeps as StepScheduler steps (dsSolver.cxx)
+  /// Builds the colouring if the mesh changed; false when nothing can move (no topology
+  /// or no labels yet).
+  bool ReadyToSweep();
+  int SerialSweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+  int ParallelSweeps(int numThreads, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+  /// Copies the mesh's points and labels of local vertices [first, last) into the local copy.
+  void RefreshLocal(int first, int last);
   void BuildColoring();
   /// Writes local points and results [first, last) back to the mesh and the outputs.
   void CopyOut(int first, int last);
-  /// Partial statistics of the last sweep over one chunk of WorkVertices.
+  /// Partial statistics of the last sweep over one chunk of LocalColors.Vertices.
   struct ChunkSums
   {
     double Sum = 0, Max = 0;
@@ -135,9 +144,19 @@ private:
   SweepStatistics CombineStatistics(const std::vector<ChunkSums>& chunks) const;
   /// Builds the breadth-first copy of the topology used by the sweeps.
   void BuildLocalLayout();
+  void OrderBreadthFirst();   ///< Original and Local
+  void CopyTopologyToLocal(); ///< neighbour lists and fans in local ids
+  void BuildLocalColors();    ///< LocalColors from Colors
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
   /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);
+  /// The internal part of the correction of local vertex v, tau c1 + (1 - tau) alpha c2
+  /// (docs/METHOD.md §3-4), and its umbrella vector U(v) in `umbrella`.
+  Vec3 InternalCorrection(int v, Vec3& umbrella) const;
+  /// The external force F at local vertex v before the docs/METHOD.md §5 rule: the edge force
+  /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
+  /// region force's fan normal is returned in `normal` (haveNormal) for the rule to reuse.
+  Vec3 ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const;
 
   SolverParameters Parameters;
   TriangleMesh* Mesh = nullptr;
@@ -156,7 +175,12 @@ private:
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
-  std::vector<int> ClassOffsets{ 0 }, ClassVertices; ///< colour classes (CSR)
+  /// Vertices of colour k: Vertices[Offsets[k] .. Offsets[k+1]) (CSR), ascending ids.
+  struct ColorClasses
+  {
+    std::vector<int> Offsets{ 0 }, Vertices;
+  };
+  ColorClasses Colors; ///< in mesh ids
   int ColoredPoints = -1; ///< point count the colouring was built for
   std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues; ///< mesh order
 
@@ -173,7 +197,7 @@ private:
     int Outside = 0;
   };
   std::vector<VertexResult> LocalResults;        ///< copied to the mesh order after a call
-  std::vector<int> WorkOffsets{ 0 }, WorkVertices; ///< colour classes in local ids, ascending
+  ColorClasses LocalColors; ///< the same classes in local ids
 };
 } // namespace dsurf
 

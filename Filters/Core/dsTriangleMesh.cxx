@@ -8,7 +8,6 @@ namespace dsurf
 bool TriangleMesh::BuildTopology(std::string* error)
 {
   const int nPts = this->NumberOfPoints();
-  const int nTri = this->NumberOfTriangles();
   auto fail = [error](const std::string& msg) {
     if (error)
     {
@@ -25,6 +24,23 @@ bool TriangleMesh::BuildTopology(std::string* error)
     this->Levels.assign(nPts, 0);
   }
 
+  std::string message = this->BuildVertexTriangles();
+  if (message.empty())
+  {
+    message = this->BuildEdges();
+  }
+  if (!message.empty())
+  {
+    return fail(message);
+  }
+  this->BuildRings();
+  return true;
+}
+
+std::string TriangleMesh::BuildVertexTriangles()
+{
+  const int nPts = this->NumberOfPoints();
+  const int nTri = this->NumberOfTriangles();
   // Vertex -> triangles (CSR).
   this->VertexTriangleOffsets.assign(nPts + 1, 0);
   for (int t = 0; t < nTri; ++t)
@@ -34,12 +50,12 @@ bool TriangleMesh::BuildTopology(std::string* error)
     {
       if (tri[k] < 0 || tri[k] >= nPts)
       {
-        return fail("triangle " + std::to_string(t) + " has a point index out of range");
+        return "triangle " + std::to_string(t) + " has a point index out of range";
       }
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
     {
-      return fail("triangle " + std::to_string(t) + " is degenerate (a repeated vertex)");
+      return "triangle " + std::to_string(t) + " is degenerate (a repeated vertex)";
     }
     for (int k = 0; k < 3; ++k)
     {
@@ -61,8 +77,13 @@ bool TriangleMesh::BuildTopology(std::string* error)
       }
     }
   }
+  return std::string();
+}
 
-  // Edges.
+std::string TriangleMesh::BuildEdges()
+{
+  // Unique edges and the triangles on each side.
+  const int nTri = this->NumberOfTriangles();
   this->Edges.clear();
   this->EdgeTriangles.clear();
   this->TriangleEdges.assign(nTri, { -1, -1, -1 });
@@ -85,15 +106,21 @@ bool TriangleMesh::BuildTopology(std::string* error)
         auto& et = this->EdgeTriangles[ins.first->second];
         if (et[1] != -1)
         {
-          return fail("non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) +
-            ") is shared by three or more triangles");
+          return "non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) +
+            ") is shared by three or more triangles";
         }
         et[1] = t;
       }
       this->TriangleEdges[t][k] = ins.first->second;
     }
   }
+  this->EdgeLookup.swap(edgeIds);
+  return std::string();
+}
 
+void TriangleMesh::BuildRings()
+{
+  const int nPts = this->NumberOfPoints();
   // One-rings and boundary flags.
   this->BoundaryVertex.assign(nPts, 0);
   std::vector<std::vector<int>> rings(nPts);
@@ -118,8 +145,6 @@ bool TriangleMesh::BuildTopology(std::string* error)
   {
     std::copy(rings[v].begin(), rings[v].end(), this->Neighbors.begin() + this->NeighborOffsets[v]);
   }
-  this->EdgeLookup.swap(edgeIds);
-  return true;
 }
 
 int TriangleMesh::FindEdge(int a, int b) const
@@ -365,27 +390,14 @@ double TriangleMesh::SignedVolume() const
 
 double TriangleMesh::MeanEdgeLength() const
 {
-  if (this->Edges.empty())
-  {
-    return 0.0;
-  }
-  double sum = 0.0;
-  for (const auto& e : this->Edges)
-  {
-    sum += Norm(this->Points[e[1]] - this->Points[e[0]]);
-  }
-  return sum / static_cast<double>(this->Edges.size());
+  return MeanLength(this->Points, this->Edges.size(), [this](std::size_t e) { return this->Edges[e]; });
 }
 
 Vec3 TriangleMesh::AreaWeightedNormal(int v) const
 {
-  Vec3 n{ 0, 0, 0 };
-  for (int i = this->VertexTriangleOffsets[v]; i < this->VertexTriangleOffsets[v + 1]; ++i)
-  {
-    const auto& tri = this->Triangles[this->VertexTriangles[i]];
-    n = n + Cross(this->Points[tri[1]] - this->Points[tri[0]], this->Points[tri[2]] - this->Points[tri[0]]);
-  }
-  return n;
+  const int first = this->VertexTriangleOffsets[v];
+  return dsurf::AreaWeightedNormal(this->Points.data(), this->VertexTriangleOffsets[v + 1] - first,
+    [this, first](int i) -> const std::array<int, 3>& { return this->Triangles[this->VertexTriangles[first + i]]; });
 }
 
 double TriangleMesh::MinAngleDegrees(int t) const

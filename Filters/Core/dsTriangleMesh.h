@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -26,17 +27,62 @@ inline Vec3 Cross(const Vec3& a, const Vec3& b)
 }
 inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
 
-/// Key of the undirected edge (a, b), for hash maps of edges.
-inline unsigned long long EdgeKey(int a, int b)
+/// Key of the undirected edge (a, b) of point ids below 2^32, for hash maps of edges (the
+/// triangle mesh, the refinement and the seed surface).
+inline unsigned long long EdgeKey(long long a, long long b)
 {
   if (a > b)
   {
-    const int t = a;
+    const long long t = a;
     a = b;
     b = t;
   }
-  return (static_cast<unsigned long long>(static_cast<unsigned int>(a)) << 32) |
-    static_cast<unsigned int>(b);
+  return (static_cast<unsigned long long>(a) << 32) | static_cast<unsigned int>(b);
+}
+
+/// Mean of |p[b] - p[a]| over `count` edges, ends(i) giving the point ids {a, b} of edge i;
+/// 0 without edges. Each surface type chooses its edge set (unique edges, or half-edges).
+template <class Ends>
+inline double MeanLength(const std::vector<Vec3>& p, std::size_t count, const Ends& ends)
+{
+  if (count == 0)
+  {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const auto e = ends(i);
+    sum += Norm(p[e[1]] - p[e[0]]);
+  }
+  return sum / static_cast<double>(count);
+}
+
+/// The 1 -> 4 split of triangle v whose edge (v[k], v[k+1]) has midpoint m[k]: three corner
+/// children and the middle one, all with the parent's orientation. Used by the red splits of
+/// the refinement and the seed surface's uniform subdivision.
+template <class Triangle, class Id>
+inline void SplitInFour(const Triangle& v, const Id m[3], Triangle children[4])
+{
+  children[0] = { v[0], m[0], m[2] };
+  children[1] = { m[0], v[1], m[1] };
+  children[2] = { m[2], m[1], v[2] };
+  children[3] = { m[0], m[1], m[2] };
+}
+
+/// Unnormalised area-weighted normal of a fan of `count` triangles: the sum of their
+/// (b - a) x (c - a), corners(i) giving the corner ids {a, b, c} of the i-th one in
+/// `points`. Used by TriangleMesh::AreaWeightedNormal and the solver's local copy.
+template <class Corners>
+inline Vec3 AreaWeightedNormal(const Vec3* points, int count, const Corners& corners)
+{
+  Vec3 n{ 0, 0, 0 };
+  for (int i = 0; i < count; ++i)
+  {
+    const auto& tri = corners(i);
+    n = n + Cross(points[tri[1]] - points[tri[0]], points[tri[2]] - points[tri[0]]);
+  }
+  return n;
 }
 
 /// Vertex labels of red-green refinement (docs/METHOD.md §6.4). Initial and red vertices are N;
@@ -119,6 +165,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   double MinAngleDegrees(int t) const;
 
 private:
+  /// The steps of BuildTopology(); the first two return why the mesh is invalid, or "".
+  std::string BuildVertexTriangles(); ///< VertexTriangleOffsets / VertexTriangles
+  std::string BuildEdges();           ///< Edges, TriangleEdges, EdgeTriangles, EdgeLookup
+  void BuildRings();                  ///< NeighborOffsets / Neighbors, BoundaryVertex
+
   std::unordered_map<unsigned long long, int> EdgeLookup;
 };
 } // namespace dsurf

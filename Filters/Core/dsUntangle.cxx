@@ -1,6 +1,6 @@
 #include "dsUntangle.h"
 
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 #include <utility>
 #include <vector>

@@ -3,7 +3,7 @@
 // Usage: BenchHierarchy [sizes...]   (default 128 256)
 #include "../Cxx/HierarchyPhantoms.h"
 #include "dsMultilevel.h"
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 #include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"

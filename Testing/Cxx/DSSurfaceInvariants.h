@@ -13,7 +13,7 @@
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 #include "dsTriangleMesh.h"
 
 #include "vtkAlgorithm.h"

@@ -7,7 +7,7 @@
 
 #include "vtkDeformableSurfaceFilter.h"
 
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"

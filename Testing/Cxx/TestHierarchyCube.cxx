@@ -6,7 +6,7 @@
 #include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 #include "dsMultilevel.h"
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 using namespace dsurf;
 

@@ -4,7 +4,7 @@
 #include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 #include "dsMultilevel.h"
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "dsSelfIntersection.h"
+#include "dsSelfIntersectionCount.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,11 @@
-// Counting self-intersections of a triangle mesh (docs/METHOD.md §5, ours): a bounding-volume
+// Counting self-intersections of a triangle mesh (docs/METHOD.md §5, ours; the count behind
+// the SelfIntersections field; the rule that keeps the force from folding the surface is
+// dsSelfIntersectionRule.h): a bounding-volume
 // hierarchy over the triangles' bounding boxes finds candidate pairs (not O(n^2), and
 // bounded memory for any mix of triangle sizes), Moeller's interval test decides each
 // pair. Plain C++, no pipeline types.
-#ifndef dsSelfIntersection_h
-#define dsSelfIntersection_h
+#ifndef dsSelfIntersectionCount_h
+#define dsSelfIntersectionCount_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "dsTriangleMesh.h"
