@@ -5,10 +5,11 @@
 # Deformable Surface with every default; and one click in the white matter -> a 5 mm seed
 # sphere -> Deformable Surface with RegionWeight 1 and the IntensityRange read off the image.
 #
-# Measured (Release, this 2-core machine): picks 1.4 s, 14 466 vertices, one closed surface,
-# 0 self-intersections, vertex -> mask boundary mean 0.88, 95 % 3.62 mm, volume +3.8 %; click
-# 1.7 s, 11 015 vertices, mean 1.38, 95 % 6.6 mm, volume +2.5 %. The goals: picks mean
-# <= 1.0, 95 % <= 3.0 (not reached: 3.6), volume within 5 %; click mean <= 1.5, volume 8 %.
+# Measured (Release, this 2-core machine, another build running): picks 2.2 s, 14 936 vertices,
+# one closed surface, 0 self-intersections, vertex -> mask boundary mean 0.75, 95 % 2.90 mm,
+# volume +3.4 %; click 2.6 s, 11 015 vertices, mean 1.38, 95 % 6.6 mm, volume +2.5 %. The
+# issue's goals, asserted below: picks mean <= 1.0, 95 % <= 3.0, volume within 5 %; click mean
+# <= 1.5, volume within 8 %.
 import os
 import sys
 
