@@ -172,6 +172,25 @@ vtkSmartPointer<vtkPolyData> CleanPoints(
   return finite;
 }
 
+// Coordinates near the largest double overflow on the way to the surface (a sphere seed's
+// radius added to them, edge midpoints, pinch copies): such a surface is replaced by an error
+// and an empty output rather than passed on with infinite points.
+void EmptyIfNotFinite(vtkObject* self, vtkPolyData* surface)
+{
+  for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    surface->GetPoint(i, x);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    {
+      vtkErrorWithObjectMacro(self, "The point coordinates are too large: the seed surface "
+                                    "overflows to infinite coordinates; no surface.");
+      surface->Initialize();
+      return;
+    }
+  }
+}
+
 // The full tetrahedrisation in the core's terms, with what the removal rules and outputs need.
 struct SeedComplex
 {
@@ -647,6 +666,7 @@ int vtkDelaunaySeedSurface::RequestData(
     vtkNew<vtkPolyData> clicks;
     clicks->SetPoints(centres);
     BuildSphereSeeds(this, clicks, centreIds, this->SeedRadius, surfaceOut);
+    EmptyIfNotFinite(this, surfaceOut);
     return 1;
   }
 
@@ -675,6 +695,7 @@ int vtkDelaunaySeedSurface::RequestData(
   const dsurf::SeedSurface surface =
     ExtractSurface(this, complex, status, this->TargetEdgeLength);
   BuildSurfaceOutput(surface, inputId, surfaceOut);
+  EmptyIfNotFinite(this, surfaceOut);
   BuildTetrahedraOutput(complex, status, centroidValue, tetsOut);
   return 1;
 }
