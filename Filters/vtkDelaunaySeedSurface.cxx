@@ -129,9 +129,15 @@ bool GatherPointsOnProcessZero(vtkMultiProcessController* controller, vtkIdType 
   return true;
 }
 
+// Larger coordinates are dropped like non-finite ones: vtkDelaunay3D squares distances and
+// builds a bounding tetrahedron much larger than the points, which overflows for coordinates
+// beyond about 1e150 (it then crashes). No data set means such values.
+constexpr double MaxCoordinate = 1e100;
+
 // Copies the input's finite, non-ghost points with their point data and records each one's
-// input index in inputId. Delaunay3D's bounds and locator break on non-finite points; a ghost
-// copy of another process's point is dropped because that process contributes the point itself.
+// input index in inputId. Delaunay3D's bounds and locator break on non-finite points (and on
+// coordinates beyond MaxCoordinate); a ghost copy of another process's point is dropped because
+// that process contributes the point itself.
 vtkSmartPointer<vtkPolyData> CleanPoints(
   vtkObject* self, vtkPointSet* input, std::vector<vtkIdType>& inputId)
 {
@@ -152,7 +158,8 @@ vtkSmartPointer<vtkPolyData> CleanPoints(
     }
     double x[3];
     input->GetPoint(i, x);
-    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    if (std::abs(x[0]) <= MaxCoordinate && std::abs(x[1]) <= MaxCoordinate &&
+      std::abs(x[2]) <= MaxCoordinate) // false for NaN too
     {
       finite->GetPointData()->CopyData(input->GetPointData(), i, finitePoints->InsertNextPoint(x));
       inputId.push_back(i);
@@ -167,7 +174,8 @@ vtkSmartPointer<vtkPolyData> CleanPoints(
   if (nonFinite > 0)
   {
     vtkWarningWithObjectMacro(
-      self, "Ignored " << nonFinite << " point(s) with NaN or infinite coordinates.");
+      self, "Ignored " << nonFinite << " point(s) with NaN, infinite or out-of-range (beyond "
+                       << MaxCoordinate << ") coordinates.");
   }
   return finite;
 }
@@ -648,7 +656,7 @@ int vtkDelaunaySeedSurface::RequestData(
   }
   if (inputId.empty())
   {
-    vtkErrorMacro("No point with finite coordinates: nothing to seed from.");
+    vtkErrorMacro("No point with finite, in-range coordinates: nothing to seed from.");
     return 1;
   }
   const std::vector<vtkIdType> distinct = FirstDistinctPoints(finite, this->Tolerance, 4);

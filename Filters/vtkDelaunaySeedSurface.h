@@ -41,8 +41,10 @@
  * its region force (RegionWeight) to grow it to the object's boundary.
  *
  * Bad input (no finite point, four or more points all coplanar, every tetrahedron removed) gives
- * an error or warning and an empty surface; NaN/inf points are dropped with a warning; duplicate
- * points are merged by vtkDelaunay3D (Tolerance).
+ * an error or warning and an empty surface; NaN/inf points, and points with a coordinate beyond
+ * 1e100 (vtkDelaunay3D would overflow), are dropped with a warning; a surface that still overflows
+ * (a SeedRadius near the largest double) is an error; duplicate points are merged by
+ * vtkDelaunay3D (Tolerance).
  *
  * Distributed input (pvbatch/pvserver under MPI): the points of every process are gathered on
  * process 0 (through Controller, by default the global controller), which alone tetrahedrises

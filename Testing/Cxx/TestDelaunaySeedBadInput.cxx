@@ -154,6 +154,14 @@ int main()
   o = Run(huge);
   DS_CHECK(o.Errors == 1 && o.Triangles == 0, "overflowing coordinates -> error, empty (no infinite points)");
 
+  std::cout << "Cube corners plus a point at z = 1.7e308 (vtkDelaunay3D's bounds would overflow):" << std::endl;
+  vtkNew<vtkPoints> far;
+  far->SetDataTypeToDouble();
+  AddCube(far);
+  far->InsertNextPoint(2, 6, 1.7e308);
+  o = Run(far);
+  DS_CHECK(o.Errors == 0 && o.Warnings == 1 && o.Triangles == 12, "out-of-range point dropped with a warning: the cube");
+
   // The input is never modified in place.
   DS_CHECK(dup->GetNumberOfPoints() == 18, "input untouched");
   return dstest::Result("TestDelaunaySeedBadInput");
