@@ -18,6 +18,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -74,10 +75,44 @@ struct ConvergenceColumns
   }
 };
 
+/// Coordinates beyond this are refused like NaN: no image is that large, vtkCleanPolyData's
+/// point locator spends seconds per point on them, and the solver's squares overflow.
+constexpr double MaxCoordinate = 1e100;
+
+/// Whether every point that a polygon or strip uses has finite coordinates within MaxCoordinate
+/// (unused points, which the merging drops, may be anything).
+bool UsedPointsInRange(vtkPolyData* input)
+{
+  vtkNew<vtkIdList> ids;
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    for (vtkIdType c = 0; cells && c < cells->GetNumberOfCells(); ++c)
+    {
+      cells->GetCellAtId(c, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        double x[3];
+        input->GetPoint(ids->GetId(k), x);
+        if (!(std::abs(x[0]) <= MaxCoordinate && std::abs(x[1]) <= MaxCoordinate &&
+              std::abs(x[2]) <= MaxCoordinate)) // true for NaN too
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
 /// Triangulate and merge coincident points (copies; the input is untouched), then
 /// fill the core mesh. False with a message on bad input.
 bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error)
 {
+  if (!UsedPointsInRange(input))
+  {
+    error = "the initial surface has a NaN, infinite or out-of-range (beyond 1e100) point coordinate";
+    return false;
+  }
   vtkNew<vtkPolyData> copy;
   copy->ShallowCopy(input);
   vtkNew<vtkTriangleFilter> triangulate;
@@ -106,14 +141,6 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
   for (vtkIdType i = 0; i < nPts; ++i)
   {
     tri->GetPoint(i, mesh.Points[i].data());
-    for (double x : mesh.Points[i])
-    {
-      if (!std::isfinite(x))
-      {
-        error = "the initial surface has a non-finite point coordinate";
-        return false;
-      }
-    }
   }
   mesh.Triangles.reserve(tri->GetNumberOfPolys());
   auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
