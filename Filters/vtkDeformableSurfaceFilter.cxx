@@ -104,6 +104,37 @@ bool UsedPointsInRange(vtkPolyData* input)
   return true;
 }
 
+/// Drops the points no triangle uses (those of polygons that the merging made degenerate, whose
+/// points vtkCleanPolyData keeps): they are no part of the surface. The others keep their order.
+void DropUnusedPoints(dsurf::TriangleMesh& mesh)
+{
+  std::vector<int> newId(mesh.Points.size(), -1);
+  for (const auto& t : mesh.Triangles)
+  {
+    for (int v : t)
+    {
+      newId[v] = 0;
+    }
+  }
+  int kept = 0;
+  for (std::size_t v = 0; v < newId.size(); ++v)
+  {
+    if (newId[v] == 0)
+    {
+      mesh.Points[kept] = mesh.Points[v];
+      newId[v] = kept++;
+    }
+  }
+  mesh.Points.resize(kept);
+  for (auto& t : mesh.Triangles)
+  {
+    for (int& v : t)
+    {
+      v = newId[v];
+    }
+  }
+}
+
 /// Triangulate and merge coincident points (copies; the input is untouched), then
 /// fill the core mesh. False with a message on bad input.
 bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error)
@@ -155,6 +186,7 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
         { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
     }
   }
+  DropUnusedPoints(mesh);
   std::string topologyError;
   if (!mesh.BuildTopology(&topologyError))
   {
