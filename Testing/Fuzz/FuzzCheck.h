@@ -37,6 +37,18 @@ inline bool AllFinite(const dsurf::TriangleMesh& mesh)
   return true;
 }
 
+/// Euler characteristic of the triangles alone: points no triangle uses do not count.
+/// Needs BuildTopology().
+inline int SurfaceEuler(const dsurf::TriangleMesh& mesh)
+{
+  int used = 0;
+  for (int v = 0; v < mesh.NumberOfPoints(); ++v)
+  {
+    used += mesh.VertexTriangleOffsets[v + 1] > mesh.VertexTriangleOffsets[v] ? 1 : 0;
+  }
+  return used - static_cast<int>(mesh.Edges.size()) + mesh.NumberOfTriangles();
+}
+
 /// The topology of a surface a filter returns: builds it, then manifold edges and vertices,
 /// consistent orientation, no unused point; closed when asked. Returns "" or what is wrong.
 inline std::string SurfaceProblem(dsurf::TriangleMesh& mesh, bool mustBeClosed)

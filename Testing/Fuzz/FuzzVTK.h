@@ -81,6 +81,31 @@ inline void PrintPoints(const char* what, vtkPointSet* data)
   }
 }
 
+/// With FUZZ_VERBOSE set, prints the cells of a vtkPolyData by kind.
+inline void PrintCells(const char* what, vtkPolyData* pd)
+{
+  if (!std::getenv("FUZZ_VERBOSE"))
+  {
+    return;
+  }
+  const char* kinds[4] = { "vertex", "line", "polygon", "strip" };
+  vtkCellArray* arrays[4] = { pd->GetVerts(), pd->GetLines(), pd->GetPolys(), pd->GetStrips() };
+  vtkNew<vtkIdList> ids;
+  for (int k = 0; k < 4; ++k)
+  {
+    for (vtkIdType c = 0; arrays[k] && c < arrays[k]->GetNumberOfCells(); ++c)
+    {
+      arrays[k]->GetCellAtId(c, ids);
+      std::fprintf(stderr, "%s %s:", what, kinds[k]);
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        std::fprintf(stderr, " %lld", static_cast<long long>(ids->GetId(i)));
+      }
+      std::fprintf(stderr, "\n");
+    }
+  }
+}
+
 /// The triangles and points of a filter's surface output as a mesh (its topology not built yet);
 /// false when a polygon is not a triangle or other cells are present.
 inline bool ToMesh(vtkPolyData* pd, dsurf::TriangleMesh& mesh)
