@@ -5,8 +5,8 @@
 // inf or any double; random Alpha, removed tetrahedron IDs (valid or not), Tolerance, SeedRadius,
 // TargetEdgeLength (bounded so the subdivision stays small) and the intensity rule on a tiny
 // image. The class's promises (its header comment): no crash; either an empty surface with an
-// error or a warning, or a closed, 2-manifold, consistently and outward-oriented triangle
-// surface with finite points and a SeedPointId per point indexing the input (or -1); the
+// error or a warning, or a closed, 2-manifold, consistently and outward-oriented (a positive
+// enclosed volume) triangle surface with finite points and a SeedPointId per point indexing the input (or -1); the
 // tetrahedra output carries TetraId and Removed per cell; the input is unchanged.
 #include "FuzzVTK.h"
 #include "vtkDelaunaySeedSurface.h"
@@ -79,8 +79,9 @@ void CheckSurface(vtkDelaunaySeedSurface* seed, vtkIdType nInput)
   FUZZ_CHECK(fuzzvtk::ToMesh(out, mesh), "the surface has triangles only");
   const std::string problem = fuzzcheck::SurfaceProblem(mesh, true);
   FUZZ_CHECK(problem.empty(), "a closed, oriented 2-manifold with finite points: " + problem);
-  dsurf::TriangleMesh flipped = mesh;
-  FUZZ_CHECK(flipped.OrientPiecesOutward() == 0, "every closed piece is oriented outward");
+  // Outward from the kept tetrahedra: a cavity's piece faces into the cavity (its own volume is
+  // negative), so only the whole encloses a positive volume.
+  FUZZ_CHECK(mesh.SignedVolume() > 0, "oriented outward: the surface encloses a positive volume");
 
   vtkDataArray* ids = out->GetPointData()->GetArray("SeedPointId");
   FUZZ_CHECK(ids && ids->GetNumberOfTuples() == out->GetNumberOfPoints(), "a SeedPointId per point");
@@ -128,6 +129,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   fuzzvtk::PrintPoints("input", cloud);
   seed->Update();
   fuzzvtk::PrintPoints("surface", seed->GetOutput());
+  fuzzvtk::PrintCells("surface", seed->GetOutput());
 
   FUZZ_CHECK(fuzzvtk::Fingerprint(cloud) == before, "the input points are unchanged");
   if (seed->GetOutput()->GetNumberOfCells() == 0)
