@@ -18,6 +18,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -76,6 +77,66 @@ struct ConvergenceColumns
   }
 };
 
+/// Coordinates beyond this are refused like NaN: no image is that large, vtkCleanPolyData's
+/// point locator spends seconds per point on them, and the solver's squares overflow.
+constexpr double MaxCoordinate = 1e100;
+
+/// Whether every point that a polygon or strip uses has finite coordinates within MaxCoordinate
+/// (unused points, which the merging drops, may be anything).
+bool UsedPointsInRange(vtkPolyData* input)
+{
+  vtkNew<vtkIdList> ids;
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    for (vtkIdType c = 0; cells && c < cells->GetNumberOfCells(); ++c)
+    {
+      cells->GetCellAtId(c, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        double x[3];
+        input->GetPoint(ids->GetId(k), x);
+        if (!(std::abs(x[0]) <= MaxCoordinate && std::abs(x[1]) <= MaxCoordinate &&
+              std::abs(x[2]) <= MaxCoordinate)) // true for NaN too
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+/// Drops the points no triangle uses (those of polygons that the merging made degenerate, whose
+/// points vtkCleanPolyData keeps): they are no part of the surface. The others keep their order.
+void DropUnusedPoints(dsurf::TriangleMesh& mesh)
+{
+  std::vector<int> newId(mesh.Points.size(), -1);
+  for (const auto& t : mesh.Triangles)
+  {
+    for (int v : t)
+    {
+      newId[v] = 0;
+    }
+  }
+  int kept = 0;
+  for (std::size_t v = 0; v < newId.size(); ++v)
+  {
+    if (newId[v] == 0)
+    {
+      mesh.Points[kept] = mesh.Points[v];
+      newId[v] = kept++;
+    }
+  }
+  mesh.Points.resize(kept);
+  for (auto& t : mesh.Triangles)
+  {
+    for (int& v : t)
+    {
+      v = newId[v];
+    }
+  }
+}
+
 /// Triangulate and merge coincident points (copies; the input is untouched), then
 /// fill the core mesh. False with a message on bad input.
 /// True when two distinct points of `poly` lie within `tolerance` of each other.
@@ -111,6 +172,11 @@ bool HasNearDuplicatePoints(vtkPolyData* poly, double tolerance)
 
 bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error)
 {
+  if (!UsedPointsInRange(input))
+  {
+    error = "the initial surface has a non-finite point coordinate (NaN, infinite or beyond 1e100)";
+    return false;
+  }
   vtkNew<vtkPolyData> copy;
   copy->ShallowCopy(input);
   vtkNew<vtkTriangleFilter> triangulate;
@@ -145,11 +211,13 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     error = "the initial surface has no polygons or triangle strips";
     return false;
   }
-  // The cleaning drops a triangle that names a point twice but may keep its points: only
-  // the points of triangles become vertices (in input order), so none is left without a face.
   const vtkIdType nPts = tri->GetNumberOfPoints();
-  std::vector<int> vertexOf(static_cast<std::size_t>(nPts), -1);
   mesh = dsurf::TriangleMesh();
+  mesh.Points.resize(nPts);
+  for (vtkIdType i = 0; i < nPts; ++i)
+  {
+    tri->GetPoint(i, mesh.Points[i].data());
+  }
   mesh.Triangles.reserve(tri->GetNumberOfPolys());
   auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
@@ -161,31 +229,10 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     {
       mesh.Triangles.push_back(
         { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
-      vertexOf[ids[0]] = vertexOf[ids[1]] = vertexOf[ids[2]] = 0;
     }
   }
-  for (vtkIdType i = 0; i < nPts; ++i)
-  {
-    if (vertexOf[i] < 0)
-    {
-      continue;
-    }
-    vertexOf[i] = static_cast<int>(mesh.Points.size());
-    mesh.Points.emplace_back();
-    tri->GetPoint(i, mesh.Points.back().data());
-    for (double x : mesh.Points.back())
-    {
-      if (!std::isfinite(x))
-      {
-        error = "the initial surface has a non-finite point coordinate";
-        return false;
-      }
-    }
-  }
-  for (auto& t : mesh.Triangles)
-  {
-    t = { vertexOf[t[0]], vertexOf[t[1]], vertexOf[t[2]] };
-  }
+  // The cleaning drops a triangle that names a point twice but keeps its points.
+  DropUnusedPoints(mesh);
   std::string topologyError;
   if (!mesh.BuildTopology(&topologyError))
   {

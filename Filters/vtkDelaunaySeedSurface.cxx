@@ -117,9 +117,15 @@ bool GatherPointsOnProcessZero(vtkMultiProcessController* controller, vtkIdType 
   return true;
 }
 
+// Larger coordinates are dropped like non-finite ones: vtkDelaunay3D squares distances and
+// builds a bounding tetrahedron much larger than the points, which overflows for coordinates
+// beyond about 1e150 (it then crashes). No data set means such values.
+constexpr double MaxCoordinate = 1e100;
+
 // Copies the input's finite, non-ghost points with their point data and records each one's
-// input index in inputId. Delaunay3D's bounds and locator break on non-finite points; a ghost
-// copy of another process's point is dropped because that process contributes the point itself.
+// input index in inputId. Delaunay3D's bounds and locator break on non-finite points (and on
+// coordinates beyond MaxCoordinate); a ghost copy of another process's point is dropped because
+// that process contributes the point itself.
 vtkSmartPointer<vtkPolyData> CleanPoints(
   vtkObject* self, vtkPointSet* input, std::vector<vtkIdType>& inputId)
 {
@@ -140,7 +146,8 @@ vtkSmartPointer<vtkPolyData> CleanPoints(
     }
     double x[3];
     input->GetPoint(i, x);
-    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    if (std::abs(x[0]) <= MaxCoordinate && std::abs(x[1]) <= MaxCoordinate &&
+      std::abs(x[2]) <= MaxCoordinate) // false for NaN too
     {
       finite->GetPointData()->CopyData(input->GetPointData(), i, finitePoints->InsertNextPoint(x));
       inputId.push_back(i);
@@ -155,9 +162,29 @@ vtkSmartPointer<vtkPolyData> CleanPoints(
   if (nonFinite > 0)
   {
     vtkWarningWithObjectMacro(
-      self, "Ignored " << nonFinite << " point(s) with NaN or infinite coordinates.");
+      self, "Ignored " << nonFinite << " point(s) with NaN, infinite or out-of-range (beyond "
+                       << MaxCoordinate << ") coordinates.");
   }
   return finite;
+}
+
+// Coordinates near the largest double overflow on the way to the surface (a sphere seed's
+// radius added to them, edge midpoints, pinch copies): such a surface is replaced by an error
+// and an empty output rather than passed on with infinite points.
+void EmptyIfNotFinite(vtkObject* self, vtkPolyData* surface)
+{
+  for (vtkIdType i = 0; i < surface->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    surface->GetPoint(i, x);
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    {
+      vtkErrorWithObjectMacro(self, "The point coordinates are too large: the seed surface "
+                                    "overflows to infinite coordinates; no surface.");
+      surface->Initialize();
+      return;
+    }
+  }
 }
 
 // The full tetrahedrisation in the core's terms, with what the removal rules and outputs need.
@@ -624,7 +651,7 @@ int vtkDelaunaySeedSurface::RequestData(
   }
   if (inputId.empty())
   {
-    vtkErrorMacro("No point with finite coordinates: nothing to seed from.");
+    vtkErrorMacro("No point with finite, in-range coordinates: nothing to seed from.");
     return 1;
   }
   const std::vector<vtkIdType> distinct = FirstDistinctPoints(finite, this->Tolerance, 4);
@@ -649,6 +676,7 @@ int vtkDelaunaySeedSurface::RequestData(
     vtkNew<vtkPolyData> clicks;
     clicks->SetPoints(centres);
     BuildSphereSeeds(this, clicks, centreIds, this->SeedRadius, surfaceOut);
+    EmptyIfNotFinite(this, surfaceOut);
     return 1;
   }
 
@@ -677,6 +705,7 @@ int vtkDelaunaySeedSurface::RequestData(
   const dsurf::SeedSurface surface =
     ExtractSurface(this, complex, status, this->TargetEdgeLength);
   BuildSurfaceOutput(surface, inputId, surfaceOut);
+  EmptyIfNotFinite(this, surfaceOut);
   BuildTetrahedraOutput(complex, status, centroidValue, tetsOut);
   return 1;
 }

@@ -41,9 +41,11 @@
  * its region force (RegionWeight) to grow it to the object's boundary.
  *
  * Bad input (no finite point, four or more points all coplanar, every tetrahedron removed, a
- * NaN parameter) gives an error or warning and an empty surface; NaN/inf points are dropped with
- * a warning; points closer than Tolerance x the bounding-box diagonal are merged, with a warning
- * when four or more points merge into fewer than four (a seed sphere around each cluster then).
+ * NaN parameter) gives an error or warning and an empty surface; NaN/inf points, and points with
+ * a coordinate beyond 1e100 (vtkDelaunay3D would overflow), are dropped with a warning; a
+ * surface that still overflows (a SeedRadius near the largest double) is an error; points closer
+ * than Tolerance x the bounding-box diagonal are merged, with a warning when four or more points
+ * merge into fewer than four (a seed sphere around each cluster then).
  *
  * Distributed input (pvbatch/pvserver under MPI): the points of every process are gathered on
  * process 0 (through Controller, by default the global controller), which alone tetrahedrises

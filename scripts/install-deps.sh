@@ -6,6 +6,9 @@ set -euo pipefail
 packages=(
   # toolchain
   cmake g++ make
+  # the sanitizer and fuzzing stages of scripts/test.sh (clang++ with libFuzzer and the
+  # ASan/UBSan runtimes)
+  clang libclang-rt-14-dev
   # ParaView 5.11 with its bundled VTK 9.2 (do NOT add libvtk9-dev/python3-vtk9: they remove python3-paraview)
   paraview-dev python3-paraview libopenmpi-dev
   # XML_DOCUMENTATION ON (the GUI help pages)

@@ -143,6 +143,17 @@ int TestDeformableSurfaceInput(int, char*[])
               << " triangles" << std::endl;
     DS_CHECK(r.Surface->GetNumberOfPoints() == 8, "the Box's 24 points merge into 8");
     DS_CHECK(r.Surface->GetNumberOfPolys() == 12, "the Box's 6 quads become 12 triangles");
+
+    // A polygon of one repeated point beside it is no part of the surface: no stray output point.
+    vtkNew<vtkPolyData> boxAndDot;
+    boxAndDot->DeepCopy(box->GetOutput());
+    const vtkIdType dot = boxAndDot->GetPoints()->InsertNextPoint(20, 32, 32);
+    const vtkIdType ids[3] = { dot, dot, dot };
+    boxAndDot->GetPolys()->InsertNextCell(3, ids);
+    const Result d = Deform(image, boxAndDot, 20);
+    std::cout << "Box and a one-point polygon: " << d.Surface->GetNumberOfPoints() << " output points" << std::endl;
+    DS_CHECK(d.Errors == 0 && d.Surface->GetNumberOfPoints() == 8 && d.Surface->GetNumberOfPolys() == 12,
+      "a one-point polygon leaves no point outside the surface: the cube's 8 points, 12 triangles");
     DS_CHECK(r.Errors == 0, "no error for the Box");
 
     // With SubdivideInitialSurface (the default) the merged cube (mean edge 27.3) is split

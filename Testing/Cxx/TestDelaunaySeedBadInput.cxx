@@ -147,6 +147,21 @@ int main()
   o = Run(cube, [](vtkDelaunaySeedSurface* s) { s->UseIntensityRangeOn(); });
   DS_CHECK(o.Errors == 0 && o.Warnings == 1 && o.Triangles == 12, "warning, rule skipped");
 
+  std::cout << "One click at the largest coordinates (the seed sphere would overflow):" << std::endl;
+  vtkNew<vtkPoints> huge;
+  huge->SetDataTypeToDouble();
+  huge->InsertNextPoint(-std::numeric_limits<double>::max(), 0, 0);
+  o = Run(huge);
+  DS_CHECK(o.Errors == 1 && o.Triangles == 0, "overflowing coordinates -> error, empty (no infinite points)");
+
+  std::cout << "Cube corners plus a point at z = 1.7e308 (vtkDelaunay3D's bounds would overflow):" << std::endl;
+  vtkNew<vtkPoints> far;
+  far->SetDataTypeToDouble();
+  AddCube(far);
+  far->InsertNextPoint(2, 6, 1.7e308);
+  o = Run(far);
+  DS_CHECK(o.Errors == 0 && o.Warnings == 1 && o.Triangles == 12, "out-of-range point dropped with a warning: the cube");
+
   // The input is never modified in place.
   DS_CHECK(dup->GetNumberOfPoints() == 18, "input untouched");
   return dstest::Result("TestDelaunaySeedBadInput");
