@@ -76,7 +76,8 @@ vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, st
   return nullptr;
 }
 
-bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error)
+bool GetImageVolume(
+  vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error)
 {
   if (!image || image->GetNumberOfPoints() <= 0)
   {
@@ -110,13 +111,15 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, ImageVolume& vol
     error = "The array '" + ArrayName(scalars) + "' has " +
       std::to_string(scalars->GetNumberOfComponents()) +
       " components; one is needed (compute one first, e.g. its magnitude with a Calculator). "
-      "Point arrays with one component: " + ScalarChoices(image);
+      "Point arrays with one component: " +
+      ScalarChoices(image);
     return false;
   }
   image->GetSpacing(g.Spacing);
   const int* extent = image->GetExtent();
   image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], g.Origin);
-  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9, g.Direction);
+  std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9,
+    g.Direction);
 
   volume.Array = scalars;
   volume.Storage.clear();

@@ -22,7 +22,8 @@ bool IsRotation(const double r[9])
   {
     for (int b = 0; b < 3; ++b)
     {
-      const double dot = r[3 * a] * r[3 * b] + r[3 * a + 1] * r[3 * b + 1] + r[3 * a + 2] * r[3 * b + 2];
+      const double dot =
+        r[3 * a] * r[3 * b] + r[3 * a + 1] * r[3 * b + 1] + r[3 * a + 2] * r[3 * b + 2];
       if (std::abs(dot - (a == b ? 1.0 : 0.0)) > 1e-4)
       {
         return false;

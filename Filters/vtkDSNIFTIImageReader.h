@@ -9,9 +9,10 @@
  * other data there, and oblique scans keep their orientation. The sform is used when the file
  * marks it as meant (sform_code > 0: templates and atlases keep their standard space there) and
  * it is a rotation (orthonormal, positive determinant, to 1e-4); otherwise the qform when
- * qform_code > 0; otherwise the image stays axis-aligned at the origin, as with VTK's reader. Both matrices map VTK's data coordinates (origin + index x spacing, slices
- * already reordered for qfac) to the file's world, so world = R (origin + ijk spacing) + t:
- * the output's direction matrix is R and its origin R origin + t.
+ * qform_code > 0; otherwise the image stays axis-aligned at the origin, as with VTK's reader. Both
+ * matrices map VTK's data coordinates (origin + index x spacing, slices already reordered for qfac)
+ * to the file's world, so world = R (origin + ijk spacing) + t: the output's direction matrix is R
+ * and its origin R origin + t.
  *
  * The plugin's "NIfTI Image Reader (Deformable Surface)" is this class.
  */

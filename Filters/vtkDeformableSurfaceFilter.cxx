@@ -2,10 +2,10 @@
 
 #include "dsMultilevel.h"
 #include "dsScaleSpace.h"
-#include "dsVTKImage.h"
 #include "dsSelfIntersectionCount.h"
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
+#include "dsVTKImage.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -69,8 +69,9 @@ struct ConvergenceColumns
   }
   void AddTo(vtkTable* table)
   {
-    for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{ this->Sweep, this->Level,
-           this->Sigma, this->Vertices, this->Triangles, this->MeanCorrection, this->MaxCorrection })
+    for (vtkAbstractArray* a :
+      std::initializer_list<vtkAbstractArray*>{ this->Sweep, this->Level, this->Sigma,
+        this->Vertices, this->Triangles, this->MeanCorrection, this->MaxCorrection })
     {
       table->AddColumn(a);
     }
@@ -200,7 +201,8 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
   clean->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
   clean->Update();
   constexpr double relativeTolerance = 1e-6;
-  if (HasNearDuplicatePoints(clean->GetOutput(), relativeTolerance * triangulate->GetOutput()->GetLength()))
+  if (HasNearDuplicatePoints(
+        clean->GetOutput(), relativeTolerance * triangulate->GetOutput()->GetLength()))
   {
     clean->SetTolerance(relativeTolerance);
     clean->Update();
@@ -286,14 +288,16 @@ bool CoarsenMesh(const dsurf::TriangleMesh& fine, double edge, dsurf::TriangleMe
   vtkNew<vtkQuadricClustering> cluster;
   cluster->SetInputData(poly);
   cluster->AutoAdjustNumberOfDivisionsOff();
-  cluster->SetDivisionOrigin(bounds[0] - 0.5 * edge, bounds[2] - 0.5 * edge, bounds[4] - 0.5 * edge);
+  cluster->SetDivisionOrigin(
+    bounds[0] - 0.5 * edge, bounds[2] - 0.5 * edge, bounds[4] - 0.5 * edge);
   cluster->SetDivisionSpacing(edge, edge, edge);
   cluster->Update();
   std::string error;
   return BuildMesh(cluster->GetOutput(), coarse, error);
 }
 
-void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
+void FillOutput(
+  const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
 {
   const int nPts = mesh.NumberOfPoints();
   SetGeometry(mesh, output);
@@ -322,9 +326,8 @@ void FillOutput(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& 
   }
   vtkPointData* pd = output->GetPointData();
   pd->SetNormals(normals);
-  const auto sized = [nPts](const std::vector<double>& v) {
-    return static_cast<int>(v.size()) == nPts ? v : std::vector<double>(nPts, 0.0);
-  };
+  const auto sized = [nPts](const std::vector<double>& v)
+  { return static_cast<int>(v.size()) == nPts ? v : std::vector<double>(nPts, 0.0); };
   pd->AddArray(PointArray("Displacement", sized(solver.GetDisplacement())));
   pd->AddArray(PointArray("ExternalForce", sized(solver.GetExternalForce())));
   pd->AddArray(PointArray("ErrorIndicator", sized(solver.GetErrorIndicator())));
@@ -386,8 +389,8 @@ void AddFieldValue(vtkFieldData* fd, const char* name, T value)
   fd->AddArray(a);
 }
 /// The field data of output 0 (the list the class comment, the XML help and the README give).
-void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMesh& mesh, bool region, bool warm,
-  vtkFieldData* fd)
+void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMesh& mesh,
+  bool region, bool warm, vtkFieldData* fd)
 {
   AddFieldValue<vtkIntArray>(fd, "Sweeps", solver.GetTotalSweeps());
   AddFieldValue<vtkIntArray>(fd, "Levels", static_cast<int>(solver.GetLevels().size()));
@@ -395,7 +398,8 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
   AddFieldValue<vtkDoubleArray>(fd, "FinalMeanCorrection", solver.GetFinalMeanCorrection());
   AddFieldValue<vtkIntArray>(fd, "SelfIntersections", dsurf::CountSelfIntersections(mesh));
   AddFieldValue<vtkDoubleArray>(fd, "Sigma", solver.GetFinalSigma());
-  AddFieldValue<vtkDoubleArray>(fd, "InitialSigma", solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma);
+  AddFieldValue<vtkDoubleArray>(
+    fd, "InitialSigma", solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma);
   if (region)
   {
     vtkNew<vtkDoubleArray> usedRange;
@@ -510,13 +514,15 @@ int vtkDeformableSurfaceFilter::RequestInformation(
   {
     bound = std::min<long long>(bound, this->MaxSweeps);
   }
-  const long long steps = std::min<long long>(static_cast<long long>(MaxSnapshots) - 1, (bound + S - 1) / S);
+  const long long steps =
+    std::min<long long>(static_cast<long long>(MaxSnapshots) - 1, (bound + S - 1) / S);
   std::vector<double> times(static_cast<std::size_t>(steps + 1));
   for (long long k = 0; k <= steps; ++k)
   {
     times[static_cast<std::size_t>(k)] = static_cast<double>(k * S);
   }
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+  outInfo->Set(
+    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
   const double range[2] = { 0.0, times.back() };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   return 1;
@@ -526,15 +532,16 @@ void vtkDeformableSurfaceFilter::ServeTimeStep(double t, vtkPolyData* output)
 {
   const double k = t < 0 ? -1.0 : std::floor(t / this->SweepsPerTimeStep + 1e-9);
   const bool snapshot = k >= 0 && k < static_cast<double>(this->Snapshots.size());
-  output->ShallowCopy(snapshot ? this->Snapshots[static_cast<std::size_t>(k)].Get() : this->AnimationResult.Get());
+  output->ShallowCopy(
+    snapshot ? this->Snapshots[static_cast<std::size_t>(k)].Get() : this->AnimationResult.Get());
   if (t >= 0)
   {
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   }
 }
 
-bool vtkDeformableSurfaceFilter::ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
-  double t, vtkPolyData* output, vtkTable* table)
+bool vtkDeformableSurfaceFilter::ServeFromCache(vtkImageData* image, vtkPolyData* surface,
+  const vtkMTimeType key[3], double t, vtkPolyData* output, vtkTable* table)
 {
   if (!this->AnimateSweeps || !this->AnimationResult || this->AnimationInputs[0] != image ||
     this->AnimationInputs[1] != surface || !std::equal(key, key + 3, this->AnimationKey))
@@ -633,18 +640,20 @@ void vtkDeformableSurfaceFilter::Report(const dsurf::MultilevelSolver& solver)
                        "the initial surface may reach beyond the volume.");
   }
   const dsurf::InitialSigmaChoice& choice = solver.GetInitialSigmaChoice();
-  vtkDebugMacro(<< "sigma_0 " << (solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma)
-                << (choice.SpansVolume ? ": the start spans the volume (extent / 6)" : "")
-                << (choice.Rays > 0 ? ": the 90th-percentile distance " + std::to_string(choice.StartDistance) +
-                        " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) + " of " +
-                        std::to_string(choice.Rays) + " rays met one)" : std::string()));
+  vtkDebugMacro(
+    << "sigma_0 " << (solver.GetLevels().empty() ? 0.0 : solver.GetLevels().front().Sigma)
+    << (choice.SpansVolume ? ": the start spans the volume (extent / 6)" : "")
+    << (choice.Rays > 0 ? ": the 90th-percentile distance " + std::to_string(choice.StartDistance) +
+             " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) +
+             " of " + std::to_string(choice.Rays) + " rays met one)"
+                        : std::string()));
   vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()
                 << " vertices lay outside the image during a sweep.");
 }
 
 //------------------------------------------------------------------------------
-void vtkDeformableSurfaceFilter::KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
-  bool complete, vtkPolyData* output, vtkTable* table)
+void vtkDeformableSurfaceFilter::KeepResult(vtkImageData* image, vtkPolyData* surface,
+  const vtkMTimeType key[3], bool complete, vtkPolyData* output, vtkTable* table)
 {
   if (this->ContinueFromLastResult && complete)
   {
@@ -673,7 +682,8 @@ void vtkDeformableSurfaceFilter::KeepResult(vtkImageData* image, vtkPolyData* su
 }
 
 //------------------------------------------------------------------------------
-bool vtkDeformableSurfaceFilter::ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
+bool vtkDeformableSurfaceFilter::ReadImage(
+  vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
 {
   std::string error;
   if (!dsurf::GetImageVolume(image, array, volume, error))
@@ -700,10 +710,12 @@ bool vtkDeformableSurfaceFilter::ParametersAreFinite()
 {
   // vtkSetClampMacro lets NaN through: a NaN Tau gives NaN coordinates, a NaN Sigma falls
   // back to SigmaFraction, a NaN tolerance never converges.
-  const std::string nonFinite = dsurf::FirstNonFinite({ { "Tau", this->Tau }, { "Gamma", this->Gamma },
-    { "EdgeWeight", this->EdgeWeight }, { "ImageWeight", this->ImageWeight }, { "Sigma", this->Sigma },
-    { "SigmaFraction", this->SigmaFraction }, { "RegionWeight", this->RegionWeight },
-    { "ConvergenceTolerance", this->ConvergenceTolerance }, { "RefinementThreshold", this->RefinementThreshold } });
+  const std::string nonFinite = dsurf::FirstNonFinite(
+    { { "Tau", this->Tau }, { "Gamma", this->Gamma }, { "EdgeWeight", this->EdgeWeight },
+      { "ImageWeight", this->ImageWeight }, { "Sigma", this->Sigma },
+      { "SigmaFraction", this->SigmaFraction }, { "RegionWeight", this->RegionWeight },
+      { "ConvergenceTolerance", this->ConvergenceTolerance },
+      { "RefinementThreshold", this->RefinementThreshold } });
   if (!nonFinite.empty())
   {
     vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
@@ -726,8 +738,8 @@ bool vtkDeformableSurfaceFilter::StartMesh(vtkPolyData* start, dsurf::TriangleMe
     // Normals (the projection direction) and the refinement's invariants need neighbours
     // to agree; each piece keeps the orientation most of its triangles had.
     const int flipped = mesh.OrientConsistently();
-    vtkWarningMacro("The initial surface was not consistently oriented: " << flipped
-                                                                          << " triangle(s) flipped to agree with their neighbours.");
+    vtkWarningMacro("The initial surface was not consistently oriented: "
+      << flipped << " triangle(s) flipped to agree with their neighbours.");
   }
   vtkDebugMacro("Initial surface: " << mesh.NumberOfPoints() << " points, "
                                     << mesh.NumberOfTriangles() << " triangles, signed volume "
@@ -739,8 +751,8 @@ bool vtkDeformableSurfaceFilter::StartMesh(vtkPolyData* start, dsurf::TriangleMe
 // The multilevel solve: dsurf::MultilevelSolver runs the levels (sweeps, error estimator,
 // red-green refinement, butterfly, sigma halving, force field per level); here only
 // parameters in, the convergence table and AnimateSweeps' snapshots out.
-bool vtkDeformableSurfaceFilter::Solve(
-  const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh, dsurf::MultilevelSolver& solver, vtkTable* table)
+bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh,
+  dsurf::MultilevelSolver& solver, vtkTable* table)
 {
   dsurf::MultilevelParameters mp;
   this->ExchangeParameters(mp, true);
@@ -753,27 +765,31 @@ bool vtkDeformableSurfaceFilter::Solve(
   }
   solver.SetParameters(mp);
   solver.SetCoarsenCallback(CoarsenMesh);
-  solver.SetProgressCallback([this](double f) {
-    this->UpdateProgress(0.02 + 0.96 * f);
-    return !this->GetAbortExecute();
-  });
-  ConvergenceColumns columns;
-  solver.SetSweepCallback([&columns, this](const dsurf::SweepRecord& r, const dsurf::TriangleMesh& m) {
-    if (this->AnimateSweeps && r.Sweep % this->SweepsPerTimeStep == 0 &&
-      this->Snapshots.size() < MaxSnapshots &&
-      static_cast<double>(this->Snapshots.size() + 1) * SnapshotBytes(m) <= MaxSnapshotBytes)
+  solver.SetProgressCallback(
+    [this](double f)
     {
-      this->Snapshots.push_back(MeshSnapshot(m, r.Sweep));
-    }
-    columns.Sweep->InsertNextValue(r.Sweep);
-    columns.Level->InsertNextValue(r.Level);
-    columns.Sigma->InsertNextValue(r.Sigma);
-    columns.Vertices->InsertNextValue(r.Vertices);
-    columns.Triangles->InsertNextValue(r.Triangles);
-    columns.MeanCorrection->InsertNextValue(r.MeanCorrection);
-    columns.MaxCorrection->InsertNextValue(r.MaxCorrection);
-    return true;
-  });
+      this->UpdateProgress(0.02 + 0.96 * f);
+      return !this->GetAbortExecute();
+    });
+  ConvergenceColumns columns;
+  solver.SetSweepCallback(
+    [&columns, this](const dsurf::SweepRecord& r, const dsurf::TriangleMesh& m)
+    {
+      if (this->AnimateSweeps && r.Sweep % this->SweepsPerTimeStep == 0 &&
+        this->Snapshots.size() < MaxSnapshots &&
+        static_cast<double>(this->Snapshots.size() + 1) * SnapshotBytes(m) <= MaxSnapshotBytes)
+      {
+        this->Snapshots.push_back(MeshSnapshot(m, r.Sweep));
+      }
+      columns.Sweep->InsertNextValue(r.Sweep);
+      columns.Level->InsertNextValue(r.Level);
+      columns.Sigma->InsertNextValue(r.Sigma);
+      columns.Vertices->InsertNextValue(r.Vertices);
+      columns.Triangles->InsertNextValue(r.Triangles);
+      columns.MeanCorrection->InsertNextValue(r.MeanCorrection);
+      columns.MaxCorrection->InsertNextValue(r.MaxCorrection);
+      return true;
+    });
   std::string error;
   if (!solver.Run(volume.Values, volume.Geometry, mesh, &error))
   {
@@ -806,7 +822,8 @@ int vtkDeformableSurfaceFilter::RequestData(
   const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
   if (distributed)
   {
-    if (!vtkDSPolyDataGather::GatherOnProcessZero(this->Controller, OwnedSurfacePiece(surface), gathered))
+    if (!vtkDSPolyDataGather::GatherOnProcessZero(
+          this->Controller, OwnedSurfacePiece(surface), gathered))
     {
       return 1;
     }
@@ -819,12 +836,14 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
   if (!surface)
   {
-    vtkErrorMacro("No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
+    vtkErrorMacro(
+      "No initial surface (port 1): connect a vtkPolyData with SetInitialSurfaceConnection().");
     return 1;
   }
   // AnimateSweeps: a time step already computed comes from the cache, before any work.
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const double requestedTime = this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+  const double requestedTime =
+    this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
     : -1.0;
   const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
@@ -834,19 +853,21 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
 
   dsurf::ImageVolume volume;
-  if (!this->ReadImage(image, this->GetInputArrayToProcess(0, inputVector), volume) || !this->ParametersAreFinite())
+  if (!this->ReadImage(image, this->GetInputArrayToProcess(0, inputVector), volume) ||
+    !this->ParametersAreFinite())
   {
     return 1;
   }
   // The start: the input, or the last result (warm start) when only the filter's own
   // parameters changed since.
   const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
-    this->LastImage == image && this->LastImageTime == image->GetMTime() && this->LastSurface == surface &&
-    this->LastSurfaceTime == surface->GetMTime();
+    this->LastImage == image && this->LastImageTime == image->GetMTime() &&
+    this->LastSurface == surface && this->LastSurfaceTime == surface->GetMTime();
   vtkDebugMacro(<< (warm ? "Warm start from the last result." : "Start from the initial surface."));
   dsurf::TriangleMesh mesh;
   dsurf::MultilevelSolver solver;
-  if (!this->StartMesh(warm ? this->LastResult.Get() : surface, mesh) || !this->Solve(volume, mesh, solver, table))
+  if (!this->StartMesh(warm ? this->LastResult.Get() : surface, mesh) ||
+    !this->Solve(volume, mesh, solver, table))
   {
     return 1;
   }
@@ -876,7 +897,8 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SigmaFraction: " << this->SigmaFraction << "\n";
   os << indent << "EdgeNormalization: " << this->EdgeNormalization << "\n";
   os << indent << "RegionWeight: " << this->RegionWeight << "\n";
-  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1] << "\n";
+  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1]
+     << "\n";
   os << indent << "MaxSweepsPerLevel: " << this->MaxSweepsPerLevel << "\n";
   os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
   os << indent << "MaxLevels: " << this->MaxLevels << "\n";

@@ -151,11 +151,11 @@ public:
   /**
    * The first Gaussian sigma. Sigma > 0: that, in world units. Else SigmaFraction > 0: that
    * fraction of the mean extent of the image (the paper's 1/6 = 0.1667). Both 0 (the
-   * defaults: Sigma 0, SigmaFraction 0): chosen from the start surface (dsInitialSigma.h). A start spanning the image (a
-   * box around the whole volume) begins at the paper's extent / 6; any other start is taken to
-   * lie near its object, and sigma_0 is the 90th percentile of its distance to the nearest edge
-   * along the vertex and face normals, between one voxel and extent / 6 (field data
-   * InitialSigma).
+   * defaults: Sigma 0, SigmaFraction 0): chosen from the start surface (dsInitialSigma.h). A start
+   * spanning the image (a box around the whole volume) begins at the paper's extent / 6; any other
+   * start is taken to lie near its object, and sigma_0 is the 90th percentile of its distance to
+   * the nearest edge along the vertex and face normals, between one voxel and extent / 6 (field
+   * data InitialSigma).
    */
   vtkSetClampMacro(Sigma, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Sigma, double);
@@ -427,8 +427,8 @@ protected:
   void ServeTimeStep(double t, vtkPolyData* output);
   /// With AnimateSweeps, time t from the cache when it holds these inputs and parameters
   /// (key: their modification times); false: not cached, solve.
-  bool ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3], double t,
-    vtkPolyData* output, vtkTable* table);
+  bool ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
+    double t, vtkPolyData* output, vtkTable* table);
 
 private:
   /// The one mapping between this filter's solver properties and the core's parameters of
@@ -442,14 +442,14 @@ private:
   bool ParametersAreFinite();
   /// Run the solver with this filter's parameters, filling the convergence table and the
   /// time steps' snapshots; false (an error said why) when it fails.
-  bool Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh, dsurf::MultilevelSolver& solver,
-    vtkTable* table);
+  bool Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh,
+    dsurf::MultilevelSolver& solver, vtkTable* table);
   /// The solver's warnings and debug lines.
   void Report(const dsurf::MultilevelSolver& solver);
   /// The warm start's copy and the time steps' cache of this result (complete: not aborted,
   /// serial).
-  void KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3], bool complete,
-    vtkPolyData* output, vtkTable* table);
+  void KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
+    bool complete, vtkPolyData* output, vtkTable* table);
 
   // The warm start's state: the last output and the inputs it came from.
   vtkSmartPointer<vtkPolyData> LastResult;

@@ -161,9 +161,9 @@ vtkSmartPointer<vtkPolyData> CleanPoints(
   finite->GetPointData()->RemoveArray(vtkDataSetAttributes::GhostArrayName());
   if (nonFinite > 0)
   {
-    vtkWarningWithObjectMacro(
-      self, "Ignored " << nonFinite << " point(s) with NaN, infinite or out-of-range (beyond "
-                       << MaxCoordinate << ") coordinates.");
+    vtkWarningWithObjectMacro(self,
+      "Ignored " << nonFinite << " point(s) with NaN, infinite or out-of-range (beyond "
+                 << MaxCoordinate << ") coordinates.");
   }
   return finite;
 }
@@ -179,8 +179,9 @@ void EmptyIfNotFinite(vtkObject* self, vtkPolyData* surface)
     surface->GetPoint(i, x);
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
-      vtkErrorWithObjectMacro(self, "The point coordinates are too large: the seed surface "
-                                    "overflows to infinite coordinates; no surface.");
+      vtkErrorWithObjectMacro(self,
+        "The point coordinates are too large: the seed surface "
+        "overflows to infinite coordinates; no surface.");
       surface->Initialize();
       return;
     }
@@ -224,14 +225,16 @@ SeedComplex Tetrahedralize(vtkPolyData* finite, double tolerance)
     if (grid->GetCellType(c) == VTK_TETRA)
     {
       grid->GetCellPoints(c, cellPoints);
-      tets.push_back({ cellPoints->GetId(0), cellPoints->GetId(1), cellPoints->GetId(2), cellPoints->GetId(3) });
+      tets.push_back(
+        { cellPoints->GetId(0), cellPoints->GetId(1), cellPoints->GetId(2), cellPoints->GetId(3) });
     }
   }
 
   double bounds[6];
   finite->GetBounds(bounds);
   const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   complex.FlatVolume = 1e-10 * diagonal * diagonal * diagonal;
   complex.Radius.resize(tets.size());
   for (std::size_t t = 0; t < tets.size(); ++t)
@@ -266,8 +269,8 @@ void RemoveById(
   }
   if (outOfRange > 0)
   {
-    vtkWarningWithObjectMacro(self, << outOfRange << " RemovedTetrahedra ID(s) are not in [0, "
-                                    << nTets << "): ignored.");
+    vtkWarningWithObjectMacro(
+      self, << outOfRange << " RemovedTetrahedra ID(s) are not in [0, " << nTets << "): ignored.");
   }
 }
 
@@ -297,8 +300,8 @@ std::vector<double> RemoveByIntensity(vtkObject* self, vtkImageData* image, cons
   {
     vtkWarningWithObjectMacro(self,
       "UseIntensityRange is on but no image with one-component point scalars is connected to "
-      "port 1 (Image)" << (how.empty() ? std::string() : " (" + how + ")")
-                       << ": the intensity rule is skipped.");
+      "port 1 (Image)"
+        << (how.empty() ? std::string() : " (" + how + ")") << ": the intensity rule is skipped.");
     return centroidValue;
   }
   const auto& points = complex.Points;
@@ -335,8 +338,9 @@ dsurf::SeedSurface ExtractSurface(vtkObject* self, const SeedComplex& complex,
     dsurf::ExtractSeedBoundary(complex.Points, complex.Tets, status, complex.FlatVolume, report);
   if (surface.Triangles.empty())
   {
-    vtkWarningWithObjectMacro(self, "Every one of the " << static_cast<vtkIdType>(complex.Tets.size())
-                                                        << " tetrahedra was removed: the surface is empty.");
+    vtkWarningWithObjectMacro(self,
+      "Every one of the " << static_cast<vtkIdType>(complex.Tets.size())
+                          << " tetrahedra was removed: the surface is empty.");
   }
   else
   {
@@ -367,7 +371,8 @@ void BuildSurfaceOutput(
     seedId->SetValue(static_cast<vtkIdType>(p), source >= 0 ? inputId[source] : -1);
   }
   vtkNew<vtkCellArray> triangles;
-  triangles->AllocateExact(static_cast<vtkIdType>(surface.Triangles.size()), 3 * surface.Triangles.size());
+  triangles->AllocateExact(
+    static_cast<vtkIdType>(surface.Triangles.size()), 3 * surface.Triangles.size());
   for (const auto& tri : surface.Triangles)
   {
     const vtkIdType ids[3] = { tri[0], tri[1], tri[2] };
@@ -422,7 +427,8 @@ void BuildTetrahedraOutput(const SeedComplex& complex, const std::vector<unsigne
 
 // Indices of the first `enough` points of `points` that are pairwise farther apart than
 // tolerance x the bounding-box diagonal (vtkDelaunay3D's merge distance), in input order.
-std::vector<vtkIdType> FirstDistinctPoints(vtkPolyData* points, double tolerance, std::size_t enough)
+std::vector<vtkIdType> FirstDistinctPoints(
+  vtkPolyData* points, double tolerance, std::size_t enough)
 {
   std::vector<vtkIdType> distinct;
   const double merge = tolerance * std::sqrt(points->GetLength2());
@@ -493,9 +499,10 @@ void BuildSphereSeeds(vtkObject* self, vtkPolyData* points, const std::vector<vt
       points->GetPoint(t, o);
       if (std::sqrt(vtkMath::Distance2BetweenPoints(c, o)) < 2 * radius)
       {
-        vtkWarningWithObjectMacro(self, "Seed spheres around points " << inputId[t] << " and " << inputId[s]
-                                                                      << " overlap (SeedRadius " << radius
-                                                                      << "): pick farther apart or use a smaller SeedRadius.");
+        vtkWarningWithObjectMacro(self,
+          "Seed spheres around points " << inputId[t] << " and " << inputId[s]
+                                        << " overlap (SeedRadius " << radius
+                                        << "): pick farther apart or use a smaller SeedRadius.");
       }
     }
     for (vtkIdType p = 0; p < perSphere; ++p)
@@ -503,7 +510,8 @@ void BuildSphereSeeds(vtkObject* self, vtkPolyData* points, const std::vector<vt
       double x[3];
       unit->GetPoint(p, x);
       const double len = vtkMath::Norm(x);
-      outPoints->InsertNextPoint(c[0] + radius * x[0] / len, c[1] + radius * x[1] / len, c[2] + radius * x[2] / len);
+      outPoints->InsertNextPoint(
+        c[0] + radius * x[0] / len, c[1] + radius * x[1] / len, c[2] + radius * x[2] / len);
       seedId->InsertNextValue(inputId[s]);
     }
     vtkCellArray* polys = unit->GetPolys();
@@ -642,8 +650,9 @@ int vtkDelaunaySeedSurface::RequestData(
   {
     return 1;
   }
-  const std::string nonFinite = dsurf::FirstNonFinite({ { "SeedRadius", this->SeedRadius }, { "Alpha", this->Alpha },
-    { "TargetEdgeLength", this->TargetEdgeLength }, { "Tolerance", this->Tolerance } });
+  const std::string nonFinite =
+    dsurf::FirstNonFinite({ { "SeedRadius", this->SeedRadius }, { "Alpha", this->Alpha },
+      { "TargetEdgeLength", this->TargetEdgeLength }, { "Tolerance", this->Tolerance } });
   if (!nonFinite.empty())
   {
     vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
@@ -661,10 +670,11 @@ int vtkDelaunaySeedSurface::RequestData(
     // around each distinct point.
     if (finite->GetNumberOfPoints() >= 4)
     {
-      vtkWarningMacro("The " << finite->GetNumberOfPoints() << " points merge into " << distinct.size()
-                             << " within Tolerance x the bounding-box diagonal ("
+      vtkWarningMacro("The " << finite->GetNumberOfPoints() << " points merge into "
+                             << distinct.size() << " within Tolerance x the bounding-box diagonal ("
                              << this->Tolerance * std::sqrt(finite->GetLength2())
-                             << "): a seed sphere around each instead of their hull; lower Tolerance to keep them apart.");
+                             << "): a seed sphere around each instead of their hull; lower "
+                                "Tolerance to keep them apart.");
     }
     vtkNew<vtkPoints> centres;
     std::vector<vtkIdType> centreIds;
@@ -702,8 +712,7 @@ int vtkDelaunaySeedSurface::RequestData(
     centroidValue = RemoveByIntensity(this, image, this->IntensityRange, complex, status);
   }
 
-  const dsurf::SeedSurface surface =
-    ExtractSurface(this, complex, status, this->TargetEdgeLength);
+  const dsurf::SeedSurface surface = ExtractSurface(this, complex, status, this->TargetEdgeLength);
   BuildSurfaceOutput(surface, inputId, surfaceOut);
   EmptyIfNotFinite(this, surfaceOut);
   BuildTetrahedraOutput(complex, status, centroidValue, tetsOut);
@@ -717,7 +726,8 @@ void vtkDelaunaySeedSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RemovedTetrahedra: " << this->RemovedTetrahedra.size() << " ID(s)\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "UseIntensityRange: " << this->UseIntensityRange << "\n";
-  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1] << "\n";
+  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1]
+     << "\n";
   os << indent << "TargetEdgeLength: " << this->TargetEdgeLength << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "Controller: " << this->Controller << "\n";

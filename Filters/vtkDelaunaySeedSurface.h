@@ -96,7 +96,8 @@ public:
   ///@}
 
   ///@{
-  /// Remove tetrahedra whose circumsphere radius exceeds Alpha (world units); 0 (default) keeps all.
+  /// Remove tetrahedra whose circumsphere radius exceeds Alpha (world units); 0 (default) keeps
+  /// all.
   vtkSetClampMacro(Alpha, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Alpha, double);
   ///@}

@@ -82,8 +82,9 @@ int vtkImageScaleSpaceGradient::RequestData(
   }
   const dsurf::ImageGeometry& geometry = volume.Geometry;
 
-  const std::string nonFinite = dsurf::FirstNonFinite({ { "Sigma", this->Sigma },
-    { "SigmaFraction", this->SigmaFraction }, { "EdgeWeight", this->EdgeWeight }, { "ImageWeight", this->ImageWeight } });
+  const std::string nonFinite =
+    dsurf::FirstNonFinite({ { "Sigma", this->Sigma }, { "SigmaFraction", this->SigmaFraction },
+      { "EdgeWeight", this->EdgeWeight }, { "ImageWeight", this->ImageWeight } });
   if (!nonFinite.empty())
   {
     vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
@@ -112,8 +113,8 @@ int vtkImageScaleSpaceGradient::RequestData(
   parameters.ImageWeight = this->ImageWeight;
   parameters.NormalizePotential = this->NormalizePotential;
   parameters.NumberOfThreads = this->NumberOfThreads;
-  if (!dsurf::ComputeScaleSpaceForceInto(
-        volume.Values, geometry, parameters, potential->GetPointer(0), force->GetPointer(0), &error))
+  if (!dsurf::ComputeScaleSpaceForceInto(volume.Values, geometry, parameters,
+        potential->GetPointer(0), force->GetPointer(0), &error))
   {
     vtkErrorMacro("Scale-space gradient failed: " << error);
     return 1;

@@ -27,7 +27,8 @@ int main()
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        *v++ = ((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c) < radius * radius) ? 1.f : 0.f;
+        *v++ =
+          ((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c) < radius * radius) ? 1.f : 0.f;
 
   vtkNew<vtkCubeSource> box;
   box->SetBounds(image->GetBounds());
@@ -47,11 +48,14 @@ int main()
   {
     double p[3];
     surface->GetPoint(i, p);
-    sum += std::abs(std::sqrt((p[0] - c) * (p[0] - c) + (p[1] - c) * (p[1] - c) + (p[2] - c) * (p[2] - c)) - radius);
+    sum += std::abs(
+      std::sqrt((p[0] - c) * (p[0] - c) + (p[1] - c) * (p[1] - c) + (p[2] - c) * (p[2] - c)) -
+      radius);
   }
   const double mean = sum / surface->GetNumberOfPoints();
   std::printf("%lld points, %lld triangles, %lld sweeps, mean |distance| to the ball %.3f voxel\n",
-    static_cast<long long>(surface->GetNumberOfPoints()), static_cast<long long>(surface->GetNumberOfPolys()),
+    static_cast<long long>(surface->GetNumberOfPoints()),
+    static_cast<long long>(surface->GetNumberOfPolys()),
     static_cast<long long>(filter->GetConvergenceTable()->GetNumberOfRows()), mean);
   return mean < 0.5 ? 0 : 1;
 }

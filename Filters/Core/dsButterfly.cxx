@@ -45,7 +45,8 @@ int Across(const TriangleMesh& mesh, int t, int p, int q)
 
 /// Ring of interior vertex v in cyclic order starting at `start`; empty when the fan is
 /// not one closed cycle or touches a flagged triangle.
-std::vector<int> CyclicRing(const TriangleMesh& mesh, int v, int start, const std::vector<char>* flags)
+std::vector<int> CyclicRing(
+  const TriangleMesh& mesh, int v, int start, const std::vector<char>* flags)
 {
   const int k = Valence(mesh, v);
   std::vector<int> nextFrom, nextTo;
@@ -103,7 +104,8 @@ std::vector<int> CyclicRing(const TriangleMesh& mesh, int v, int start, const st
   return {};
 }
 
-bool ZorinPoint(const TriangleMesh& mesh, int e, int other, const std::vector<char>* flags, Vec3& out)
+bool ZorinPoint(
+  const TriangleMesh& mesh, int e, int other, const std::vector<char>* flags, Vec3& out)
 {
   const std::vector<int> ring = CyclicRing(mesh, e, other, flags);
   if (ring.empty())
@@ -165,14 +167,15 @@ std::vector<double> ZorinWeights(int k)
   return s;
 }
 
-Vec3 ButterflyEdgePoint(
-  const TriangleMesh& mesh, int edge, const std::vector<char>* irregularTriangles, ButterflyRule* rule)
+Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
+  const std::vector<char>* irregularTriangles, ButterflyRule* rule)
 {
   const int a = mesh.Edges[edge][0], b = mesh.Edges[edge][1];
   const Vec3& pa = mesh.Points[a];
   const Vec3& pb = mesh.Points[b];
   const Vec3 mid = 0.5 * (pa + pb);
-  auto result = [rule](ButterflyRule r, const Vec3& p) {
+  auto result = [rule](ButterflyRule r, const Vec3& p)
+  {
     if (rule)
     {
       *rule = r;
@@ -203,8 +206,8 @@ Vec3 ButterflyEdgePoint(
   {
     const int b1 = Opposite(mesh, t1, a, b), b2 = Opposite(mesh, t2, a, b);
     // The four wings: across (a,b1), (b,b1), (a,b2), (b,b2).
-    const int wingT[4] = { Across(mesh, t1, a, b1), Across(mesh, t1, b, b1), Across(mesh, t2, a, b2),
-      Across(mesh, t2, b, b2) };
+    const int wingT[4] = { Across(mesh, t1, a, b1), Across(mesh, t1, b, b1),
+      Across(mesh, t2, a, b2), Across(mesh, t2, b, b2) };
     const int wingP[4][2] = { { a, b1 }, { b, b1 }, { a, b2 }, { b, b2 } };
     Vec3 cSum{ 0, 0, 0 };
     for (int i = 0; i < 4; ++i)
@@ -216,22 +219,23 @@ Vec3 ButterflyEdgePoint(
       cSum = cSum + mesh.Points[Opposite(mesh, wingT[i], wingP[i][0], wingP[i][1])];
     }
     const double w = 1.0 / 16.0;
-    return result(ButterflyRule::Regular,
-      mid + (2.0 * w) * (mesh.Points[b1] + mesh.Points[b2]) - w * cSum);
+    return result(
+      ButterflyRule::Regular, mid + (2.0 * w) * (mesh.Points[b1] + mesh.Points[b2]) - w * cSum);
   }
 
   Vec3 qa, qb;
   if (ka != 6 && kb == 6)
   {
     return ZorinPoint(mesh, a, b, irregularTriangles, qa) ? result(ButterflyRule::Extraordinary, qa)
-                                                           : result(ButterflyRule::Midpoint, mid);
+                                                          : result(ButterflyRule::Midpoint, mid);
   }
   if (kb != 6 && ka == 6)
   {
     return ZorinPoint(mesh, b, a, irregularTriangles, qb) ? result(ButterflyRule::Extraordinary, qb)
-                                                           : result(ButterflyRule::Midpoint, mid);
+                                                          : result(ButterflyRule::Midpoint, mid);
   }
-  if (ZorinPoint(mesh, a, b, irregularTriangles, qa) && ZorinPoint(mesh, b, a, irregularTriangles, qb))
+  if (ZorinPoint(mesh, a, b, irregularTriangles, qa) &&
+    ZorinPoint(mesh, b, a, irregularTriangles, qb))
   {
     return result(ButterflyRule::BothExtraordinary, 0.5 * (qa + qb));
   }

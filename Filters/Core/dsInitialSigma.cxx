@@ -8,7 +8,7 @@ namespace dsurf
 {
 namespace
 {
-constexpr double SpanFraction = 0.9;   // bounding-box cover that counts as "spans the image"
+constexpr double SpanFraction = 0.9;     // bounding-box cover that counts as "spans the image"
 constexpr double EdgeSignificance = 0.2; // of the strongest (normalised) edge
 constexpr double DistanceQuantile = 0.9;
 /// Rays cast at most (about): larger starts cast from every k-th vertex and triangle.
@@ -74,7 +74,8 @@ double EdgeStrengthAt(const ForceField& probe, const Vec3& x, const Vec3& n, dou
 /// 0 when x itself is one (an earlier result used as the start); else the first sample, going
 /// either way, that the strength rose to and falls after (a start on the flank of an edge
 /// has not reached it yet); `reach` when there is none within it.
-double DistanceToEdge(const ForceField& probe, const Vec3& x, const Vec3& n, double step, double reach)
+double DistanceToEdge(
+  const ForceField& probe, const Vec3& x, const Vec3& n, double step, double reach)
 {
   const double g0 = EdgeStrengthAt(probe, x, n, 0);
   if (g0 >= EdgeSignificance && g0 >= EdgeStrengthAt(probe, x, n, step) &&
@@ -102,8 +103,9 @@ double DistanceToEdge(const ForceField& probe, const Vec3& x, const Vec3& n, dou
 }
 } // namespace
 
-bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
-  double paperSigma, int numberOfThreads, InitialSigmaChoice& choice, std::string* error)
+bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry,
+  const TriangleMesh& mesh, double paperSigma, int numberOfThreads, InitialSigmaChoice& choice,
+  std::string* error)
 {
   choice = InitialSigmaChoice();
   choice.Sigma = paperSigma;
@@ -132,7 +134,8 @@ bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry, con
   const std::size_t stride = 1 + (mesh.Points.size() + mesh.Triangles.size()) / MaxRays;
   std::vector<double> distances;
   distances.reserve((mesh.Points.size() + mesh.Triangles.size()) / stride + 2);
-  auto cast = [&](const Vec3& x, const Vec3& n) {
+  auto cast = [&](const Vec3& x, const Vec3& n)
+  {
     const double len = Norm(n);
     if (len > 0)
     {
@@ -154,8 +157,8 @@ bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry, con
     return true;
   }
   choice.Rays = static_cast<int>(distances.size());
-  choice.RaysWithEdge = static_cast<int>(std::count_if(
-    distances.begin(), distances.end(), [reach](double d) { return d < reach; }));
+  choice.RaysWithEdge = static_cast<int>(
+    std::count_if(distances.begin(), distances.end(), [reach](double d) { return d < reach; }));
   const std::size_t k = static_cast<std::size_t>(DistanceQuantile * (distances.size() - 1) + 0.5);
   std::nth_element(distances.begin(), distances.begin() + k, distances.end());
   choice.StartDistance = distances[k];

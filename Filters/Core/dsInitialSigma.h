@@ -9,10 +9,11 @@
 //   - a start that spans the image (its bounding box covers at least 90 % of the image's along
 //     every axis: a box around the whole volume) keeps the paper's sigma_0;
 //   - any other start is near its object: along the unit normal of every vertex and triangle
-//     centre (every k-th on a start of more than 100 000 of them), inward and outward up to 2 * the paper's sigma_0, the nearest local maximum of the
-//     edge strength (at a probe sigma of 1 voxel, locally normalised, at least 0.2 of the
-//     strongest) is found; D is the 90th percentile of those distances (2 * the paper's sigma_0
-//     where no edge was met), and sigma_0 = D, between one voxel and the paper's sigma_0.
+//     centre (every k-th on a start of more than 100 000 of them), inward and outward up to 2 * the
+//     paper's sigma_0, the nearest local maximum of the edge strength (at a probe sigma of 1 voxel,
+//     locally normalised, at least 0.2 of the strongest) is found; D is the 90th percentile of
+//     those distances (2 * the paper's sigma_0 where no edge was met), and sigma_0 = D, between one
+//     voxel and the paper's sigma_0.
 // sigma_0 = D leaves a factor of two to the basin (~2 sigma): the nearest edge is not always the
 // object's (the skull's lies as near to a seed around a brain as the brain's own).
 #ifndef dsInitialSigma_h
@@ -28,16 +29,17 @@ namespace dsurf
 {
 struct DEFORMABLESURFACEFILTERS_EXPORT InitialSigmaChoice
 {
-  double Sigma = 0;          ///< the chosen sigma_0 (world units)
-  bool SpansVolume = false;  ///< the start spans the image: the paper's sigma_0
-  double StartDistance = 0;  ///< D, the 90th percentile distance to the nearest edge
-  int Rays = 0;              ///< rays cast (0 when the start spans the volume)
-  int RaysWithEdge = 0;      ///< rays that met an edge within reach
+  double Sigma = 0;         ///< the chosen sigma_0 (world units)
+  bool SpansVolume = false; ///< the start spans the image: the paper's sigma_0
+  double StartDistance = 0; ///< D, the 90th percentile distance to the nearest edge
+  int Rays = 0;             ///< rays cast (0 when the start spans the volume)
+  int RaysWithEdge = 0;     ///< rays that met an edge within reach
 };
 
 /// True when the start's bounding box covers at least 90 % of the image's along every axis
 /// (a box around the whole volume).
-DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(const ImageGeometry& geometry, const TriangleMesh& mesh);
+DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(
+  const ImageGeometry& geometry, const TriangleMesh& mesh);
 
 /// Chooses sigma_0 for `mesh` (topology built) as described above; paperSigma is the paper's
 /// extent / 6 (or the fraction the caller uses). False with a message when the probe field

@@ -9,8 +9,8 @@
 
 namespace dsurf
 {
-std::vector<char> MultilevelSolver::MarkTriangles(
-  const TriangleMesh& mesh, const std::vector<double>& estimator, double relativeThreshold, bool uniform)
+std::vector<char> MultilevelSolver::MarkTriangles(const TriangleMesh& mesh,
+  const std::vector<double>& estimator, double relativeThreshold, bool uniform)
 {
   std::vector<char> marks(mesh.Triangles.size(), uniform ? 1 : 0);
   if (uniform || estimator.size() != mesh.Points.size())
@@ -56,7 +56,8 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
   {
     sigma = P.SigmaFraction * geometry.MeanExtent();
   }
-  else if (!ChooseInitialSigma(scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+  else if (!ChooseInitialSigma(
+             scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
     return false;
   }
@@ -72,7 +73,8 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
   return true;
 }
 
-bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh)
+bool MultilevelSolver::RegionRange(
+  const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh)
 {
   const MultilevelParameters& P = this->Parameters;
   double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
@@ -94,8 +96,10 @@ bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& ge
     std::string msg;
     if (!EstimateIntensityRange(scalars, geometry, mesh, 1.0, estimate, &msg))
     {
-      this->Warnings.push_back("the region force is off: no intensity range was given and none could be "
-                               "estimated (" + msg + ")");
+      this->Warnings.push_back(
+        "the region force is off: no intensity range was given and none could be "
+        "estimated (" +
+        msg + ")");
       return false;
     }
     lo = estimate.Range[0];
@@ -107,8 +111,8 @@ bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& ge
   }
   if (CountVoxelsInRange(scalars, geometry, lo, hi) == 0)
   {
-    this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) + ", " +
-      std::to_string(hi) + "] matches no voxel of the image");
+    this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) +
+      ", " + std::to_string(hi) + "] matches no voxel of the image");
     return false;
   }
   this->UsedRange[0] = lo;
@@ -116,8 +120,8 @@ bool MultilevelSolver::RegionRange(const float* scalars, const ImageGeometry& ge
   return true;
 }
 
-bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
-  RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
+bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& geometry,
+  TriangleMesh& mesh, RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
@@ -129,8 +133,8 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
     const int flipped = mesh.OrientPiecesOutward();
     if (flipped > 0)
     {
-      this->Warnings.push_back("the region force needs outward normals: " + std::to_string(flipped) +
-        " triangle(s) of inward-oriented pieces were reversed");
+      this->Warnings.push_back("the region force needs outward normals: " +
+        std::to_string(flipped) + " triangle(s) of inward-oriented pieces were reversed");
       if (!refiner.Initialize(mesh, &msg))
       {
         *error = "the reoriented initial surface is not a manifold triangle mesh: " + msg;
@@ -146,8 +150,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
     // Edges shorter than two voxels resolve nothing more, whatever sigma is.
     const double target = std::max(InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
     bool subdivided = false;
-    while (mesh.MeanEdgeLength() > target &&
-      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
+    while (mesh.MeanEdgeLength() > target && 4LL * mesh.NumberOfPoints() <= P.MaxVertices)
     {
       const std::vector<char> all(mesh.Triangles.size(), 1);
       const RefinementCounts rc = refiner.Refine(mesh, all, Prolongation::Linear);
@@ -172,7 +175,8 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
   return true;
 }
 
-bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
+bool MultilevelSolver::SolveLevel(
+  Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
   const MultilevelParameters& P = this->Parameters;
   const int cap = std::max(1, P.MaxSweepsPerLevel);
@@ -183,7 +187,8 @@ bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecor
   // batches, and the sweep records are handed on after each batch.
   // Batches shrink on big meshes so that progress moves and an abort is answered within
   // about the time of 16 sweeps of 50 000 vertices (one sweep from 800 000 vertices on).
-  const int batchSize = std::max(1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
+  const int batchSize = std::max(
+    1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
   std::vector<SweepStatistics> batchStats;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
@@ -191,20 +196,24 @@ bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecor
     const int budget = P.MaxSweeps > 0 ? P.MaxSweeps - sweepCounter : cap;
     if (budget <= 0)
     {
-      this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
+      this->Warnings.push_back(
+        "stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
       stop = true;
       break;
     }
     batchStats.clear();
-    solver.Sweeps(std::min({ batchSize, cap - s, budget }), [&](const SweepStatistics& st) {
-      batchStats.push_back(st);
-      if (st.MovedVertices == 0 || st.MeanCorrection < P.ConvergenceTolerance * rec.MeanEdgeLength)
+    solver.Sweeps(std::min({ batchSize, cap - s, budget }),
+      [&](const SweepStatistics& st)
       {
-        rec.Converged = true;
-        return false;
-      }
-      return true;
-    });
+        batchStats.push_back(st);
+        if (st.MovedVertices == 0 ||
+          st.MeanCorrection < P.ConvergenceTolerance * rec.MeanEdgeLength)
+        {
+          rec.Converged = true;
+          return false;
+        }
+        return true;
+      });
     for (const SweepStatistics& st : batchStats)
     {
       ++s;
@@ -228,7 +237,8 @@ bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecor
       }
     }
     if (!stop && !rec.Converged && this->Progress &&
-      !this->Progress((rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (maxLevels + 1)))
+      !this->Progress(
+        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (maxLevels + 1)))
     {
       this->Aborted = true;
       stop = true;
@@ -236,7 +246,8 @@ bool MultilevelSolver::SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecor
   }
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
-    this->Warnings.push_back("stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
+    this->Warnings.push_back(
+      "stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
     stop = true; // no refinement after the budget
   }
   return stop;
@@ -250,10 +261,10 @@ struct MultilevelSolver::RunState
   Solver LevelSolver;
   ForceField Field;
   ScaleSpaceParameters FieldParameters;
-  double Voxel = 0;         ///< mean spacing: the finest detail the image shows
-  double Sigma = 0;         ///< this level's
+  double Voxel = 0; ///< mean spacing: the finest detail the image shows
+  double Sigma = 0; ///< this level's
   double FirstSigma = 0;
-  bool Region = false;      ///< the region force is on
+  bool Region = false;        ///< the region force is on
   bool CheckTopology = false; ///< CheckTopology, always on in Debug builds
   int EulerStart = 0;
   bool ClosedStart = false;
@@ -274,17 +285,20 @@ bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::st
   TriangleMesh coarse;
   std::string msg;
   const bool kept = this->Coarsen(mesh, state.Sigma, coarse) && coarse.BuildTopology(&msg) &&
-    coarse.IsClosed() == mesh.IsClosed() && coarse.EulerCharacteristic() == mesh.EulerCharacteristic() &&
-    coarse.IsConsistentlyOriented() && (coarse.SignedVolume() > 0) == (mesh.SignedVolume() > 0);
+    coarse.IsClosed() == mesh.IsClosed() &&
+    coarse.EulerCharacteristic() == mesh.EulerCharacteristic() && coarse.IsConsistentlyOriented() &&
+    (coarse.SignedVolume() > 0) == (mesh.SignedVolume() > 0);
   if (!kept)
   {
-    this->Warnings.push_back("a coarse copy of the start (" + std::to_string(mesh.NumberOfTriangles()) +
+    this->Warnings.push_back("a coarse copy of the start (" +
+      std::to_string(mesh.NumberOfTriangles()) +
       " triangles) would change its topology: it is solved as given, which can take long");
     return true;
   }
-  this->Warnings.push_back("the start's " + std::to_string(mesh.NumberOfTriangles()) + " triangles (mean edge " +
-    std::to_string(mesh.MeanEdgeLength()) + ") were coarsened to " + std::to_string(coarse.NumberOfTriangles()) +
-    " (mean edge " + std::to_string(coarse.MeanEdgeLength()) + ", about sigma_0) for the first level");
+  this->Warnings.push_back("the start's " + std::to_string(mesh.NumberOfTriangles()) +
+    " triangles (mean edge " + std::to_string(mesh.MeanEdgeLength()) + ") were coarsened to " +
+    std::to_string(coarse.NumberOfTriangles()) + " (mean edge " +
+    std::to_string(coarse.MeanEdgeLength()) + ", about sigma_0) for the first level");
   mesh = std::move(coarse);
   if (!state.Refiner.Initialize(mesh, &msg))
   {
@@ -311,8 +325,8 @@ void MultilevelSolver::ClearResults()
   this->RegionOutwardOnly = false;
 }
 
-bool MultilevelSolver::Start(
-  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state, std::string* error)
+bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry,
+  TriangleMesh& mesh, RunState& state, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   if (!scalars || geometry.NumberOfVoxels() <= 0)
@@ -362,8 +376,8 @@ bool MultilevelSolver::Start(
   return true;
 }
 
-bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
-  RunState& state, LevelRecord& rec, std::string* error)
+bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geometry,
+  TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
@@ -397,7 +411,8 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
   return true;
 }
 
-void MultilevelSolver::EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel)
+void MultilevelSolver::EndSweeps(
+  const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel)
 {
   // Folds are smoothed on the delivered surface and after each level whose mesh resolves its
   // sigma (mean edge <= sigma), where the smoothed rings span about the scale the level sees.
@@ -419,8 +434,9 @@ void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
   rec.Folds = Untangle(mesh);
   if (rec.Folds.After > 0)
   {
-    this->Warnings.push_back(std::to_string(rec.Folds.After) + " pairs of triangles still intersect after level " +
-      std::to_string(rec.Level) + " (" + std::to_string(rec.Folds.Before) + " before smoothing them)");
+    this->Warnings.push_back(std::to_string(rec.Folds.After) +
+      " pairs of triangles still intersect after level " + std::to_string(rec.Level) + " (" +
+      std::to_string(rec.Folds.Before) + " before smoothing them)");
   }
 }
 
@@ -430,7 +446,8 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh, 
   // Adaptively, triangles whose edges are all shorter than a voxel are not split again: the
   // image has no finer detail for their children to follow. (UniformRefinement splits
   // everything, as asked.)
-  std::vector<char> marks = MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
+  std::vector<char> marks =
+    MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
   for (size_t t = 0; t < marks.size() && !P.UniformRefinement; ++t)
   {
     if (marks[t])
@@ -450,7 +467,8 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh, 
   return marks;
 }
 
-bool MultilevelSolver::RefineLevel(TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error)
+bool MultilevelSolver::RefineLevel(
+  TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   const std::vector<char> marks = this->MarkForRefinement(mesh, state.Voxel);
@@ -469,7 +487,8 @@ bool MultilevelSolver::RefineLevel(TriangleMesh& mesh, RunState& state, LevelRec
   // The vertex budget: each split edge adds a vertex.
   refined = rec.MarkedTriangles > 0;
   if (refined &&
-    static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) > P.MaxVertices)
+    static_cast<long long>(mesh.NumberOfPoints()) + static_cast<long long>(splitEdges.size()) >
+      P.MaxVertices)
   {
     if (!state.BudgetWarned)
     {
@@ -486,8 +505,10 @@ bool MultilevelSolver::RefineLevel(TriangleMesh& mesh, RunState& state, LevelRec
   {
     return true;
   }
-  const Prolongation prolongation = P.ButterflyProlongation ? Prolongation::Butterfly : Prolongation::Linear;
-  const RefinementCounts& rc = this->Levels.back().Refinement = state.Refiner.Refine(mesh, marks, prolongation);
+  const Prolongation prolongation =
+    P.ButterflyProlongation ? Prolongation::Butterfly : Prolongation::Linear;
+  const RefinementCounts& rc = this->Levels.back().Refinement =
+    state.Refiner.Refine(mesh, marks, prolongation);
   if (!rc.Ok)
   {
     *error = "refinement failed: " + rc.Error;
@@ -498,15 +519,15 @@ bool MultilevelSolver::RefineLevel(TriangleMesh& mesh, RunState& state, LevelRec
     (!CheckTopologyInvariants(mesh, state.EulerStart, state.ClosedStart, &msg) ||
       state.Refiner.CountTVertices(mesh) != 0))
   {
-    *error = "refinement broke a topology invariant at level " + std::to_string(rec.Level + 1) + ": " +
-      (msg.empty() ? std::string("T-vertex") : msg);
+    *error = "refinement broke a topology invariant at level " + std::to_string(rec.Level + 1) +
+      ": " + (msg.empty() ? std::string("T-vertex") : msg);
     return false;
   }
   return true;
 }
 
-bool MultilevelSolver::RunLevels(
-  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state, std::string* error)
+bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geometry,
+  TriangleMesh& mesh, RunState& state, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   const int maxLevels = std::max(0, P.MaxLevels);
@@ -542,7 +563,8 @@ bool MultilevelSolver::RunLevels(
     // image has nothing more to show; a level that would change neither mesh nor sigma
     // ends the run.
     const double sigma = state.Sigma;
-    const double nextSigma = P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * state.Voxel)) : sigma;
+    const double nextSigma =
+      P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * state.Voxel)) : sigma;
     if (!refined && !(nextSigma < sigma))
     {
       this->SmoothFolds(mesh, this->Levels.back()); // this level's surface is delivered
@@ -553,12 +575,14 @@ bool MultilevelSolver::RunLevels(
   return true;
 }
 
-bool MultilevelSolver::Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+bool MultilevelSolver::Run(
+  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
 {
   this->ClearResults();
   std::string msg;
   RunState state;
-  if (!this->Start(scalars, geometry, mesh, state, &msg) || !this->RunLevels(scalars, geometry, mesh, state, &msg))
+  if (!this->Start(scalars, geometry, mesh, state, &msg) ||
+    !this->RunLevels(scalars, geometry, mesh, state, &msg))
   {
     if (error)
     {

@@ -59,10 +59,10 @@ constexpr int CoarsenAboveTriangles = 100000;
 /// that property's default: the filter's constructor copies them.
 struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
 {
-  SolverParameters Solver;      ///< tau, gamma, projection, label weights, threads
-  double EdgeWeight = 1.0;      ///< w_edge of the potential
-  double ImageWeight = 0.0;     ///< w_image of the potential
-  double ForceWeight = 1.0;     ///< multiplies h * sigma * (-grad P)
+  SolverParameters Solver;  ///< tau, gamma, projection, label weights, threads
+  double EdgeWeight = 1.0;  ///< w_edge of the potential
+  double ImageWeight = 0.0; ///< w_image of the potential
+  double ForceWeight = 1.0; ///< multiplies h * sigma * (-grad P)
   /// sigma_0: Sigma (physical units) when > 0; else SigmaFraction * the mean extent of the
   /// volume when > 0 (the paper's 1/6); else (0, the default) chosen from the start
   /// (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the start's
@@ -89,7 +89,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// need be (a warning says so); the surface is valid at every sweep.
   int MaxSweeps = 0;
   double ConvergenceTolerance = 1e-3; ///< stop a level when mean |c| < this * mean edge length
-  double RefinementThreshold = 1.0; ///< relative to the level's mean estimator (see above)
+  double RefinementThreshold = 1.0;   ///< relative to the level's mean estimator (see above)
   bool UniformRefinement = false;
   /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
   /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
@@ -129,9 +129,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int Vertices = 0;
   int Triangles = 0;
   double MeanEdgeLength = 0;
-  int MarkedTriangles = 0; ///< marked for the next refinement (0 on the last level)
+  int MarkedTriangles = 0;     ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
-  UntangleResult Folds;        ///< intersecting triangle pairs after the sweeps, and after smoothing
+  UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
 };
 
 class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
@@ -146,7 +146,8 @@ public:
   const MultilevelParameters& GetParameters() const { return this->Parameters; }
   /// Makes `coarse` (Points/Triangles) from `fine` with edges of about `edge` (world units);
   /// false when it cannot. Used for a start far finer than sigma_0 (CoarsenStart).
-  using CoarsenCallback = std::function<bool(const TriangleMesh& fine, double edge, TriangleMesh& coarse)>;
+  using CoarsenCallback =
+    std::function<bool(const TriangleMesh& fine, double edge, TriangleMesh& coarse)>;
   void SetProgressCallback(ProgressCallback cb) { this->Progress = std::move(cb); }
   void SetSweepCallback(SweepCallback cb) { this->OnSweep = std::move(cb); }
   void SetCoarsenCallback(CoarsenCallback cb) { this->Coarsen = std::move(cb); }
@@ -155,7 +156,8 @@ public:
   /// toward the boundaries of the volume `scalars` (one float per voxel, x fastest).
   /// Returns false with a message on bad input or a broken invariant; the mesh is then
   /// left as it was at the last valid state.
-  bool Run(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error);
+  bool Run(
+    const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error);
 
   const std::vector<SweepRecord>& GetSweeps() const { return this->Sweeps; }
   const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
@@ -171,10 +173,16 @@ public:
   int GetMaxOutsideVertices() const { return this->MaxOutsideVertices; }
   /// Vertices outside the volume in the last sweep (where the surface came to rest).
   int GetFinalOutsideVertices() const { return this->FinalOutsideVertices; }
-  double GetFinalMeanCorrection() const { return this->Sweeps.empty() ? 0.0 : this->Sweeps.back().MeanCorrection; }
+  double GetFinalMeanCorrection() const
+  {
+    return this->Sweeps.empty() ? 0.0 : this->Sweeps.back().MeanCorrection;
+  }
   /// Sigma of the last level solved.
   double GetFinalSigma() const { return this->Levels.empty() ? 0.0 : this->Levels.back().Sigma; }
-  bool GetLastLevelConverged() const { return !this->Levels.empty() && this->Levels.back().Converged; }
+  bool GetLastLevelConverged() const
+  {
+    return !this->Levels.empty() && this->Levels.back().Converged;
+  }
   int GetTotalSweeps() const { return static_cast<int>(this->Sweeps.size()); }
   /// How sigma_0 was chosen (Rays 0 when it was given or the start spans the volume).
   const InitialSigmaChoice& GetInitialSigmaChoice() const { return this->SigmaChoice; }
@@ -182,8 +190,8 @@ public:
   const double* GetIntensityRange() const { return this->UsedRange; }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
-  static std::vector<char> MarkTriangles(const TriangleMesh& mesh, const std::vector<double>& estimator,
-    double relativeThreshold, bool uniform);
+  static std::vector<char> MarkTriangles(const TriangleMesh& mesh,
+    const std::vector<double>& estimator, double relativeThreshold, bool uniform);
 
 private:
   MultilevelParameters Parameters;
@@ -205,15 +213,15 @@ private:
   // Run's steps, in order.
   void ClearResults();
   /// Input checks, sigma_0, PrepareStart, and the solver and force-field settings.
-  bool Start(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
-    std::string* error);
+  bool Start(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
+    RunState& state, std::string* error);
   /// Levels 0..MaxLevels: set up, SolveLevel, EndSweeps, RefineLevel, the next sigma.
-  bool RunLevels(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
-    std::string* error);
+  bool RunLevels(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
+    RunState& state, std::string* error);
   /// The level's force field (rebuilt when sigma changed), edge and region force scales, and
   /// rec's sigma, sizes and mean edge length.
-  bool SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, RunState& state,
-    LevelRecord& rec, std::string* error);
+  bool SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
+    RunState& state, LevelRecord& rec, std::string* error);
   /// After the sweeps: folds smoothed open (on the last level, and on one whose mesh resolves
   /// its sigma), the per-vertex arrays of the level kept.
   void EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel);
@@ -223,7 +231,8 @@ private:
   std::vector<char> MarkForRefinement(const TriangleMesh& mesh, double voxel) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
-  bool RefineLevel(TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error);
+  bool RefineLevel(
+    TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error);
   /// A start of more than CoarsenAboveTriangles triangles whose mean edge is below sigma_0 / 2
   /// is replaced by the Coarsen callback's copy with edges of about sigma_0, when that copy
   /// keeps the start's topology (closed or not, Euler characteristic, orientation).

@@ -68,7 +68,8 @@ std::vector<unsigned char> RedGreenRefiner::ComputeLabels(int numberOfPoints) co
   // Priority M > C > D > N (see the class comment): rank by a number and keep the max.
   static const int rank[4] = { 0, 2, 3, 1 }; // N, C, M, D
   std::vector<unsigned char> labels(numberOfPoints, LabelN);
-  auto put = [&](int v, unsigned char label) {
+  auto put = [&](int v, unsigned char label)
+  {
     if (v >= 0 && v < numberOfPoints && rank[label] > rank[labels[v]])
     {
       labels[v] = label;
@@ -342,7 +343,8 @@ void RedGreenRefiner::Step::RedSplit(int i)
 }
 
 // --- 3. Positions of the new points, on the mesh before this step.
-std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(Prolongation mode, RefinementCounts& counts) const
+std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
+  Prolongation mode, RefinementCounts& counts) const
 {
   const TriangleMesh& mesh = this->Mesh;
   const int nOldPoints = this->OldPoints;
@@ -418,7 +420,8 @@ void RedGreenRefiner::Step::EmitConforming(std::vector<std::array<int, 3>>& tria
     }
     const int g = static_cast<int>(greens.size());
     greens.push_back({ b.V, splitCorner, mid });
-    const int p0 = b.V[splitCorner], p1 = b.V[(splitCorner + 1) % 3], p2 = b.V[(splitCorner + 2) % 3];
+    const int p0 = b.V[splitCorner], p1 = b.V[(splitCorner + 1) % 3],
+              p2 = b.V[(splitCorner + 2) % 3];
     triangles.push_back({ p0, mid, p2 });
     triangles.push_back({ mid, p1, p2 });
     triangleGreen.push_back(g);
@@ -427,7 +430,8 @@ void RedGreenRefiner::Step::EmitConforming(std::vector<std::array<int, 3>>& tria
   counts.Greens = static_cast<int>(greens.size());
 }
 
-std::string RedGreenRefiner::CheckRefineInput(const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const
+std::string RedGreenRefiner::CheckRefineInput(
+  const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const
 {
   if (this->ExpectedPoints < 0)
   {
@@ -489,7 +493,8 @@ RefinementCounts RedGreenRefiner::Refine(
 bool CheckTopologyInvariants(
   const TriangleMesh& mesh, int expectedEuler, bool mustBeClosed, std::string* message)
 {
-  auto fail = [message](const std::string& msg) {
+  auto fail = [message](const std::string& msg)
+  {
     if (message)
     {
       *message = msg;
@@ -539,8 +544,8 @@ bool CheckTopologyInvariants(
   }
   if (m->EulerCharacteristic() != expectedEuler)
   {
-    return fail("Euler characteristic " + std::to_string(m->EulerCharacteristic()) + " != " +
-      std::to_string(expectedEuler));
+    return fail("Euler characteristic " + std::to_string(m->EulerCharacteristic()) +
+      " != " + std::to_string(expectedEuler));
   }
   if (message)
   {

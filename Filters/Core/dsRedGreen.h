@@ -48,12 +48,12 @@ enum class Prolongation
 
 struct DEFORMABLESURFACEFILTERS_EXPORT RefinementCounts
 {
-  bool Ok = false;       ///< false: nothing changed, see Error
+  bool Ok = false; ///< false: nothing changed, see Error
   std::string Error;
-  int RedSplits = 0;     ///< base triangles split 1 -> 4 (marked ones and the closure)
+  int RedSplits = 0;        ///< base triangles split 1 -> 4 (marked ones and the closure)
   int ClosureRedSplits = 0; ///< of those, splits forced by the closure, not by a mark
-  int Greens = 0;        ///< green pairs present after the step
-  int UndoneGreens = 0;  ///< green pairs of before that were merged and red-split
+  int Greens = 0;           ///< green pairs present after the step
+  int UndoneGreens = 0;     ///< green pairs of before that were merged and red-split
   int NewVertices = 0;
   int ButterflyVertices = 0; ///< new vertices placed by a butterfly / Zorin / boundary rule
   int FallbackVertices = 0;  ///< new vertices placed at the midpoint as a fallback
@@ -77,7 +77,11 @@ public:
   /// Number of refinement steps done since Initialize().
   int GetLevel() const { return this->Level; }
   /// Whether current triangle t is one half of a green pair.
-  bool IsGreen(int t) const { return t >= 0 && t < static_cast<int>(this->TriangleGreen.size()) && this->TriangleGreen[t] >= 0; }
+  bool IsGreen(int t) const
+  {
+    return t >= 0 && t < static_cast<int>(this->TriangleGreen.size()) &&
+      this->TriangleGreen[t] >= 0;
+  }
   int NumberOfGreens() const { return static_cast<int>(this->Greens.size()); }
   /// The green pair current triangle t belongs to: parent corners (mesh orientation),
   /// the corner starting the split edge, and the midpoint M. false when t is not green.
@@ -107,7 +111,8 @@ public:
 private:
   class Step; // the working state and phases of one Refine() (dsRedGreen.cxx)
   /// Empty when Refine() may run on this mesh with these marks, else the reason.
-  std::string CheckRefineInput(const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const;
+  std::string CheckRefineInput(
+    const TriangleMesh& mesh, const std::vector<char>& markedTriangles) const;
 
   struct Green
   {

@@ -21,7 +21,8 @@ double Quantile(std::vector<float>& v, double q)
 /// crossings of the row's line with the triangles are sorted and the centres between the
 /// 1st and 2nd, 3rd and 4th... crossing are inside (parity). Works in continuous index space,
 /// so spacing and direction are honoured.
-std::vector<float> ValuesInside(const float* scalars, const ImageGeometry& g, const TriangleMesh& mesh)
+std::vector<float> ValuesInside(
+  const float* scalars, const ImageGeometry& g, const TriangleMesh& mesh)
 {
   const int nx = g.Dimensions[0], ny = g.Dimensions[1], nz = g.Dimensions[2];
   std::vector<Vec3> ijk(mesh.Points.size());
@@ -56,7 +57,8 @@ std::vector<float> ValuesInside(const float* scalars, const ImageGeometry& g, co
         const double v = ((b[1] - a[1]) * (z - a[2]) - (y - a[1]) * (b[2] - a[2])) / det;
         if (u >= 0 && v >= 0 && u + v <= 1)
         {
-          crossings[j + static_cast<std::size_t>(ny) * k].push_back(a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]));
+          crossings[j + static_cast<std::size_t>(ny) * k].push_back(
+            a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]));
         }
       }
     }
@@ -222,8 +224,8 @@ int OtsuSplit(const std::vector<double>& w)
 /// share that differs by less than 0.1 between inside and outside, or levels within 2 s_obj of
 /// each other, mean both sides look alike (a click inside one region): the estimate then
 /// keeps m -+ 3 s.
-void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<float>& out, double floor,
-  RangeEstimate& estimate)
+void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<float>& out,
+  double floor, RangeEstimate& estimate)
 {
   constexpr int B = 256;
   float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
@@ -240,7 +242,8 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
     return;
   }
   const double width = (static_cast<double>(hi) - lo) / B;
-  const auto histogram = [&](const std::vector<float>& values) {
+  const auto histogram = [&](const std::vector<float>& values)
+  {
     std::vector<double> h(B, 0.0);
     for (float x : values)
     {
@@ -275,7 +278,8 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
   const double mObject = SmoothedMode(object, lo, width);
   const double mBackground = SmoothedMode(background, lo, width);
   const double s = std::max(floor,
-    (WeightedQuantile(object, 0.75, lo, width) - WeightedQuantile(object, 0.25, lo, width)) / 1.349);
+    (WeightedQuantile(object, 0.75, lo, width) - WeightedQuantile(object, 0.25, lo, width)) /
+      1.349);
   if (std::abs(mObject - mBackground) < 2.0 * s)
   {
     return;
@@ -288,14 +292,16 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
   // own intensities (the bin's far edge). A wide object class (a brain's grey and white
   // matter, s ~ 20) would otherwise reach the brighter tissue next to it (orbital fat at
   // 130-200 in Colin27, the brain's own values ending at ~120): docs/METHOD.md §9.3.
-  const double top = std::min(mObject + 3.0 * s, WeightedQuantile(object, 0.995, lo, width) + 0.5 * width);
-  const double bottom = std::max(mObject - 3.0 * s, WeightedQuantile(object, 0.005, lo, width) - 0.5 * width);
+  const double top =
+    std::min(mObject + 3.0 * s, WeightedQuantile(object, 0.995, lo, width) + 0.5 * width);
+  const double bottom =
+    std::max(mObject - 3.0 * s, WeightedQuantile(object, 0.005, lo, width) - 0.5 * width);
   estimate.Range[0] = bright ? mid : bottom;
   estimate.Range[1] = bright ? top : mid;
 }
 
-bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
-  double outwardSign, RangeEstimate& estimate, std::string* error)
+bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
+  const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error)
 {
   estimate = RangeEstimate();
   std::vector<float> values = ValuesInside(scalars, geometry, mesh);
@@ -317,7 +323,8 @@ bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
   {
     if (error)
     {
-      *error = "the start surface encloses no voxel of the image and none of its vertices lies in it";
+      *error =
+        "the start surface encloses no voxel of the image and none of its vertices lies in it";
     }
     return false;
   }
@@ -348,7 +355,8 @@ bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
   return true;
 }
 
-long long CountVoxelsInRange(const float* scalars, const ImageGeometry& geometry, double lo, double hi)
+long long CountVoxelsInRange(
+  const float* scalars, const ImageGeometry& geometry, double lo, double hi)
 {
   long long count = 0;
   const long long n = geometry.NumberOfVoxels();

@@ -37,13 +37,13 @@ inline double RegionSpeed(double intensity, double lo, double hi)
 struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 {
   double Range[2] = { 0, 0 };
-  long long Samples = 0;        ///< voxels inside the surface (or vertices, see below)
-  long long OutsideSamples = 0; ///< samples in the shell just outside it
+  long long Samples = 0;         ///< voxels inside the surface (or vertices, see below)
+  long long OutsideSamples = 0;  ///< samples in the shell just outside it
   double Median = 0, Spread = 0; ///< of the inside
-  double Separation = 0;        ///< total variation between the inside and outside histograms
+  double Separation = 0;         ///< total variation between the inside and outside histograms
   double ObjectMedian = 0, BackgroundMedian = 0;
   bool FromVertices = false;
-  bool Contrast = false;        ///< the outside differs: one end of the range is the midpoint
+  bool Contrast = false; ///< the outside differs: one end of the range is the midpoint
 };
 
 /// The intensity range of the object the start surface lies on or in. Inside: the voxels
@@ -62,8 +62,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 /// the range is m -+ 3 s: the whole of that region's class.
 /// Returns false (with a message) when there is nothing to sample.
 DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const float* scalars,
-  const ImageGeometry& geometry, const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate,
-  std::string* error);
+  const ImageGeometry& geometry, const TriangleMesh& mesh, double outwardSign,
+  RangeEstimate& estimate, std::string* error);
 
 /// Voxels whose value lies in [lo, hi].
 DEFORMABLESURFACEFILTERS_EXPORT long long CountVoxelsInRange(

@@ -79,7 +79,8 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
   return true;
 }
 
-double SampleVolume(const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
+double SampleVolume(
+  const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
 {
   TrilinearCell c;
   const bool in = values && LocateCell(geometry, x, c);
@@ -101,7 +102,8 @@ double SampleVolume(const float* values, const ImageGeometry& geometry, const do
 
 double ForceField::SamplePotential(const double x[3]) const
 {
-  return this->Potential.empty() ? 0.0 : SampleVolume(this->Potential.data(), this->Geometry, x, nullptr);
+  return this->Potential.empty() ? 0.0
+                                 : SampleVolume(this->Potential.data(), this->Geometry, x, nullptr);
 }
 
 namespace
@@ -193,7 +195,8 @@ AxisSmoother MakeSmoother(double sigmaVoxels)
     s.Type = AxisSmoother::FIR;
     s.Radius = std::max(1, static_cast<int>(std::ceil(4.0 * sigmaVoxels)));
     s.Taps.resize(2 * s.Radius + 1);
-    auto build = [&s](double width) {
+    auto build = [&s](double width)
+    {
       double sum = 0.0, var = 0.0;
       for (int k = -s.Radius; k <= s.Radius; ++k)
       {
@@ -291,8 +294,8 @@ void FIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* 
 // N rows of nx contiguous floats, row r at base + r*stride, filtered along r in place.
 // The recursion runs over whole rows so memory access stays sequential and the
 // inner loops vectorise. scratch: 4*nx doubles (IIR) or N*nx floats (FIR).
-void IIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmoother& s,
-  double* scratch)
+void IIRRows(
+  float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmoother& s, double* scratch)
 {
   double* s1 = scratch;
   double* s2 = scratch + nx;
@@ -350,12 +353,12 @@ void IIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmooth
   }
 }
 
-void FIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmoother& s,
-  float* copy)
+void FIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmoother& s, float* copy)
 {
   for (int r = 0; r < N; ++r)
   {
-    std::copy(base + r * stride, base + r * stride + nx, copy + static_cast<std::ptrdiff_t>(r) * nx);
+    std::copy(
+      base + r * stride, base + r * stride + nx, copy + static_cast<std::ptrdiff_t>(r) * nx);
   }
   const int R = s.Radius;
   for (int r = 0; r < N; ++r)
@@ -367,7 +370,8 @@ void FIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmooth
     }
     for (int k = -R; k <= R; ++k)
     {
-      const float* src = copy + static_cast<std::ptrdiff_t>(std::min(std::max(r + k, 0), N - 1)) * nx;
+      const float* src =
+        copy + static_cast<std::ptrdiff_t>(std::min(std::max(r + k, 0), N - 1)) * nx;
       const float w = static_cast<float>(s.Taps[k + R]);
       for (int i = 0; i < nx; ++i)
       {
@@ -396,59 +400,64 @@ void Smooth(const float* src, float* dst, const int dims[3], const double sigmaV
 
   // x: one line per (j,k).
   const long long nLines = static_cast<long long>(ny) * nz;
-  vtkSMPTools::For(0, nLines, [&](long long begin, long long end) {
-    std::vector<double> scratch(nx + 2 * (sx.Radius + 1));
-    for (long long l = begin; l < end; ++l)
+  vtkSMPTools::For(0, nLines,
+    [&](long long begin, long long end)
     {
-      const float* in = src + l * nx;
-      float* out = dst + l * nx;
-      switch (sx.Type)
+      std::vector<double> scratch(nx + 2 * (sx.Radius + 1));
+      for (long long l = begin; l < end; ++l)
       {
-        case AxisSmoother::IIR:
-          IIRLine(in, out, nx, sx, scratch.data());
-          break;
-        case AxisSmoother::FIR:
-          FIRLine(in, out, nx, sx, scratch.data());
-          break;
-        default:
-          if (in != out)
-          {
-            std::copy(in, in + nx, out);
-          }
+        const float* in = src + l * nx;
+        float* out = dst + l * nx;
+        switch (sx.Type)
+        {
+          case AxisSmoother::IIR:
+            IIRLine(in, out, nx, sx, scratch.data());
+            break;
+          case AxisSmoother::FIR:
+            FIRLine(in, out, nx, sx, scratch.data());
+            break;
+          default:
+            if (in != out)
+            {
+              std::copy(in, in + nx, out);
+            }
+        }
       }
-    }
-  });
+    });
 
-  auto rows = [&](const AxisSmoother& s, long long count, int N, std::ptrdiff_t outer,
-                std::ptrdiff_t stride) {
+  auto rows =
+    [&](const AxisSmoother& s, long long count, int N, std::ptrdiff_t outer, std::ptrdiff_t stride)
+  {
     if (s.Type == AxisSmoother::Identity)
     {
       return;
     }
-    vtkSMPTools::For(0, count, [&](long long begin, long long end) {
-      std::vector<double> dscratch;
-      std::vector<float> fscratch;
-      if (s.Type == AxisSmoother::IIR)
+    vtkSMPTools::For(0, count,
+      [&](long long begin, long long end)
       {
-        dscratch.resize(4 * static_cast<std::size_t>(nx));
-      }
-      else
-      {
-        fscratch.resize(static_cast<std::size_t>(N) * nx);
-      }
-      for (long long c = begin; c < end; ++c)
-      {
-        float* base = dst + c * outer;
+        std::vector<double> dscratch;
+        std::vector<float> fscratch;
         if (s.Type == AxisSmoother::IIR)
         {
-          IIRRows(base, N, stride, nx, s, dscratch.data());
+          dscratch.resize(4 * static_cast<std::size_t>(nx));
         }
         else
         {
-          FIRRows(base, N, stride, nx, s, fscratch.data());
+          fscratch.resize(static_cast<std::size_t>(N) * nx);
         }
-      }
-    });
+        for (long long c = begin; c < end; ++c)
+        {
+          float* base = dst + c * outer;
+          if (s.Type == AxisSmoother::IIR)
+          {
+            IIRRows(base, N, stride, nx, s, dscratch.data());
+          }
+          else
+          {
+            FIRRows(base, N, stride, nx, s, fscratch.data());
+          }
+        }
+      });
   };
   rows(sy, nz, ny, slice, nx); // y: for each k, rows j
   rows(sz, ny, nz, nx, slice); // z: for each j, rows k
@@ -456,7 +465,8 @@ void Smooth(const float* src, float* dst, const int dims[3], const double sigmaV
 
 bool Validate(const ImageGeometry& g, double sigma, std::string* error)
 {
-  auto fail = [&](const std::string& m) {
+  auto fail = [&](const std::string& m)
+  {
     if (error)
     {
       *error = m;
@@ -546,12 +556,14 @@ inline double Diff(const float* v, int p, int n, std::ptrdiff_t step)
 template <typename Body>
 void ForEachVoxelSlice(const int dims[3], Body&& body)
 {
-  vtkSMPTools::For(0, dims[2], [&](int kb, int ke) {
-    for (int k = kb; k < ke; ++k)
+  vtkSMPTools::For(0, dims[2],
+    [&](int kb, int ke)
     {
-      body(k);
-    }
-  });
+      for (int k = kb; k < ke; ++k)
+      {
+        body(k);
+      }
+    });
 }
 } // namespace
 
@@ -569,16 +581,18 @@ double NormalizeEdgesLocally(
   Smooth(g, scratch, dims, wide);
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   std::vector<double> maxima(dims[2], 0.0);
-  ForEachVoxelSlice(dims, [&](int k) {
-    double m = 0.0;
-    for (std::ptrdiff_t v = k * sz, e = v + sz; v < e; ++v)
+  ForEachVoxelSlice(dims,
+    [&](int k)
     {
-      const double r = g[v] / (std::max(0.0, static_cast<double>(scratch[v])) + floor);
-      g[v] = static_cast<float>(r);
-      m = std::max(m, r);
-    }
-    maxima[k] = m;
-  });
+      double m = 0.0;
+      for (std::ptrdiff_t v = k * sz, e = v + sz; v < e; ++v)
+      {
+        const double r = g[v] / (std::max(0.0, static_cast<double>(scratch[v])) + floor);
+        g[v] = static_cast<float>(r);
+        m = std::max(m, r);
+      }
+      maxima[k] = m;
+    });
   return *std::max_element(maxima.begin(), maxima.end());
 }
 
@@ -644,24 +658,29 @@ struct EdgeStatistics
 };
 
 /// g = |grad smooth| into `edges`, with the extrema the normalisation needs.
-EdgeStatistics EdgeMagnitude(const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
+EdgeStatistics EdgeMagnitude(
+  const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
 {
   const int nz = dims[2];
   std::vector<double> gMax(nz, 0.0), sMin(nz, std::numeric_limits<double>::max()),
     sMax(nz, std::numeric_limits<double>::lowest());
-  ForEachVoxelSlice(dims, [&](int k) {
-    double gm = 0.0, lo = sMin[k], hi = sMax[k];
-    ForEachWorldGradientOfSlice(smooth, dims, toWorld, k, [&](std::ptrdiff_t v, const double gw[3]) {
-      const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
-      edges[v] = static_cast<float>(g);
-      gm = std::max(gm, g);
-      lo = std::min(lo, static_cast<double>(smooth[v]));
-      hi = std::max(hi, static_cast<double>(smooth[v]));
+  ForEachVoxelSlice(dims,
+    [&](int k)
+    {
+      double gm = 0.0, lo = sMin[k], hi = sMax[k];
+      ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
+        [&](std::ptrdiff_t v, const double gw[3])
+        {
+          const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
+          edges[v] = static_cast<float>(g);
+          gm = std::max(gm, g);
+          lo = std::min(lo, static_cast<double>(smooth[v]));
+          hi = std::max(hi, static_cast<double>(smooth[v]));
+        });
+      gMax[k] = gm;
+      sMin[k] = lo;
+      sMax[k] = hi;
     });
-    gMax[k] = gm;
-    sMin[k] = lo;
-    sMax[k] = hi;
-  });
   EdgeStatistics s;
   s.GradientMax = *std::max_element(gMax.begin(), gMax.end());
   s.SmoothMin = *std::min_element(sMin.begin(), sMin.end());
@@ -680,8 +699,8 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
   if (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local &&
     stats.GradientMax > 0.0)
   {
-    gNorm =
-      NormalizeEdgesLocally(potential, scratch, dims, sigmaVoxels, parameters.LocalEdgeFloor * stats.GradientMax);
+    gNorm = NormalizeEdgesLocally(
+      potential, scratch, dims, sigmaVoxels, parameters.LocalEdgeFloor * stats.GradientMax);
   }
   if (parameters.NormalizePotential)
   {
@@ -690,13 +709,15 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
     offset = -gs * stats.SmoothMin;
   }
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
-  ForEachVoxelSlice(dims, [&](int k) {
-    const std::ptrdiff_t b = k * sz, e = b + sz;
-    for (std::ptrdiff_t v = b; v < e; ++v)
+  ForEachVoxelSlice(dims,
+    [&](int k)
     {
-      potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
-    }
-  });
+      const std::ptrdiff_t b = k * sz, e = b + sz;
+      for (std::ptrdiff_t v = b; v < e; ++v)
+      {
+        potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
+      }
+    });
 }
 } // namespace
 
@@ -729,8 +750,8 @@ double SmootherVariance(double sigmaVoxels)
   }
 }
 
-bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma,
-  int numberOfThreads, std::string* error)
+bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, int numberOfThreads,
+  std::string* error)
 {
   if (!volume || !Validate(geometry, sigma, error))
   {
@@ -763,25 +784,31 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
     parameters.Sigma / geometry.Spacing[1], parameters.Sigma / geometry.Spacing[2] };
   const GradientToWorld toWorld(geometry);
 
-  WithThreads(parameters.NumberOfThreads, [&]() {
-    // The first third of the force buffer holds G_sigma*f until P is known; the rest is
-    // scratch for the local edge normalisation.
-    float* smooth = force;
-    Smooth(scalars, smooth, dims, sv);
-    const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
-    float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
-    CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
+  WithThreads(parameters.NumberOfThreads,
+    [&]()
+    {
+      // The first third of the force buffer holds G_sigma*f until P is known; the rest is
+      // scratch for the local edge normalisation.
+      float* smooth = force;
+      Smooth(scalars, smooth, dims, sv);
+      const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
+      float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
+      CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
 
-    // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
-    ForEachVoxelSlice(dims, [&](int k) {
-      ForEachWorldGradientOfSlice(potential, dims, toWorld, k, [&](std::ptrdiff_t v, const double gw[3]) {
-        float* f = force + 3 * v;
-        f[0] = static_cast<float>(-gw[0]);
-        f[1] = static_cast<float>(-gw[1]);
-        f[2] = static_cast<float>(-gw[2]);
-      });
+      // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
+      ForEachVoxelSlice(dims,
+        [&](int k)
+        {
+          ForEachWorldGradientOfSlice(potential, dims, toWorld, k,
+            [&](std::ptrdiff_t v, const double gw[3])
+            {
+              float* f = force + 3 * v;
+              f[0] = static_cast<float>(-gw[0]);
+              f[1] = static_cast<float>(-gw[1]);
+              f[2] = static_cast<float>(-gw[2]);
+            });
+        });
     });
-  });
   // Finite inputs can still overflow single precision: a weight near VTK_DOUBLE_MAX, or a
   // sigma so large that the recursive filter's coefficients are not finite.
   const std::size_t n = static_cast<std::size_t>(geometry.NumberOfVoxels());

@@ -63,21 +63,21 @@ enum class EdgeNormalization
 
 struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
 {
-  double Sigma = 1.0;          ///< physical units (isotropic in world space); 0 = no smoothing
-  double EdgeWeight = 1.0;     ///< w_edge
-  double ImageWeight = 0.0;    ///< w_image
+  double Sigma = 1.0;       ///< physical units (isotropic in world space); 0 = no smoothing
+  double EdgeWeight = 1.0;  ///< w_edge
+  double ImageWeight = 0.0; ///< w_image
   bool NormalizePotential = true;
   /// With NormalizePotential: how g is normalised (see EdgeNormalization).
   dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
   double LocalEdgeFloor = 0.05; ///< Local: the denominator's floor, a fraction of max g
-  int NumberOfThreads = 0;     ///< 0 = all the machine has (vtkSMPTools STDThread)
+  int NumberOfThreads = 0;      ///< 0 = all the machine has (vtkSMPTools STDThread)
 };
 
 /// P and -grad P on the voxel grid.
 struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 {
   ImageGeometry Geometry;
-  double Sigma = 0.0;          ///< physical sigma the field was computed at
+  double Sigma = 0.0;           ///< physical sigma the field was computed at
   std::vector<float> Potential; ///< P per voxel (x fastest)
   std::vector<float> Force;     ///< -grad P per voxel, 3 components, world coordinates
 

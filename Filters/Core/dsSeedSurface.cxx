@@ -66,7 +66,8 @@ std::vector<std::int64_t> FaceNeighbours(const std::vector<SeedTet>& tets)
     }
   }
   std::sort(entries.begin(), entries.end(),
-    [](const Entry& a, const Entry& b) { return a.Key < b.Key || (a.Key == b.Key && a.Slot < b.Slot); });
+    [](const Entry& a, const Entry& b)
+    { return a.Key < b.Key || (a.Key == b.Key && a.Slot < b.Slot); });
   std::vector<std::int64_t> neighbour(entries.size(), -1);
   for (std::size_t i = 0; i + 1 < entries.size(); ++i)
   {
@@ -89,8 +90,8 @@ bool IsKept(const std::vector<unsigned char>& status, std::int64_t slot)
 
 /// Positively oriented copies of the tetrahedra (so each face's outward order comes from
 /// kFace), and which of them are flat (|volume| <= degenerateVolume).
-std::vector<SeedTet> OrientPositively(const std::vector<SeedPoint>& points, const std::vector<SeedTet>& inTets,
-  double degenerateVolume, std::vector<char>& flat)
+std::vector<SeedTet> OrientPositively(const std::vector<SeedPoint>& points,
+  const std::vector<SeedTet>& inTets, double degenerateVolume, std::vector<char>& flat)
 {
   std::vector<SeedTet> tets = inTets;
   flat.assign(tets.size(), 0);
@@ -109,8 +110,8 @@ std::vector<SeedTet> OrientPositively(const std::vector<SeedPoint>& points, cons
 
 /// Peels the flat kept tetrahedra that touch the boundary (status SeedRemovedDegenerate):
 /// their faces have no outward side. Returns how many were peeled.
-std::int64_t PeelFlatTetrahedra(
-  const std::vector<char>& flat, const std::vector<std::int64_t>& neighbour, std::vector<unsigned char>& status)
+std::int64_t PeelFlatTetrahedra(const std::vector<char>& flat,
+  const std::vector<std::int64_t>& neighbour, std::vector<unsigned char>& status)
 {
   const std::int64_t nTets = static_cast<std::int64_t>(flat.size());
   std::int64_t peeled = 0;
@@ -169,8 +170,9 @@ struct BoundaryFaces
   }
 };
 
-BoundaryFaces CollectBoundaryFaces(const std::vector<SeedTet>& tets, const std::vector<std::int64_t>& neighbour,
-  const std::vector<unsigned char>& status, std::int64_t& keptTetrahedra)
+BoundaryFaces CollectBoundaryFaces(const std::vector<SeedTet>& tets,
+  const std::vector<std::int64_t>& neighbour, const std::vector<unsigned char>& status,
+  std::int64_t& keptTetrahedra)
 {
   BoundaryFaces faces;
   faces.Tets = &tets;
@@ -198,8 +200,9 @@ BoundaryFaces CollectBoundaryFaces(const std::vector<SeedTet>& tets, const std::
 /// Pairs the faces across each edge by walking through the kept tetrahedra of one solid
 /// wedge around the edge: the pairing is then manifold even where 4+ faces meet.
 /// partner[3f+j] = the face across edge (corner j, corner j+1) of face f, or -1.
-std::vector<std::int64_t> PairFacesAcrossEdges(const BoundaryFaces& faces, const std::vector<SeedTet>& tets,
-  const std::vector<std::int64_t>& neighbour, const std::vector<unsigned char>& status)
+std::vector<std::int64_t> PairFacesAcrossEdges(const BoundaryFaces& faces,
+  const std::vector<SeedTet>& tets, const std::vector<std::int64_t>& neighbour,
+  const std::vector<unsigned char>& status)
 {
   const std::int64_t nFaces = faces.Count();
   const std::int64_t nTets = static_cast<std::int64_t>(tets.size());
@@ -428,12 +431,14 @@ std::int64_t CountComponents(const SeedSurface& surface)
 }
 } // namespace
 
-double SeedTetSignedVolume(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
+double SeedTetSignedVolume(
+  const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
 {
   return Dot(b - a, Cross(c - a, d - a)) / 6.0;
 }
 
-double SeedTetCircumradius(const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
+double SeedTetCircumradius(
+  const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
 {
   // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
   const SeedPoint u = b - a, v = c - a, w = d - a;
@@ -464,9 +469,9 @@ std::string SeedBoundaryReport::Summary() const
   }
   if (this->PinchedEdges > 0 || this->PinchedVertices > 0)
   {
-    os << sep << "resolved " << this->PinchedEdges << " pinched edge(s) and " << this->PinchedVertices
-       << " pinched vertex(es) by splitting vertices (" << this->VertexCopiesAdded
-       << " point copies added, moved 2% of an edge apart)";
+    os << sep << "resolved " << this->PinchedEdges << " pinched edge(s) and "
+       << this->PinchedVertices << " pinched vertex(es) by splitting vertices ("
+       << this->VertexCopiesAdded << " point copies added, moved 2% of an edge apart)";
     sep = "; ";
   }
   if (this->PinchTetsRemoved > 0)
@@ -482,8 +487,9 @@ std::string SeedBoundaryReport::Summary() const
   return os.str();
 }
 
-SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points, const std::vector<SeedTet>& inTets,
-  std::vector<unsigned char>& status, double degenerateVolume, SeedBoundaryReport& report)
+SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points,
+  const std::vector<SeedTet>& inTets, std::vector<unsigned char>& status, double degenerateVolume,
+  SeedBoundaryReport& report)
 {
   report = SeedBoundaryReport();
   SeedSurface surface;
@@ -500,7 +506,8 @@ SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points, const std:
   for (std::int64_t attempt = 0; attempt <= nTets; ++attempt)
   {
     report.DegenerateRemoved += PeelFlatTetrahedra(flat, neighbour, status);
-    const BoundaryFaces faces = CollectBoundaryFaces(tets, neighbour, status, report.KeptTetrahedra);
+    const BoundaryFaces faces =
+      CollectBoundaryFaces(tets, neighbour, status, report.KeptTetrahedra);
     if (faces.Count() == 0)
     {
       return surface;
@@ -529,11 +536,13 @@ double SeedMeanEdgeLength(const SeedSurface& surface)
 {
   // Over half-edges: interior edges are seen twice (once per side), which leaves the mean
   // unchanged, and no edge list is needed.
-  return MeanLength(surface.Points, 3 * surface.Triangles.size(), [&surface](std::size_t h) {
-    const SeedTriangle& tri = surface.Triangles[h / 3];
-    const int j = static_cast<int>(h % 3);
-    return std::array<std::int64_t, 2>{ tri[j], tri[(j + 1) % 3] };
-  });
+  return MeanLength(surface.Points, 3 * surface.Triangles.size(),
+    [&surface](std::size_t h)
+    {
+      const SeedTriangle& tri = surface.Triangles[h / 3];
+      const int j = static_cast<int>(h % 3);
+      return std::array<std::int64_t, 2>{ tri[j], tri[(j + 1) % 3] };
+    });
 }
 
 int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTriangles)
@@ -548,13 +557,16 @@ int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTr
   {
     std::unordered_map<unsigned long long, std::int64_t> midpoint;
     midpoint.reserve(surface.Triangles.size() * 2);
-    auto mid = [&](std::int64_t a, std::int64_t b) {
-      const auto inserted = midpoint.emplace(EdgeKey(a, b), static_cast<std::int64_t>(surface.Points.size()));
+    auto mid = [&](std::int64_t a, std::int64_t b)
+    {
+      const auto inserted =
+        midpoint.emplace(EdgeKey(a, b), static_cast<std::int64_t>(surface.Points.size()));
       if (inserted.second)
       {
         const SeedPoint& pa = surface.Points[a];
         const SeedPoint& pb = surface.Points[b];
-        surface.Points.push_back({ 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) });
+        surface.Points.push_back(
+          { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) });
         surface.SourcePoint.push_back(-1);
       }
       return inserted.first->second;

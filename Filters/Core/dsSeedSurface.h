@@ -79,9 +79,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SeedSurface
  *
  * @param status in/out, one entry per tetrahedron.
  */
-DEFORMABLESURFACEFILTERS_EXPORT SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points,
-  const std::vector<SeedTet>& tets, std::vector<unsigned char>& status, double degenerateVolume,
-  SeedBoundaryReport& report);
+DEFORMABLESURFACEFILTERS_EXPORT SeedSurface ExtractSeedBoundary(
+  const std::vector<SeedPoint>& points, const std::vector<SeedTet>& tets,
+  std::vector<unsigned char>& status, double degenerateVolume, SeedBoundaryReport& report);
 
 /**
  * Repeated 1-to-4 midpoint subdivision of the whole surface while the mean edge length exceeds

@@ -1,8 +1,8 @@
 #include "dsSelfIntersectionCount.h"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 
 namespace dsurf
 {
@@ -56,8 +56,10 @@ inline bool Interval(const double p[3], const double d[3], double& lo, double& h
     return false;
   }
   const int j = (iso + 1) % 3, k = (iso + 2) % 3;
-  const double tj = (d[iso] - d[j]) != 0 ? p[iso] + (p[j] - p[iso]) * d[iso] / (d[iso] - d[j]) : p[j];
-  const double tk = (d[iso] - d[k]) != 0 ? p[iso] + (p[k] - p[iso]) * d[iso] / (d[iso] - d[k]) : p[k];
+  const double tj =
+    (d[iso] - d[j]) != 0 ? p[iso] + (p[j] - p[iso]) * d[iso] / (d[iso] - d[j]) : p[j];
+  const double tk =
+    (d[iso] - d[k]) != 0 ? p[iso] + (p[k] - p[iso]) * d[iso] / (d[iso] - d[k]) : p[k];
   lo = std::min(tj, tk);
   hi = std::max(tj, tk);
   return true;
@@ -68,7 +70,8 @@ inline double Orient2D(const double a[2], const double b[2], const double c[2])
   return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
 
-inline bool SegmentsIntersect2D(const double a[2], const double b[2], const double c[2], const double d[2])
+inline bool SegmentsIntersect2D(
+  const double a[2], const double b[2], const double c[2], const double d[2])
 {
   const double o1 = Orient2D(a, b, c), o2 = Orient2D(a, b, d);
   const double o3 = Orient2D(c, d, a), o4 = Orient2D(c, d, b);
@@ -76,7 +79,8 @@ inline bool SegmentsIntersect2D(const double a[2], const double b[2], const doub
   {
     return true;
   }
-  auto onSegment = [](const double p[2], const double q[2], const double r[2]) {
+  auto onSegment = [](const double p[2], const double q[2], const double r[2])
+  {
     return std::min(p[0], q[0]) <= r[0] && r[0] <= std::max(p[0], q[0]) &&
       std::min(p[1], q[1]) <= r[1] && r[1] <= std::max(p[1], q[1]);
   };
@@ -86,7 +90,8 @@ inline bool SegmentsIntersect2D(const double a[2], const double b[2], const doub
 
 inline bool PointInTriangle2D(const double p[2], const double t[3][2])
 {
-  const double o0 = Orient2D(t[0], t[1], p), o1 = Orient2D(t[1], t[2], p), o2 = Orient2D(t[2], t[0], p);
+  const double o0 = Orient2D(t[0], t[1], p), o1 = Orient2D(t[1], t[2], p),
+               o2 = Orient2D(t[2], t[0], p);
   return (o0 >= 0 && o1 >= 0 && o2 >= 0) || (o0 <= 0 && o1 <= 0 && o2 <= 0);
 }
 
@@ -186,7 +191,8 @@ bool SharedVertexTrianglesOverlap(
     return false; // degenerate or coplanar
   }
   // Side of the crossing of the far edge (x1,x2) of one triangle with the other's plane.
-  auto side = [&](const Vec3& n, const Vec3& x1, const Vec3& x2, double eps) {
+  auto side = [&](const Vec3& n, const Vec3& x1, const Vec3& x2, double eps)
+  {
     double d1 = Dot(n, x1 - s), d2 = Dot(n, x2 - s);
     if (std::abs(d1) <= eps)
     {
@@ -312,7 +318,8 @@ private:
   {
     Node& nd = this->Nodes[id];
     Box bounds = { 1e300, 1e300, 1e300, -1e300, -1e300, -1e300 };
-    auto grow = [&bounds](const Box& b) {
+    auto grow = [&bounds](const Box& b)
+    {
       for (int a = 0; a < 3; ++a)
       {
         bounds[a] = std::min(bounds[a], b[a]);
@@ -451,7 +458,8 @@ int CountSelfIntersections(const TriangleMesh& mesh, std::vector<std::pair<int, 
   const TriangleBVH bvh(boxes);
 
   int count = 0;
-  auto test = [&](int t1, int t2) {
+  auto test = [&](int t1, int t2)
+  {
     const auto &A = mesh.Triangles[t1], &B = mesh.Triangles[t2];
     int shared = 0, sa = -1, sb = -1;
     for (int i = 0; i < 3; ++i)
@@ -473,8 +481,8 @@ int CountSelfIntersections(const TriangleMesh& mesh, std::vector<std::pair<int, 
     }
     else if (shared == 1)
     {
-      hit = SharedVertexTrianglesOverlap(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
-        P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
+      hit = SharedVertexTrianglesOverlap(
+        P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]], P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
     }
     if (hit)
     {

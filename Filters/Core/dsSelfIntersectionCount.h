@@ -18,8 +18,8 @@ namespace dsurf
 /// True when the closed triangles (a0,a1,a2) and (b0,b1,b2) share a point (Moeller 1997,
 /// with a 2-D edge/containment test for coplanar pairs). Distances to the other plane
 /// within a tiny relative tolerance count as zero, so touching counts as intersecting.
-DEFORMABLESURFACEFILTERS_EXPORT bool TrianglesIntersect(const Vec3& a0, const Vec3& a1,
-  const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2);
+DEFORMABLESURFACEFILTERS_EXPORT bool TrianglesIntersect(
+  const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2);
 
 /// Triangles (s,a1,a2) and (s,b1,b2) share the vertex s: true when they overlap in more
 /// than s, i.e. one folds through the other (non-coplanar pairs; coplanar ones count as

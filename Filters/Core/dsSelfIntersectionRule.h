@@ -16,7 +16,8 @@ namespace dsurf
 /// `normal()` returns (any length; called only then, the normal costs a fan of cross
 /// products). Zero when that normal is zero.
 template <class NormalFunction>
-inline Vec3 SelfIntersectionRule(const Vec3& force, const Vec3& umbrella, const NormalFunction& normal)
+inline Vec3 SelfIntersectionRule(
+  const Vec3& force, const Vec3& umbrella, const NormalFunction& normal)
 {
   const double fu = Dot(force, umbrella);
   if (fu > 0)

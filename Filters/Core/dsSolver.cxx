@@ -28,7 +28,7 @@ struct MeshView
 /// in 300 random multi-level runs; docs/METHOD.md §6.4 lets rare cascading cases be ignored).
 struct RingWeights
 {
-  double InvW = 0;   ///< 1 / sum of weights
+  double InvW = 0; ///< 1 / sum of weights
   bool Uniform = true;
 };
 
@@ -116,7 +116,8 @@ int ColorAtDistanceTwo(const TriangleMesh& m, std::vector<int>& color)
   int numColors = 0;
   for (int v = 0; v < n; ++v)
   {
-    auto forbid = [&](int u) {
+    auto forbid = [&](int u)
+    {
       const int c = color[u];
       if (c >= 0)
       {
@@ -169,7 +170,8 @@ void Solver::BuildColoring()
     return; // no topology yet
   }
   this->ColoredPoints = n;
-  this->UniformWeights = std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
+  this->UniformWeights =
+    std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
   std::vector<int> color;
   const int numColors = ColorAtDistanceTwo(m, color);
 
@@ -303,14 +305,15 @@ Vec3 Solver::Umbrella(int v) const
   {
     return { 0, 0, 0 };
   }
-  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), m.Labels.data(), m.Points.data() };
+  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), m.Labels.data(),
+    m.Points.data() };
   return UmbrellaOf<false>(view, v, -1, &unused);
 }
 
 inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
-  const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(), this->LocalLabels.data(),
-    this->LocalPoints.data() };
+  const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
+    this->LocalLabels.data(), this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau;
 
@@ -318,7 +321,8 @@ inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   Vec3 u2acc{ 0, 0, 0 };
   double alpha = 1.0;
   double unused = 0;
-  const auto accumulate = [&](auto allN) {
+  const auto accumulate = [&](auto allN)
+  {
     constexpr bool AllN = decltype(allN)::value;
     u = UmbrellaOf<AllN>(m, v, -1, &unused);
     const RingWeights rw = ComputeRingWeights<AllN>(m, v);
@@ -366,7 +370,8 @@ inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveN
   {
     // The region force along the unit normal (dsRegion.h); the normal is kept for the rule.
     bool inside = false;
-    const double intensity = SampleVolume(this->RegionScalars, this->RegionGeometry, p.data(), &inside);
+    const double intensity =
+      SampleVolume(this->RegionScalars, this->RegionGeometry, p.data(), &inside);
     normal = this->FanNormal(v);
     haveNormal = true;
     const double nn = Norm(normal);
@@ -434,10 +439,12 @@ void Solver::CopyOut(int first, int last)
 SweepStatistics Solver::Sweep()
 {
   SweepStatistics stats;
-  this->Sweeps(1, [&stats](const SweepStatistics& s) {
-    stats = s;
-    return true;
-  });
+  this->Sweeps(1,
+    [&stats](const SweepStatistics& s)
+    {
+      stats = s;
+      return true;
+    });
   return stats;
 }
 
@@ -528,7 +535,8 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   return this->ParallelSweeps(numThreads, maxSweeps, afterSweep);
 }
 
-int Solver::SerialSweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+int Solver::SerialSweeps(
+  int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
 {
   const int n = this->Mesh->NumberOfPoints();
   const int total = this->Colors.Offsets.back();
@@ -560,7 +568,8 @@ int Solver::SerialSweeps(int maxSweeps, const std::function<bool(const SweepStat
 class Solver::SweepJob : public StepScheduler::Job
 {
 public:
-  SweepJob(Solver& solver, int blocks, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep)
+  SweepJob(Solver& solver, int blocks, int maxSweeps,
+    const std::function<bool(const SweepStatistics&)>& afterSweep)
     : S(solver)
     , Blocks(blocks)
     , MaxSweeps(maxSweeps)
@@ -583,7 +592,8 @@ public:
     const int phase = static_cast<int>((step - 1) % this->StepsPerSweep);
     if (phase == this->StepsPerSweep - 1)
     {
-      StepScheduler::BlockRange(static_cast<long long>(this->Chunks.size()), block, this->Blocks, first, last);
+      StepScheduler::BlockRange(
+        static_cast<long long>(this->Chunks.size()), block, this->Blocks, first, last);
       for (int c = first; c < last; ++c)
       {
         this->S.ChunkStatistics(c, this->Chunks[c]);
@@ -591,7 +601,8 @@ public:
       return;
     }
     const int cBegin = this->S.LocalColors.Offsets[phase];
-    StepScheduler::BlockRange(this->S.LocalColors.Offsets[phase + 1] - cBegin, block, this->Blocks, first, last);
+    StepScheduler::BlockRange(
+      this->S.LocalColors.Offsets[phase + 1] - cBegin, block, this->Blocks, first, last);
     for (int k = cBegin + first; k < cBegin + last; ++k)
     {
       this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
@@ -607,7 +618,8 @@ public:
   {
     // Every chunk is summed: combine and report; the other threads wait meanwhile.
     ++this->SweepsDone;
-    this->Finishing = !this->AfterSweep(this->S.CombineStatistics(this->Chunks)) || this->SweepsDone >= this->MaxSweeps;
+    this->Finishing = !this->AfterSweep(this->S.CombineStatistics(this->Chunks)) ||
+      this->SweepsDone >= this->MaxSweeps;
     return this->Finishing;
   }
 

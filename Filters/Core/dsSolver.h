@@ -32,7 +32,7 @@ namespace dsurf
 
 struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
 {
-  double Tau = 0.1;   ///< membrane (1) vs thin plate (0), docs/METHOD.md §2
+  double Tau = 0.1;    ///< membrane (1) vs thin plate (0), docs/METHOD.md §2
   double Gamma = 0.07; ///< damping of the correction, docs/METHOD.md §4
   /// docs/METHOD.md §5 rule (project F onto the umbrella or the normal). false is a test-only
   /// switch that applies the raw force, to show what the rule prevents.
@@ -80,8 +80,8 @@ public:
   /// unit area-weighted normal (outward for an outward-oriented surface). It is added to the
   /// edge force before the projection rule. scale 0 or no scalars: none. outwardOnly: the
   /// negative speeds are dropped (grow inside the range, leave the rest to the edge force).
-  void SetRegionForce(const float* scalars, const ImageGeometry& geometry, double low, double high, double scale,
-    bool outwardOnly = false)
+  void SetRegionForce(const float* scalars, const ImageGeometry& geometry, double low, double high,
+    double scale, bool outwardOnly = false)
   {
     this->RegionOutwardOnly = outwardOnly;
     this->RegionScalars = scale != 0.0 ? scalars : nullptr;
@@ -105,8 +105,8 @@ public:
   int Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
 
   /// Per vertex, from the last sweep (0 for fixed vertices):
-  /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (docs/METHOD.md §6.2),
-  /// in the same units as Displacement().
+  /// |gamma (tau c1 + (1 - tau) alpha c2)|, the internal part of the correction (docs/METHOD.md
+  /// §6.2), in the same units as Displacement().
   const std::vector<double>& ErrorIndicator() const { return this->ErrorIndicatorValues; }
   /// |c|, the length the vertex moved.
   const std::vector<double>& Displacement() const { return this->DisplacementValues; }
@@ -128,7 +128,8 @@ private:
   /// or no labels yet).
   bool ReadyToSweep();
   int SerialSweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
-  int ParallelSweeps(int numThreads, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
+  int ParallelSweeps(
+    int numThreads, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
   /// Copies the mesh's points and labels of local vertices [first, last) into the local copy.
   void RefreshLocal(int first, int last);
   void BuildColoring();
@@ -180,24 +181,24 @@ private:
   {
     std::vector<int> Offsets{ 0 }, Vertices;
   };
-  ColorClasses Colors; ///< in mesh ids
+  ColorClasses Colors;    ///< in mesh ids
   int ColoredPoints = -1; ///< point count the colouring was built for
   std::vector<double> ErrorIndicatorValues, DisplacementValues, ForceValues; ///< mesh order
 
   // Local (breadth-first) layout: Original[local] = mesh id, Local[mesh id] = local id.
   std::vector<int> Original, Local;
   std::vector<int> LocalNeighborOffsets, LocalNeighbors;
-  std::vector<int> LocalFanOffsets;              ///< triangles around each local vertex
-  std::vector<std::array<int, 3>> LocalFan;      ///< their corners (local ids, mesh order)
+  std::vector<int> LocalFanOffsets;         ///< triangles around each local vertex
+  std::vector<std::array<int, 3>> LocalFan; ///< their corners (local ids, mesh order)
   std::vector<unsigned char> LocalLabels;
-  std::vector<Vec3> LocalPoints;                 ///< refreshed from the mesh by every call
+  std::vector<Vec3> LocalPoints; ///< refreshed from the mesh by every call
   struct VertexResult
   {
     double ErrorIndicator = 0, Displacement = 0, Force = 0;
     int Outside = 0;
   };
-  std::vector<VertexResult> LocalResults;        ///< copied to the mesh order after a call
-  ColorClasses LocalColors; ///< the same classes in local ids
+  std::vector<VertexResult> LocalResults; ///< copied to the mesh order after a call
+  ColorClasses LocalColors;               ///< the same classes in local ids
 };
 } // namespace dsurf
 

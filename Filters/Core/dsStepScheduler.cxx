@@ -105,7 +105,8 @@ void RunThread(int t, RunState& state, StepScheduler::Job& job)
         // The last block of a step with an end counts only after EndStep(), so no
         // thread goes on before it returned.
         if (hasEnd &&
-          state.EndBlocks.fetch_add(1, std::memory_order_acq_rel) + 1 == endedSteps * state.Blocks &&
+          state.EndBlocks.fetch_add(1, std::memory_order_acq_rel) + 1 ==
+            endedSteps * state.Blocks &&
           job.EndStep(step))
         {
           state.Steps = step + 2;
@@ -133,14 +134,18 @@ StepScheduler::StepScheduler(int numberOfThreads, int blocksPerThread)
 long long StepScheduler::Run(Job& job) const
 {
   RunState state(this->Threads, this->BlocksPerThread);
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->Threads, "STDThread", false }, [&]() {
-    vtkSMPTools::For(0, this->Threads, 1, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType t = begin; t < end; ++t)
-      {
-        RunThread(static_cast<int>(t), state, job);
-      }
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->Threads, "STDThread", false },
+    [&]()
+    {
+      vtkSMPTools::For(0, this->Threads, 1,
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType t = begin; t < end; ++t)
+          {
+            RunThread(static_cast<int>(t), state, job);
+          }
+        });
     });
-  });
   return state.Steps;
 }
 } // namespace dsurf

@@ -8,7 +8,8 @@ namespace dsurf
 bool TriangleMesh::BuildTopology(std::string* error)
 {
   const int nPts = this->NumberOfPoints();
-  auto fail = [error](const std::string& msg) {
+  auto fail = [error](const std::string& msg)
+  {
     if (error)
     {
       *error = msg;
@@ -68,7 +69,8 @@ std::string TriangleMesh::BuildVertexTriangles()
   }
   this->VertexTriangles.assign(this->VertexTriangleOffsets[nPts], -1);
   {
-    std::vector<int> fill(this->VertexTriangleOffsets.begin(), this->VertexTriangleOffsets.end() - 1);
+    std::vector<int> fill(
+      this->VertexTriangleOffsets.begin(), this->VertexTriangleOffsets.end() - 1);
     for (int t = 0; t < nTri; ++t)
     {
       for (int k = 0; k < 3; ++k)
@@ -204,7 +206,8 @@ int TriangleMesh::OrientConsistently()
 {
   const int nTri = this->NumberOfTriangles();
   // +1 when triangle t traverses edge e from Edges[e][0] to Edges[e][1].
-  auto direction = [this](int t, int e) {
+  auto direction = [this](int t, int e)
+  {
     const auto& tri = this->Triangles[t];
     for (int k = 0; k < 3; ++k)
     {
@@ -234,7 +237,8 @@ int TriangleMesh::OrientConsistently()
       for (int k = 0; k < 3; ++k)
       {
         const int e = this->TriangleEdges[t][k];
-        const int other = this->EdgeTriangles[e][0] == t ? this->EdgeTriangles[e][1] : this->EdgeTriangles[e][0];
+        const int other =
+          this->EdgeTriangles[e][0] == t ? this->EdgeTriangles[e][1] : this->EdgeTriangles[e][0];
         if (other < 0 || flip[other] != -1)
         {
           continue;
@@ -293,7 +297,8 @@ int TriangleMesh::OrientPiecesOutward()
       volume[id] += Dot(this->Points[tri[0]], Cross(this->Points[tri[1]], this->Points[tri[2]]));
       for (int e : this->TriangleEdges[t])
       {
-        const int other = this->EdgeTriangles[e][0] == t ? this->EdgeTriangles[e][1] : this->EdgeTriangles[e][0];
+        const int other =
+          this->EdgeTriangles[e][0] == t ? this->EdgeTriangles[e][1] : this->EdgeTriangles[e][0];
         if (other < 0)
         {
           closed[id] = 0;
@@ -390,14 +395,16 @@ double TriangleMesh::SignedVolume() const
 
 double TriangleMesh::MeanEdgeLength() const
 {
-  return MeanLength(this->Points, this->Edges.size(), [this](std::size_t e) { return this->Edges[e]; });
+  return MeanLength(
+    this->Points, this->Edges.size(), [this](std::size_t e) { return this->Edges[e]; });
 }
 
 Vec3 TriangleMesh::AreaWeightedNormal(int v) const
 {
   const int first = this->VertexTriangleOffsets[v];
   return dsurf::AreaWeightedNormal(this->Points.data(), this->VertexTriangleOffsets[v + 1] - first,
-    [this, first](int i) -> const std::array<int, 3>& { return this->Triangles[this->VertexTriangles[first + i]]; });
+    [this, first](int i) -> const std::array<int, 3>&
+    { return this->Triangles[this->VertexTriangles[first + i]]; });
 }
 
 double TriangleMesh::MinAngleDegrees(int t) const

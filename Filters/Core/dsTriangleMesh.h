@@ -17,15 +17,30 @@ namespace dsurf
 {
 using Vec3 = std::array<double, 3>;
 
-inline Vec3 operator+(const Vec3& a, const Vec3& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
-inline Vec3 operator-(const Vec3& a, const Vec3& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
-inline Vec3 operator*(double s, const Vec3& a) { return { s * a[0], s * a[1], s * a[2] }; }
-inline double Dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 operator+(const Vec3& a, const Vec3& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+inline Vec3 operator-(const Vec3& a, const Vec3& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+inline Vec3 operator*(double s, const Vec3& a)
+{
+  return { s * a[0], s * a[1], s * a[2] };
+}
+inline double Dot(const Vec3& a, const Vec3& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline Vec3 Cross(const Vec3& a, const Vec3& b)
 {
   return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
-inline double Norm(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+inline double Norm(const Vec3& a)
+{
+  return std::sqrt(Dot(a, a));
+}
 
 /// Key of the undirected edge (a, b) of point ids below 2^32, for hash maps of edges (the
 /// triangle mesh, the refinement and the seed surface).
@@ -143,8 +158,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   int FindEdge(int a, int b) const;
 
   // --- invariants (need BuildTopology()) ---
-  bool IsClosed() const;                ///< every edge has two triangles
-  bool IsConsistentlyOriented() const;  ///< neighbours traverse shared edges oppositely
+  bool IsClosed() const;               ///< every edge has two triangles
+  bool IsConsistentlyOriented() const; ///< neighbours traverse shared edges oppositely
   /// Flip triangles so that neighbours traverse shared edges oppositely; each connected
   /// piece keeps the orientation most of its triangles had. Rebuilds the topology and
   /// returns the number of triangles flipped (a non-orientable piece stays as it is
@@ -155,7 +170,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   /// the number of triangles flipped. Needs a consistent orientation per piece.
   int OrientPiecesOutward();
   int CountNonManifoldVertices() const; ///< vertices whose triangles form more than one fan
-  int EulerCharacteristic() const { return this->NumberOfPoints() - static_cast<int>(this->Edges.size()) + this->NumberOfTriangles(); }
+  int EulerCharacteristic() const
+  {
+    return this->NumberOfPoints() - static_cast<int>(this->Edges.size()) +
+      this->NumberOfTriangles();
+  }
   /// Closed volume by the divergence theorem (positive when oriented outward).
   double SignedVolume() const;
   double MeanEdgeLength() const;

@@ -27,7 +27,8 @@ struct TrilinearCell
   /// Trilinear weight of that corner.
   double Weight(int corner) const
   {
-    return ((corner & 1) ? this->T[0] : 1.0 - this->T[0]) * (((corner >> 1) & 1) ? this->T[1] : 1.0 - this->T[1]) *
+    return ((corner & 1) ? this->T[0] : 1.0 - this->T[0]) *
+      (((corner >> 1) & 1) ? this->T[1] : 1.0 - this->T[1]) *
       (((corner >> 2) & 1) ? this->T[2] : 1.0 - this->T[2]);
   }
 };
@@ -50,7 +51,8 @@ inline bool LocateTrilinearCell(
     double t = 0.0;
     if (hi[a] > lo[a])
     {
-      const double v = std::min(std::max(ijk[a], static_cast<double>(lo[a])), static_cast<double>(hi[a]));
+      const double v =
+        std::min(std::max(ijk[a], static_cast<double>(lo[a])), static_cast<double>(hi[a]));
       i0 = std::min(static_cast<long long>(std::floor(v)), static_cast<long long>(hi[a] - 1));
       t = v - static_cast<double>(i0);
     }

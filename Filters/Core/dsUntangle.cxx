@@ -45,7 +45,8 @@ UntangleResult Untangle(TriangleMesh& mesh, int rounds, int steps)
     std::vector<int> vertices;
     for (int v = 0; v < n; ++v)
     {
-      if (selected[v] && !mesh.BoundaryVertex[v] && mesh.NeighborOffsets[v + 1] > mesh.NeighborOffsets[v])
+      if (selected[v] && !mesh.BoundaryVertex[v] &&
+        mesh.NeighborOffsets[v + 1] > mesh.NeighborOffsets[v])
       {
         vertices.push_back(v);
       }

@@ -18,15 +18,16 @@ namespace dsurf
 {
 struct DEFORMABLESURFACEFILTERS_EXPORT UntangleResult
 {
-  int Before = 0;  ///< intersecting triangle pairs found first
-  int After = 0;   ///< pairs left
-  int Moved = 0;   ///< vertices smoothed (counted once per round)
+  int Before = 0; ///< intersecting triangle pairs found first
+  int After = 0;  ///< pairs left
+  int Moved = 0;  ///< vertices smoothed (counted once per round)
 };
 
 /// Smooths the surroundings of intersecting triangle pairs of `mesh` (topology built; only
 /// point positions change; open-boundary vertices stay) for at most `rounds` rounds of
 /// `steps` umbrella steps each.
-DEFORMABLESURFACEFILTERS_EXPORT UntangleResult Untangle(TriangleMesh& mesh, int rounds = 8, int steps = 5);
+DEFORMABLESURFACEFILTERS_EXPORT UntangleResult Untangle(
+  TriangleMesh& mesh, int rounds = 8, int steps = 5);
 } // namespace dsurf
 
 #endif

@@ -5,8 +5,8 @@
 #include "dsMultilevel.h"
 #include "dsSelfIntersectionCount.h"
 
-#include "vtkFlyingEdges3D.h"
 #include "vtkFloatArray.h"
+#include "vtkFlyingEdges3D.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -75,8 +75,10 @@ void RunFlyingEdges(const Case& c)
   {
     minAngle = std::min(minAngle, m.MinAngleDegrees(t));
   }
-  std::printf("| %-12s | FlyingEdges3D (iso 0.5) | %7.3f | - | - | %8d | %6.3f | %6.3f | %5.1f | %5.1f%% | - |\n",
-    c.Name.c_str(), Seconds(t0, t1), m.NumberOfTriangles(), acc.Mean, acc.Max, minAngle, 100 * below20);
+  std::printf("| %-12s | FlyingEdges3D (iso 0.5) | %7.3f | - | - | %8d | %6.3f | %6.3f | %5.1f | "
+              "%5.1f%% | - |\n",
+    c.Name.c_str(), Seconds(t0, t1), m.NumberOfTriangles(), acc.Mean, acc.Max, minAngle,
+    100 * below20);
 }
 
 void RunDeformable(const Case& c, const dsurf::MultilevelParameters& p, const std::string& label)
@@ -104,7 +106,8 @@ void RunDeformable(const Case& c, const dsurf::MultilevelParameters& p, const st
   {
     perLevel += std::to_string(l.Sweeps) + (l.Converged ? "" : "*") + " ";
   }
-  std::printf("| %-12s | %s | %7.3f | %4d (%s) | %zu | %8d | %6.3f | %6.3f | %5.1f | %5.1f%% | %d |\n",
+  std::printf(
+    "| %-12s | %s | %7.3f | %4d (%s) | %zu | %8d | %6.3f | %6.3f | %5.1f | %5.1f%% | %d |\n",
     c.Name.c_str(), label.c_str(), Seconds(t0, t1), solver.GetTotalSweeps(), perLevel.c_str(),
     solver.GetLevels().size(), mesh.NumberOfTriangles(), acc.Mean, acc.Max, minAngle, 100 * below20,
     dsurf::CountSelfIntersections(mesh));
@@ -122,7 +125,8 @@ int main(int argc, char* argv[])
   {
     sizes = { 128, 256 };
   }
-  std::printf("| phantom | method | time s | sweeps (per level, * = cap) | levels | triangles | mean d | max d | min angle | < 20 deg | self-int |\n");
+  std::printf("| phantom | method | time s | sweeps (per level, * = cap) | levels | triangles | "
+              "mean d | max d | min angle | < 20 deg | self-int |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : sizes)
   {

@@ -35,7 +35,8 @@ double MeanDistance(vtkPolyData* surface, double c, double r)
   {
     double p[3];
     surface->GetPoint(i, p);
-    sum += std::abs(std::sqrt((p[0] - c) * (p[0] - c) + (p[1] - c) * (p[1] - c) + (p[2] - c) * (p[2] - c)) - r);
+    sum += std::abs(
+      std::sqrt((p[0] - c) * (p[0] - c) + (p[1] - c) * (p[1] - c) + (p[2] - c) * (p[2] - c)) - r);
   }
   return sum / std::max<vtkIdType>(1, surface->GetNumberOfPoints());
 }
@@ -63,7 +64,8 @@ int main(int argc, char* argv[])
   iso->Update();
   const double isoSeconds = Seconds(t0, Clock::now());
 
-  std::printf("| start triangles | time s | levels | sweeps | output vertices | mean d (voxels) | vtkFlyingEdges3D s | ratio |\n");
+  std::printf("| start triangles | time s | levels | sweeps | output vertices | mean d (voxels) | "
+              "vtkFlyingEdges3D s | ratio |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (int res : resolutions)
   {
@@ -85,7 +87,8 @@ int main(int argc, char* argv[])
     std::printf("| %lld | %.2f | %.0f | %.0f | %lld | %.3f | %.3f | %.0f |\n",
       static_cast<long long>(start->GetOutput()->GetNumberOfPolys()), seconds,
       fd->GetArray("Levels")->GetTuple1(0), fd->GetArray("Sweeps")->GetTuple1(0),
-      static_cast<long long>(out->GetNumberOfPoints()), MeanDistance(out, c, r), isoSeconds, seconds / isoSeconds);
+      static_cast<long long>(out->GetNumberOfPoints()), MeanDistance(out, c, r), isoSeconds,
+      seconds / isoSeconds);
   }
   return 0;
 }

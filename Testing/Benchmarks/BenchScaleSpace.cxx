@@ -91,10 +91,12 @@ int main(int argc, char* argv[])
       {
         filter->SetSigma(sigmas[s]);
         filter->SetNumberOfThreads(threads[t]);
-        ours[s][t] = Best(repsOurs, [&]() {
-          filter->Modified();
-          filter->Update();
-        });
+        ours[s][t] = Best(repsOurs,
+          [&]()
+          {
+            filter->Modified();
+            filter->Update();
+          });
         std::fflush(stdout);
       }
     }
@@ -117,11 +119,14 @@ int main(int argc, char* argv[])
       gradient->SetDimensionality(3);
       gradient->HandleBoundariesOn();
       gradient->SetNumberOfThreads(threads[t]);
-      vtk[s][t] = Best(repsVTK, [&]() {
-        smooth->Modified();
-        gradient->Update();
-      });
-      std::printf("  (VTK pair sigma %.1f, %d thread(s): %.3f s)\n", sigmas[s], threads[t], vtk[s][t]);
+      vtk[s][t] = Best(repsVTK,
+        [&]()
+        {
+          smooth->Modified();
+          gradient->Update();
+        });
+      std::printf(
+        "  (VTK pair sigma %.1f, %d thread(s): %.3f s)\n", sigmas[s], threads[t], vtk[s][t]);
       std::fflush(stdout);
     }
   }

@@ -13,11 +13,11 @@
 #include "dsScaleSpace.h"
 #include "dsSolver.h"
 
-#include <chrono>
-#include <ctime>
-#include <cstdio>
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
 
 int main(int argc, char* argv[])
@@ -48,8 +48,9 @@ int main(int argc, char* argv[])
         }
       }
 
-  std::printf("%-10s %-9s %-8s %-6s %-12s %-8s %-12s %-14s %-10s %-10s %-8s\n", "triangles", "vertices", "force",
-    "threads", "call", "colours", "ms/sweep", "ns/vertex", "speed-up", "cpu ms", "paper s");
+  std::printf("%-10s %-9s %-8s %-6s %-12s %-8s %-12s %-14s %-10s %-10s %-8s\n", "triangles",
+    "vertices", "force", "threads", "call", "colours", "ms/sweep", "ns/vertex", "speed-up",
+    "cpu ms", "paper s");
   for (int level : { 5, 6 })
   {
     if (onlyLevel != 0 && level != onlyLevel)
@@ -86,20 +87,24 @@ int main(int argc, char* argv[])
             }
             else
             {
-              solver.Sweeps(std::min(batch, sweeps - s), [](const dsurf::SweepStatistics&) { return true; });
+              solver.Sweeps(
+                std::min(batch, sweeps - s), [](const dsurf::SweepStatistics&) { return true; });
             }
           }
           const double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / sweeps;
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+              .count() /
+            sweeps;
           const double cpuMs = 1000.0 * (std::clock() - c0) / CLOCKS_PER_SEC / sweeps;
           if (threads == 1)
           {
             single = ms;
           }
-          const char* call = batch == 1 ? "Sweep" : (batch == sweeps ? "Sweeps(all)" : "Sweeps(20)");
+          const char* call =
+            batch == 1 ? "Sweep" : (batch == sweeps ? "Sweeps(all)" : "Sweeps(20)");
           std::printf("%-10d %-9d %-8s %-6d %-12s %-8d %-12.3f %-14.1f %-10.2f %-10.3f %-8s\n",
-            mesh.NumberOfTriangles(), mesh.NumberOfPoints(), withForce ? "yes" : "no", threads, call,
-            solver.NumberOfColors(), ms, 1e6 * ms / mesh.NumberOfPoints(), single / ms, cpuMs,
+            mesh.NumberOfTriangles(), mesh.NumberOfPoints(), withForce ? "yes" : "no", threads,
+            call, solver.NumberOfColors(), ms, 1e6 * ms / mesh.NumberOfPoints(), single / ms, cpuMs,
             level == 5 ? "1.4" : "5.9");
         }
       }

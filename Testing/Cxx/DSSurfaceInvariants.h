@@ -51,17 +51,17 @@ namespace dstest
 struct SurfaceFacts
 {
   vtkIdType Triangles = 0;
-  vtkIdType NonTriangles = 0;           // polygons with other than 3 points, strips
-  vtkIdType OtherCells = 0;             // vertices and lines
+  vtkIdType NonTriangles = 0; // polygons with other than 3 points, strips
+  vtkIdType OtherCells = 0;   // vertices and lines
   vtkIdType UsedPoints = 0;
-  vtkIdType NonFinitePoints = 0;        // points with a NaN or infinite coordinate
+  vtkIdType NonFinitePoints = 0; // points with a NaN or infinite coordinate
   vtkIdType Edges = 0;
-  vtkIdType EdgesNotTwice = 0;          // undirected edges not used by exactly 2 triangles
-  vtkIdType DirectedEdgesRepeated = 0;  // directed edges used twice: inconsistent orientation
-  vtkIdType VerticesNotOneFan = 0;      // vertices whose triangles do not form a single fan
+  vtkIdType EdgesNotTwice = 0;         // undirected edges not used by exactly 2 triangles
+  vtkIdType DirectedEdgesRepeated = 0; // directed edges used twice: inconsistent orientation
+  vtkIdType VerticesNotOneFan = 0;     // vertices whose triangles do not form a single fan
   long Euler = 0;
-  double SignedVolume = 0.0;            // divergence theorem, > 0 for outward normals
-  double MassVolume = 0.0;              // vtkMassProperties
+  double SignedVolume = 0.0; // divergence theorem, > 0 for outward normals
+  double MassVolume = 0.0;   // vtkMassProperties
   bool Closed() const { return this->Triangles > 0 && this->EdgesNotTwice == 0; }
 };
 
@@ -107,8 +107,8 @@ inline SurfaceFacts Measure(vtkPolyData* surface)
   for (const auto& e : directed)
   {
     f.DirectedEdgesRepeated += e.second > 1 ? 1 : 0;
-    undirected[{ std::min(e.first.first, e.first.second), std::max(e.first.first, e.first.second) }] +=
-      e.second;
+    undirected[{ std::min(e.first.first, e.first.second),
+      std::max(e.first.first, e.first.second) }] += e.second;
   }
   for (const auto& e : undirected)
   {
@@ -138,7 +138,8 @@ inline SurfaceFacts Measure(vtkPolyData* surface)
   }
   f.UsedPoints = static_cast<vtkIdType>(used.size());
   f.Edges = static_cast<vtkIdType>(undirected.size());
-  f.Euler = static_cast<long>(f.UsedPoints) - static_cast<long>(f.Edges) + static_cast<long>(f.Triangles);
+  f.Euler =
+    static_cast<long>(f.UsedPoints) - static_cast<long>(f.Edges) + static_cast<long>(f.Triangles);
   if (f.Triangles > 0 && f.NonFinitePoints == 0)
   {
     vtkNew<vtkMassProperties> mass;
@@ -147,9 +148,9 @@ inline SurfaceFacts Measure(vtkPolyData* surface)
     f.MassVolume = mass->GetVolume();
   }
   std::cout << "  surface: " << f.Triangles << " triangles, " << f.UsedPoints << " points ("
-            << surface->GetNumberOfPoints() << " stored), " << f.Edges << " edges, Euler " << f.Euler
-            << ", signed volume " << f.SignedVolume << ", vtkMassProperties volume " << f.MassVolume
-            << std::endl;
+            << surface->GetNumberOfPoints() << " stored), " << f.Edges << " edges, Euler "
+            << f.Euler << ", signed volume " << f.SignedVolume << ", vtkMassProperties volume "
+            << f.MassVolume << std::endl;
   return f;
 }
 
@@ -183,14 +184,16 @@ inline void CheckClosedManifold(const SurfaceFacts& f, vtkIdType storedPoints, l
   DS_CHECK(f.NonTriangles == 0 && f.OtherCells == 0, at + "only triangles");
   DS_CHECK(f.NonFinitePoints == 0, at + "finite coordinates");
   DS_CHECK(f.EdgesNotTwice == 0, at + "closed: every edge used by exactly two triangles");
-  DS_CHECK(f.DirectedEdgesRepeated == 0, at + "consistent orientation: no directed edge used twice");
+  DS_CHECK(
+    f.DirectedEdgesRepeated == 0, at + "consistent orientation: no directed edge used twice");
   DS_CHECK(f.VerticesNotOneFan == 0, at + "manifold vertices: one fan each");
   DS_CHECK(f.UsedPoints == storedPoints, at + "output holds only used points");
   if (outward)
   {
     DS_CHECK(f.SignedVolume > 0, at + "outward orientation: signed volume > 0");
   }
-  DS_CHECK(f.Euler == expectedEuler, at + "Euler characteristic " + std::to_string(f.Euler) + " expected " +
+  DS_CHECK(f.Euler == expectedEuler,
+    at + "Euler characteristic " + std::to_string(f.Euler) + " expected " +
       std::to_string(expectedEuler));
 }
 
@@ -206,8 +209,8 @@ struct SurfaceAllowance
 /// output is closed and manifold, consistently oriented like the start (same sign of the
 /// volume) and keeps its Euler characteristic; an open start gives a consistently oriented,
 /// edge-manifold output. The "SelfIntersections" field, when present, is within the allowance.
-inline SurfaceFacts CheckSurfaceInvariants(vtkPolyData* start, vtkPolyData* output, const std::string& label,
-  const SurfaceAllowance& allow = SurfaceAllowance())
+inline SurfaceFacts CheckSurfaceInvariants(vtkPolyData* start, vtkPolyData* output,
+  const std::string& label, const SurfaceAllowance& allow = SurfaceAllowance())
 {
   std::cout << label << ": invariants" << std::endl;
   const SurfaceFacts s = MeasureStart(start);
@@ -223,7 +226,8 @@ inline SurfaceFacts CheckSurfaceInvariants(vtkPolyData* start, vtkPolyData* outp
     DS_CHECK(f.NonTriangles == 0 && f.OtherCells == 0, label + ": only triangles");
     DS_CHECK(f.NonFinitePoints == 0, label + ": finite coordinates");
     DS_CHECK(f.DirectedEdgesRepeated == 0, label + ": consistent orientation");
-    DS_CHECK(f.UsedPoints == output->GetNumberOfPoints(), label + ": output holds only used points");
+    DS_CHECK(
+      f.UsedPoints == output->GetNumberOfPoints(), label + ": output holds only used points");
   }
   if (vtkDataArray* selfx = output->GetFieldData()->GetArray("SelfIntersections"))
   {
@@ -234,10 +238,12 @@ inline SurfaceFacts CheckSurfaceInvariants(vtkPolyData* start, vtkPolyData* outp
 
 /// The same invariants for the core's meshes (dsurf::MultilevelSolver's start and result),
 /// with the self-intersections counted directly (the core has no field data).
-inline SurfaceFacts CheckSurfaceInvariants(const dsurf::TriangleMesh& start, const dsurf::TriangleMesh& output,
-  const std::string& label, const SurfaceAllowance& allow = SurfaceAllowance())
+inline SurfaceFacts CheckSurfaceInvariants(const dsurf::TriangleMesh& start,
+  const dsurf::TriangleMesh& output, const std::string& label,
+  const SurfaceAllowance& allow = SurfaceAllowance())
 {
-  DS_CHECK_LE(dsurf::CountSelfIntersections(output), allow.SelfIntersections, label + ": self-intersections");
+  DS_CHECK_LE(
+    dsurf::CountSelfIntersections(output), allow.SelfIntersections, label + ": self-intersections");
   return CheckSurfaceInvariants(ToPolyData(start), ToPolyData(output), label, allow);
 }
 
@@ -305,7 +311,8 @@ inline std::uint64_t InputFingerprint(vtkDataObject* data)
   if (auto* poly = vtkPolyData::SafeDownCast(data))
   {
     h = HashArray(poly->GetPoints() ? poly->GetPoints()->GetData() : nullptr, h);
-    for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+    for (vtkCellArray* cells :
+      { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
     {
       h = HashCells(cells, h);
     }

@@ -38,15 +38,17 @@ inline int Result(const char* name)
 } // namespace dstest
 
 /// DS_CHECK(cond, message): counts a failure when cond is false.
-#define DS_CHECK(cond, msg) ::dstest::Check(static_cast<bool>(cond), std::string(#cond) + " -- " + (msg), __FILE__, __LINE__)
+#define DS_CHECK(cond, msg)                                                                        \
+  ::dstest::Check(static_cast<bool>(cond), std::string(#cond) + " -- " + (msg), __FILE__, __LINE__)
 /// DS_CHECK_LE(value, limit, what): value <= limit, printing both.
 #define DS_CHECK_LE(v, lim, what)                                                                  \
   do                                                                                               \
   {                                                                                                \
     const double ds_v_ = (v), ds_l_ = (lim);                                                       \
     std::cout << "  " << (what) << " = " << ds_v_ << " (limit <= " << ds_l_ << ")" << std::endl;   \
-    ::dstest::Check(ds_v_ <= ds_l_, std::string(what) + " = " + std::to_string(ds_v_) + " > " +   \
-        std::to_string(ds_l_), __FILE__, __LINE__);                                               \
+    ::dstest::Check(ds_v_ <= ds_l_,                                                                \
+      std::string(what) + " = " + std::to_string(ds_v_) + " > " + std::to_string(ds_l_), __FILE__, \
+      __LINE__);                                                                                   \
   } while (0)
 /// DS_CHECK_GE(value, limit, what): value >= limit, printing both.
 #define DS_CHECK_GE(v, lim, what)                                                                  \
@@ -54,8 +56,9 @@ inline int Result(const char* name)
   {                                                                                                \
     const double ds_v_ = (v), ds_l_ = (lim);                                                       \
     std::cout << "  " << (what) << " = " << ds_v_ << " (limit >= " << ds_l_ << ")" << std::endl;   \
-    ::dstest::Check(ds_v_ >= ds_l_, std::string(what) + " = " + std::to_string(ds_v_) + " < " +   \
-        std::to_string(ds_l_), __FILE__, __LINE__);                                               \
+    ::dstest::Check(ds_v_ >= ds_l_,                                                                \
+      std::string(what) + " = " + std::to_string(ds_v_) + " < " + std::to_string(ds_l_), __FILE__, \
+      __LINE__);                                                                                   \
   } while (0)
 
 #endif

@@ -23,7 +23,10 @@ inline dsurf::ImageGeometry Geometry(int n)
   return g;
 }
 
-inline double Center(int n) { return 0.5 * (n - 1); }
+inline double Center(int n)
+{
+  return 0.5 * (n - 1);
+}
 
 /// 1 inside the axis-aligned cube of half-side `half` voxels around the centre, 0
 /// elsewhere. With the centre at (n-1)/2 and an integer half side the boundary lies
@@ -78,12 +81,14 @@ inline dsurf::TriangleMesh EnclosingBox(int n, int k, double inset = 0.5)
   dsurf::TriangleMesh m;
   std::map<std::array<int, 3>, int> ids;
   const double lo = inset, hi = n - 1 - inset;
-  auto point = [&](std::array<int, 3> g) {
+  auto point = [&](std::array<int, 3> g)
+  {
     auto it = ids.find(g);
     if (it != ids.end())
       return it->second;
     const int id = static_cast<int>(m.Points.size());
-    m.Points.push_back({ lo + (hi - lo) * g[0] / k, lo + (hi - lo) * g[1] / k, lo + (hi - lo) * g[2] / k });
+    m.Points.push_back(
+      { lo + (hi - lo) * g[0] / k, lo + (hi - lo) * g[1] / k, lo + (hi - lo) * g[2] / k });
     ids[g] = id;
     return id;
   };
@@ -95,7 +100,8 @@ inline dsurf::TriangleMesh EnclosingBox(int n, int k, double inset = 0.5)
       for (int a = 0; a < k; ++a)
         for (int b = 0; b < k; ++b)
         {
-          auto at = [&](int da, int db) {
+          auto at = [&](int da, int db)
+          {
             std::array<int, 3> g{};
             g[axis] = side * k;
             g[u] = a + da;
@@ -106,7 +112,8 @@ inline dsurf::TriangleMesh EnclosingBox(int n, int k, double inset = 0.5)
           std::array<int, 3> t1{ p00, p10, p11 }, t2{ p00, p11, p01 };
           for (auto* t : { &t1, &t2 })
           {
-            const Vec3 nrm = dsurf::Cross(m.Points[(*t)[1]] - m.Points[(*t)[0]], m.Points[(*t)[2]] - m.Points[(*t)[0]]);
+            const Vec3 nrm = dsurf::Cross(
+              m.Points[(*t)[1]] - m.Points[(*t)[0]], m.Points[(*t)[2]] - m.Points[(*t)[0]]);
             const Vec3 out = m.Points[(*t)[0]] - Vec3{ c, c, c };
             if (dsurf::Dot(nrm, out) < 0)
               std::swap((*t)[1], (*t)[2]);
@@ -168,7 +175,8 @@ Accuracy MeasureArea(const dsurf::TriangleMesh& m, Dist dist)
   {
     const Vec3 &p0 = m.Points[t[0]], &p1 = m.Points[t[1]], &p2 = m.Points[t[2]];
     const double ta = 0.5 * Norm(Cross(p1 - p0, p2 - p0));
-    const Vec3 samples[4] = { (1.0 / 3.0) * (p0 + p1 + p2), 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0) };
+    const Vec3 samples[4] = { (1.0 / 3.0) * (p0 + p1 + p2), 0.5 * (p0 + p1), 0.5 * (p1 + p2),
+      0.5 * (p2 + p0) };
     for (const auto& s : samples)
     {
       const double d = dist(s);

@@ -14,7 +14,8 @@
 
 namespace dstest
 {
-inline vtkSmartPointer<vtkImageData> SoftBallImage(int n, double c, double radius, double height = 1.0)
+inline vtkSmartPointer<vtkImageData> SoftBallImage(
+  int n, double c, double radius, double height = 1.0)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(n, n, n);

@@ -52,7 +52,8 @@ double MaxDifference(vtkPolyData* a, vtkPolyData* b)
     double p[3], q[3];
     a->GetPoint(i, p);
     b->GetPoint(i, q);
-    worst = std::max({ worst, std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2]) });
+    worst =
+      std::max({ worst, std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2]) });
   }
   return worst;
 }
@@ -79,16 +80,19 @@ int TestAnimateSweeps(int, char*[])
   vtkInformation* info = animated->GetOutputInformation(0);
   const int steps = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  std::cout << steps << " time steps: " << times[0] << ", " << times[1] << ", ... " << times[steps - 1] << std::endl;
+  std::cout << steps << " time steps: " << times[0] << ", " << times[1] << ", ... "
+            << times[steps - 1] << std::endl;
   DS_CHECK(steps > 10 && times[0] == 0 && times[1] == 20, "time steps 0, 20, 40, ...");
 
-  auto at = [&](double t) {
+  auto at = [&](double t)
+  {
     animated->UpdateTimeStep(t);
     auto copy = vtkSmartPointer<vtkPolyData>::New();
     copy->DeepCopy(animated->GetOutput());
     return copy;
   };
-  auto plain = [&](int sweeps) {
+  auto plain = [&](int sweeps)
+  {
     vtkNew<vtkDeformableSurfaceFilter> f;
     f->SetInputData(0, image);
     f->SetInitialSurfaceConnection(start->GetOutputPort());
@@ -108,10 +112,14 @@ int TestAnimateSweeps(int, char*[])
             << solves->Progress - solveProgress << " for the next three" << std::endl;
   DS_CHECK(solveProgress > 5, "the first request solved");
   // The pipeline itself reports 0 and 1 around every execution; a solve reports hundreds.
-  DS_CHECK_LE(solves->Progress - solveProgress, 3 * 2, "the next three came from the cache (progress events)");
-  DS_CHECK_LE(MaxDifference(step3, plain(60)), 0.0, "time 60 = a plain run stopped after 60 sweeps (max |dx|)");
-  DS_CHECK_LE(MaxDifference(step1, plain(20)), 0.0, "time 20 = a plain run stopped after 20 sweeps (max |dx|)");
-  DS_CHECK_LE(MaxDifference(step4, plain(80)), 0.0, "time 80 = a plain run stopped after 80 sweeps (max |dx|)");
+  DS_CHECK_LE(solves->Progress - solveProgress, 3 * 2,
+    "the next three came from the cache (progress events)");
+  DS_CHECK_LE(MaxDifference(step3, plain(60)), 0.0,
+    "time 60 = a plain run stopped after 60 sweeps (max |dx|)");
+  DS_CHECK_LE(MaxDifference(step1, plain(20)), 0.0,
+    "time 20 = a plain run stopped after 20 sweeps (max |dx|)");
+  DS_CHECK_LE(MaxDifference(step4, plain(80)), 0.0,
+    "time 80 = a plain run stopped after 80 sweeps (max |dx|)");
   DS_CHECK_LE(MaxDifference(again3, step3), 0.0, "back to time 60: the same surface");
   vtkDataArray* sweeps = step3->GetFieldData()->GetArray("Sweeps");
   DS_CHECK(sweeps && sweeps->GetTuple1(0) == 60, "the snapshot at time 60 says 60 sweeps");
@@ -125,17 +133,22 @@ int TestAnimateSweeps(int, char*[])
   whole->SetInitialSurfaceConnection(start->GetOutputPort());
   dstest::UpdateAndCheckSurface(whole, "the whole run");
   DS_CHECK(solves->Errors == 0, "no error for a time beyond the end");
-  DS_CHECK_LE(MaxDifference(last, whole->GetOutput()), 0.0, "beyond the end: the final surface (max |dx|)");
-  DS_CHECK(last->GetPointData()->GetArray("Normals") != nullptr, "the final step carries every array");
+  DS_CHECK_LE(
+    MaxDifference(last, whole->GetOutput()), 0.0, "beyond the end: the final surface (max |dx|)");
+  DS_CHECK(
+    last->GetPointData()->GetArray("Normals") != nullptr, "the final step carries every array");
   // The table of the one solve, kept while the cached steps were shown: a row per sweep.
   const double total = whole->GetOutput()->GetFieldData()->GetArray("Sweeps")->GetTuple1(0);
-  std::cout << "convergence table: " << cachedRows << " rows, whole solve " << total << " sweeps" << std::endl;
+  std::cout << "convergence table: " << cachedRows << " rows, whole solve " << total << " sweeps"
+            << std::endl;
   DS_CHECK(total > 80, "the solve runs past the last step compared (80 sweeps)");
-  DS_CHECK(cachedRows == static_cast<vtkIdType>(total), "the cached convergence table is kept (a row per sweep)");
+  DS_CHECK(cachedRows == static_cast<vtkIdType>(total),
+    "the cached convergence table is kept (a row per sweep)");
   for (const auto& step : { std::make_pair(step1, "time 20"), std::make_pair(step3, "time 60"),
          std::make_pair(step4, "time 80"), std::make_pair(last, "beyond the end") })
   {
-    dstest::CheckSurfaceInvariants(start->GetOutput(), step.first, std::string("snapshot at ") + step.second);
+    dstest::CheckSurfaceInvariants(
+      start->GetOutput(), step.first, std::string("snapshot at ") + step.second);
   }
   return dstest::Result("TestAnimateSweeps");
 }

@@ -68,14 +68,16 @@ vtkSmartPointer<vtkImageData> Ball(double s = 1.0, int nx = N, int ny = N, int n
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
       {
-        values->SetValue(id++, whole->GetScalarComponentAsFloat(
-          nx == 1 ? 16 : i, ny == 1 ? 16 : j, nz == 1 ? 16 : k, 0));
+        values->SetValue(id++,
+          whole->GetScalarComponentAsFloat(
+            nx == 1 ? 16 : i, ny == 1 ? 16 : j, nz == 1 ? 16 : k, 0));
       }
   part->GetPointData()->SetScalars(values);
   return part;
 }
 
-/// A triangulated UV sphere of radius 11 voxels around the ball (scaled by s, centre shifted by dx).
+/// A triangulated UV sphere of radius 11 voxels around the ball (scaled by s, centre shifted by
+/// dx).
 vtkSmartPointer<vtkPolyData> Start(double s = 1.0, double dx = 0.0, double endPhi = 180.0)
 {
   vtkNew<vtkSphereSource> sphere;
@@ -159,7 +161,8 @@ vtkSmartPointer<vtkPolyData> WithDegenerate(bool duplicatePoint)
   return out;
 }
 
-vtkSmartPointer<vtkImageData> Edited(vtkSmartPointer<vtkImageData> image, const std::function<void(vtkImageData*)>& edit)
+vtkSmartPointer<vtkImageData> Edited(
+  vtkSmartPointer<vtkImageData> image, const std::function<void(vtkImageData*)>& edit)
 {
   edit(image);
   return image;
@@ -177,15 +180,15 @@ struct Row
   std::function<vtkSmartPointer<vtkImageData>()> Image;
   std::function<vtkSmartPointer<vtkPolyData>()> Surface;
   std::function<void(vtkDeformableSurfaceFilter*)> Configure; // may be empty
-  std::string Error;       // a substring of the error; empty: no error allowed
-  std::string Warning;     // a substring of a warning; empty: no warning allowed
+  std::string Error;   // a substring of the error; empty: no error allowed
+  std::string Warning; // a substring of a warning; empty: no warning allowed
   Output Expect;
-  bool Gradient = false;   // an image case: vtkImageScaleSpaceGradient too
+  bool Gradient = false;                     // an image case: vtkImageScaleSpaceGradient too
   std::string GradientError = std::string(); // empty: the gradient must succeed
 };
 
-void CheckMessages(const dstest::MessageCounter& m, const std::string& error, const std::string& warning,
-  const std::string& label)
+void CheckMessages(const dstest::MessageCounter& m, const std::string& error,
+  const std::string& warning, const std::string& label)
 {
   if (error.empty())
   {
@@ -229,7 +232,8 @@ void RunGradient(const Row& row, vtkImageData* image)
         bad += std::isfinite(force->GetComponent(i, c)) ? 0 : 1;
       }
     }
-    DS_CHECK(force && force->GetNumberOfTuples() == image->GetNumberOfPoints(), label + ": a Force per voxel");
+    DS_CHECK(force && force->GetNumberOfTuples() == image->GetNumberOfPoints(),
+      label + ": a Force per voxel");
     DS_CHECK_LE(bad, 0, label + ": non-finite Force components");
   }
   else
@@ -261,7 +265,8 @@ void RunRow(const Row& row)
   vtkPolyData* out = filter->GetOutput();
   if (row.Expect == Output::Empty)
   {
-    DS_CHECK(out->GetNumberOfPoints() == 0 && out->GetNumberOfCells() == 0, row.Name + ": empty output");
+    DS_CHECK(
+      out->GetNumberOfPoints() == 0 && out->GetNumberOfCells() == 0, row.Name + ": empty output");
   }
   else
   {
@@ -300,23 +305,36 @@ std::vector<Row> ImageRows()
   auto start = [] { return Start(); };
   const char* threeD = "A 3-D image is needed";
   return {
-    { "no scalars", [] { auto i = vtkSmartPointer<vtkImageData>::New(); i->SetDimensions(N, N, N); return i; },
+    { "no scalars",
+      []
+      {
+        auto i = vtkSmartPointer<vtkImageData>::New();
+        i->SetDimensions(N, N, N);
+        return i;
+      },
       start, nullptr, "no point arrays", "", Output::Empty, true, "no point arrays" },
-    { "the chosen array missing, two others", [] {
+    { "the chosen array missing, two others",
+      []
+      {
         auto i = Ball();
         vtkNew<vtkFloatArray> other;
         other->DeepCopy(i->GetPointData()->GetScalars());
         other->SetName("other");
         i->GetPointData()->AddArray(other);
         i->GetPointData()->SetActiveScalars(nullptr);
-        return i; },
-      start, [](vtkDeformableSurfaceFilter* f) {
-        f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "missing"); },
+        return i;
+      },
+      start,
+      [](vtkDeformableSurfaceFilter* f)
+      { f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "missing"); },
       "choose one of 'density', 'other'", "", Output::Empty },
-    { "the chosen array missing, active scalars used", ball, start, [](vtkDeformableSurfaceFilter* f) {
-        f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "missing"); },
+    { "the chosen array missing, active scalars used", ball, start,
+      [](vtkDeformableSurfaceFilter* f)
+      { f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "missing"); },
       "", "", Output::Surface },
-    { "3-component scalars", [] {
+    { "3-component scalars",
+      []
+      {
         auto i = Ball();
         vtkNew<vtkFloatArray> v;
         v->SetName("vectors");
@@ -324,29 +342,57 @@ std::vector<Row> ImageRows()
         v->SetNumberOfTuples(i->GetNumberOfPoints());
         v->Fill(1.0);
         i->GetPointData()->SetScalars(v);
-        return i; },
+        return i;
+      },
       start, nullptr, "'vectors' has 3 components", "", Output::Empty, true, "3 components" },
-    { "1-D image 32x1x1", [] { return Ball(1.0, N, 1, 1); }, start, nullptr, threeD, "", Output::Empty, true, "3-D" },
-    { "2-D image 32x32x1", [] { return Ball(1.0, N, N, 1); }, start, nullptr, threeD, "", Output::Empty, true, "3-D" },
-    { "1x1x1 image", [] { return Ball(1.0, 1, 1, 1); }, start, nullptr, threeD, "", Output::Empty, true, "3-D" },
-    { "empty image", [] { return vtkSmartPointer<vtkImageData>::New(); }, start, nullptr, "image is empty", "",
-      Output::Empty, true, "empty" },
-    { "a NaN voxel", [] { return Edited(Ball(), [](vtkImageData* i) { i->GetPointData()->GetScalars()->SetTuple1(777, NaN); }); },
+    { "1-D image 32x1x1", [] { return Ball(1.0, N, 1, 1); }, start, nullptr, threeD, "",
+      Output::Empty, true, "3-D" },
+    { "2-D image 32x32x1", [] { return Ball(1.0, N, N, 1); }, start, nullptr, threeD, "",
+      Output::Empty, true, "3-D" },
+    { "1x1x1 image", [] { return Ball(1.0, 1, 1, 1); }, start, nullptr, threeD, "", Output::Empty,
+      true, "3-D" },
+    { "empty image", [] { return vtkSmartPointer<vtkImageData>::New(); }, start, nullptr,
+      "image is empty", "", Output::Empty, true, "empty" },
+    { "a NaN voxel",
+      []
+      {
+        return Edited(
+          Ball(), [](vtkImageData* i) { i->GetPointData()->GetScalars()->SetTuple1(777, NaN); });
+      },
       start, nullptr, "1 non-finite values", "", Output::Empty, true, "non-finite" },
-    { "an Inf voxel", [] { return Edited(Ball(), [](vtkImageData* i) { i->GetPointData()->GetScalars()->SetTuple1(999, Inf); }); },
+    { "an Inf voxel",
+      []
+      {
+        return Edited(
+          Ball(), [](vtkImageData* i) { i->GetPointData()->GetScalars()->SetTuple1(999, Inf); });
+      },
       start, nullptr, "1 non-finite values", "", Output::Empty, true, "non-finite" },
-    { "constant image", [] { return Edited(Ball(), [](vtkImageData* i) { i->GetPointData()->GetScalars()->Fill(3.0); }); },
+    { "constant image",
+      [] {
+        return Edited(Ball(), [](vtkImageData* i) { i->GetPointData()->GetScalars()->Fill(3.0); });
+      },
       start, nullptr, "The image is constant", "", Output::Empty },
-    { "negative spacing", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetSpacing(-1, 1, 1); }); },
-      start, nullptr, "spacing must be positive", "", Output::Empty, true, "spacing must be positive" },
-    { "NaN spacing", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetSpacing(1, NaN, 1); }); },
-      start, nullptr, "spacing must be positive", "", Output::Empty, true, "spacing must be positive" },
+    { "negative spacing",
+      [] { return Edited(Ball(), [](vtkImageData* i) { i->SetSpacing(-1, 1, 1); }); }, start,
+      nullptr, "spacing must be positive", "", Output::Empty, true, "spacing must be positive" },
+    { "NaN spacing",
+      [] { return Edited(Ball(), [](vtkImageData* i) { i->SetSpacing(1, NaN, 1); }); }, start,
+      nullptr, "spacing must be positive", "", Output::Empty, true, "spacing must be positive" },
     { "NaN origin", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetOrigin(0, NaN, 0); }); },
-      start, nullptr, "the image origin must be finite", "", Output::Empty, true, "the image origin must be finite" },
-    { "singular direction matrix", [] { return Edited(Ball(), [](vtkImageData* i) { i->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 0); }); },
-      start, nullptr, "direction matrix must be a rotation", "", Output::Empty, true, "direction matrix" },
-    { "spacing 1e-6", [] { return Ball(1e-6); }, [] { return Start(1e-6); }, nullptr, "", "", Output::Surface, true },
-    { "spacing 1e6", [] { return Ball(1e6); }, [] { return Start(1e6); }, nullptr, "", "", Output::Surface, true },
+      start, nullptr, "the image origin must be finite", "", Output::Empty, true,
+      "the image origin must be finite" },
+    { "singular direction matrix",
+      []
+      {
+        return Edited(
+          Ball(), [](vtkImageData* i) { i->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 0); });
+      },
+      start, nullptr, "direction matrix must be a rotation", "", Output::Empty, true,
+      "direction matrix" },
+    { "spacing 1e-6", [] { return Ball(1e-6); }, [] { return Start(1e-6); }, nullptr, "", "",
+      Output::Surface, true },
+    { "spacing 1e6", [] { return Ball(1e6); }, [] { return Start(1e6); }, nullptr, "", "",
+      Output::Surface, true },
   };
 }
 
@@ -356,25 +402,39 @@ std::vector<Row> SurfaceRows()
   return {
     { "empty surface", ball, [] { return vtkSmartPointer<vtkPolyData>::New(); }, nullptr,
       "no polygons or triangle strips", "", Output::Empty },
-    { "vertices and lines besides the triangles", ball, [] { return WithExtraCells(Start(), true, true); }, nullptr,
-      "", "", Output::Surface },
-    { "only lines", ball, [] {
+    { "vertices and lines besides the triangles", ball,
+      [] { return WithExtraCells(Start(), true, true); }, nullptr, "", "", Output::Surface },
+    { "only lines", ball,
+      []
+      {
         auto s = WithExtraCells(Start(), false, true);
         s->SetPolys(vtkNew<vtkCellArray>());
-        return s; }, nullptr, "no polygons or triangle strips", "", Output::Empty },
+        return s;
+      },
+      nullptr, "no polygons or triangle strips", "", Output::Empty },
     { "triangle strips", ball, [] { return AsStrips(); }, nullptr, "", "", Output::Surface },
     { "quads (a box)", ball, [] { return AsQuads(); }, nullptr, "", "", Output::Surface },
-    { "non-manifold edge", ball, [] { return dstest::MakeFin({ 14, 14, 14 }); }, nullptr, "not a manifold triangle mesh", "",
-      Output::Empty },
-    { "a NaN coordinate", ball, [] {
+    { "non-manifold edge", ball,
+      [] {
+        return dstest::MakeFin({ 14, 14, 14 });
+      },
+      nullptr, "not a manifold triangle mesh", "", Output::Empty },
+    { "a NaN coordinate", ball,
+      []
+      {
         auto s = Start();
         s->GetPoints()->SetPoint(5, NaN, 16, 16);
-        return s; }, nullptr, "non-finite point coordinate", "", Output::Empty },
-    { "a zero-area triangle", ball, [] { return WithDegenerate(false); }, nullptr, "", "", Output::Surface },
-    { "a triangle naming a point twice", ball, [] { return WithDegenerate(true); }, nullptr, "", "", Output::Surface },
-    { "an open surface (a cap)", ball, [] { return Start(1.0, 0.0, 60.0); }, nullptr, "", "", Output::Surface },
-    { "a surface entirely outside the volume", ball, [] { return Start(1.0, 100.0); }, nullptr, "", "outside the image",
+        return s;
+      },
+      nullptr, "non-finite point coordinate", "", Output::Empty },
+    { "a zero-area triangle", ball, [] { return WithDegenerate(false); }, nullptr, "", "",
       Output::Surface },
+    { "a triangle naming a point twice", ball, [] { return WithDegenerate(true); }, nullptr, "", "",
+      Output::Surface },
+    { "an open surface (a cap)", ball, [] { return Start(1.0, 0.0, 60.0); }, nullptr, "", "",
+      Output::Surface },
+    { "a surface entirely outside the volume", ball, [] { return Start(1.0, 100.0); }, nullptr, "",
+      "outside the image", Output::Surface },
   };
 }
 
@@ -383,27 +443,42 @@ std::vector<Row> ParameterRows()
   auto ball = [] { return Ball(); };
   auto start = [] { return Start(); };
   return {
-    { "Abort at 30 % (from a ProgressEvent observer)", ball, start, [](vtkDeformableSurfaceFilter* f) { AbortAt(f, 0.3); },
-      "", "", Output::Surface },
+    { "Abort at 30 % (from a ProgressEvent observer)", ball, start,
+      [](vtkDeformableSurfaceFilter* f) { AbortAt(f, 0.3); }, "", "", Output::Surface },
     { "Tau NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetTau(NaN); },
       "Tau is not a finite number", "", Output::Empty },
     { "Sigma NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetSigma(NaN); },
       "Sigma is not a finite number", "", Output::Empty },
-    { "SigmaFraction NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetSigma(0); f->SetSigmaFraction(NaN); },
+    { "SigmaFraction NaN", ball, start,
+      [](vtkDeformableSurfaceFilter* f)
+      {
+        f->SetSigma(0);
+        f->SetSigmaFraction(NaN);
+      },
       "SigmaFraction is not a finite number", "", Output::Empty },
     { "EdgeWeight NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetEdgeWeight(NaN); },
       "EdgeWeight is not a finite number", "", Output::Empty },
-    { "RegionWeight NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(NaN); },
+    { "RegionWeight NaN", ball, start,
+      [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(NaN); },
       "RegionWeight is not a finite number", "", Output::Empty },
-    { "ConvergenceTolerance NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetConvergenceTolerance(NaN); },
+    { "ConvergenceTolerance NaN", ball, start,
+      [](vtkDeformableSurfaceFilter* f) { f->SetConvergenceTolerance(NaN); },
       "ConvergenceTolerance is not a finite number", "", Output::Empty },
-    { "RefinementThreshold NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetRefinementThreshold(NaN); },
+    { "RefinementThreshold NaN", ball, start,
+      [](vtkDeformableSurfaceFilter* f) { f->SetRefinementThreshold(NaN); },
       "RefinementThreshold is not a finite number", "", Output::Empty },
-    { "Sigma +Inf (clamped to VTK_DOUBLE_MAX)", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetSigma(Inf); },
-      "the force field is not finite", "", Output::Empty },
-    { "EdgeWeight +Inf (clamped to VTK_DOUBLE_MAX)", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetEdgeWeight(Inf); },
-      "the force field is not finite", "", Output::Empty },
-    { "IntensityRange NaN", ball, start, [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(1); f->SetIntensityRange(NaN, 1); },
+    { "Sigma +Inf (clamped to VTK_DOUBLE_MAX)", ball, start,
+      [](vtkDeformableSurfaceFilter* f) { f->SetSigma(Inf); }, "the force field is not finite", "",
+      Output::Empty },
+    { "EdgeWeight +Inf (clamped to VTK_DOUBLE_MAX)", ball, start,
+      [](vtkDeformableSurfaceFilter* f) { f->SetEdgeWeight(Inf); }, "the force field is not finite",
+      "", Output::Empty },
+    { "IntensityRange NaN", ball, start,
+      [](vtkDeformableSurfaceFilter* f)
+      {
+        f->SetRegionWeight(1);
+        f->SetIntensityRange(NaN, 1);
+      },
       "", "the intensity range must be finite", Output::Surface },
   };
 }
@@ -412,15 +487,25 @@ std::vector<Row> ParameterRows()
 /// VTK_DOUBLE_MAX (what +Inf clamps to) overflows the field and is refused too.
 void GradientParameterRows()
 {
-  const std::vector<std::pair<std::string, std::function<void(vtkImageScaleSpaceGradient*)>>> rows = {
-    { "Sigma is not a finite number", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(NaN); } },
-    { "SigmaFraction is not a finite number", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(0); g->SetSigmaFraction(NaN); } },
-    { "EdgeWeight is not a finite number", [](vtkImageScaleSpaceGradient* g) { g->SetEdgeWeight(NaN); } },
-    { "ImageWeight is not a finite number", [](vtkImageScaleSpaceGradient* g) { g->SetImageWeight(NaN); } },
-    { "the force field is not finite", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(Inf); } },
-    { "the force field is not finite", [](vtkImageScaleSpaceGradient* g) { g->SetEdgeWeight(Inf); } },
-    { "the force field is not finite", [](vtkImageScaleSpaceGradient* g) { g->SetImageWeight(Inf); } },
-  };
+  const std::vector<std::pair<std::string, std::function<void(vtkImageScaleSpaceGradient*)>>>
+    rows = {
+      { "Sigma is not a finite number", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(NaN); } },
+      { "SigmaFraction is not a finite number",
+        [](vtkImageScaleSpaceGradient* g)
+        {
+          g->SetSigma(0);
+          g->SetSigmaFraction(NaN);
+        } },
+      { "EdgeWeight is not a finite number",
+        [](vtkImageScaleSpaceGradient* g) { g->SetEdgeWeight(NaN); } },
+      { "ImageWeight is not a finite number",
+        [](vtkImageScaleSpaceGradient* g) { g->SetImageWeight(NaN); } },
+      { "the force field is not finite", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(Inf); } },
+      { "the force field is not finite",
+        [](vtkImageScaleSpaceGradient* g) { g->SetEdgeWeight(Inf); } },
+      { "the force field is not finite",
+        [](vtkImageScaleSpaceGradient* g) { g->SetImageWeight(Inf); } },
+    };
   for (const auto& row : rows)
   {
     const std::string label = "gradient parameter: " + row.first;
@@ -470,7 +555,8 @@ void SeedRows()
   withNaN.push_back({ 0, Inf, 0 });
   const std::vector<SeedRow> rows = {
     { "seed: 0 points", {}, "No point with finite coordinates", "", 0, 0 },
-    { "seed: only NaN points", { { NaN, 1, 2 } }, "No point with finite coordinates", "Ignored 1 point(s)", 0, 0 },
+    { "seed: only NaN points", { { NaN, 1, 2 } }, "No point with finite coordinates",
+      "Ignored 1 point(s)", 0, 0 },
     { "seed: 1 point", { { 1, 2, 3 } }, "", "", 2, 320 },
     { "seed: 2 points", { { 0, 0, 0 }, { 20, 0, 0 } }, "", "", 4, 640 },
     { "seed: 3 points", { { 0, 0, 0 }, { 20, 0, 0 }, { 0, 20, 0 } }, "", "", 6, 960 },
@@ -478,7 +564,8 @@ void SeedRows()
       "The 5 points merge into 1", 2, 320 },
     { "seed: cube corners and two non-finite points", withNaN, "", "Ignored 2 point(s)", 2, 12 },
     // Each cube is far below Tolerance x diagonal (1e-3 x 1e5): documented to merge, and said so.
-    { "seed: two far clusters (cubes 1e5 apart)", clusters, "", "The 16 points merge into 2", 4, 640 },
+    { "seed: two far clusters (cubes 1e5 apart)", clusters, "", "The 16 points merge into 2", 4,
+      640 },
     { "seed: SeedRadius NaN", { { 1, 2, 3 } }, "SeedRadius is not a finite number", "", 0, 0,
       [](vtkDelaunaySeedSurface* f) { f->SetSeedRadius(NaN); } },
     { "seed: Alpha NaN", cube, "Alpha is not a finite number", "", 0, 0,
@@ -514,7 +601,8 @@ void SeedRows()
     CheckMessages(*messages, row.Error, row.Warning, row.Name);
     vtkPolyData* out = seed->GetOutput();
     DS_CHECK(out->GetNumberOfPolys() == row.Triangles,
-      row.Name + ": " + std::to_string(row.Triangles) + " triangles, got " + std::to_string(out->GetNumberOfPolys()));
+      row.Name + ": " + std::to_string(row.Triangles) + " triangles, got " +
+        std::to_string(out->GetNumberOfPolys()));
     if (row.Triangles > 0)
     {
       const auto f = dstest::Measure(out);
@@ -541,21 +629,52 @@ void ClampRows()
     std::string Warning; // Gamma warns; the vtkSetClampMacro setters clamp silently
   };
   const std::vector<Clamp> clamps = {
-    { "Gamma 3", [](vtkDeformableSurfaceFilter* f) { f->SetGamma(3); }, [](vtkDeformableSurfaceFilter* f) { return f->GetGamma(); }, 0.5, "outside the stable range" },
-    { "Gamma -1", [](vtkDeformableSurfaceFilter* f) { f->SetGamma(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetGamma(); }, 1e-6, "outside the stable range" },
-    { "Gamma NaN", [](vtkDeformableSurfaceFilter* f) { f->SetGamma(NaN); }, [](vtkDeformableSurfaceFilter* f) { return f->GetGamma(); }, 1e-6, "outside the stable range" },
-    { "Tau 2", [](vtkDeformableSurfaceFilter* f) { f->SetTau(2); }, [](vtkDeformableSurfaceFilter* f) { return f->GetTau(); }, 1.0, "" },
-    { "Tau -1", [](vtkDeformableSurfaceFilter* f) { f->SetTau(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetTau(); }, 0.0, "" },
-    { "EdgeWeight -1", [](vtkDeformableSurfaceFilter* f) { f->SetEdgeWeight(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetEdgeWeight(); }, 0.0, "" },
-    { "ImageWeight -1", [](vtkDeformableSurfaceFilter* f) { f->SetImageWeight(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetImageWeight(); }, 0.0, "" },
-    { "RegionWeight -1", [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetRegionWeight(); }, 0.0, "" },
-    { "Sigma -1", [](vtkDeformableSurfaceFilter* f) { f->SetSigma(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetSigma(); }, 0.0, "" },
-    { "SigmaFraction 5", [](vtkDeformableSurfaceFilter* f) { f->SetSigma(0); f->SetSigmaFraction(5); }, [](vtkDeformableSurfaceFilter* f) { return f->GetSigmaFraction(); }, 1.0, "" },
-    { "ConvergenceTolerance -1", [](vtkDeformableSurfaceFilter* f) { f->SetConvergenceTolerance(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetConvergenceTolerance(); }, 0.0, "" },
-    { "ConvergenceTolerance 7", [](vtkDeformableSurfaceFilter* f) { f->SetConvergenceTolerance(7); }, [](vtkDeformableSurfaceFilter* f) { return f->GetConvergenceTolerance(); }, 1.0, "" },
-    { "RefinementThreshold -1", [](vtkDeformableSurfaceFilter* f) { f->SetRefinementThreshold(-1); }, [](vtkDeformableSurfaceFilter* f) { return f->GetRefinementThreshold(); }, 0.0, "" },
-    { "MaxSweepsPerLevel 0", [](vtkDeformableSurfaceFilter* f) { f->SetMaxSweepsPerLevel(0); }, [](vtkDeformableSurfaceFilter* f) { return f->GetMaxSweepsPerLevel(); }, 1.0, "" },
-    { "MaxLevels 99", [](vtkDeformableSurfaceFilter* f) { f->SetMaxLevels(99); f->SetMaxVertices(3000); }, [](vtkDeformableSurfaceFilter* f) { return f->GetMaxLevels(); }, 10.0, "" },
+    { "Gamma 3", [](vtkDeformableSurfaceFilter* f) { f->SetGamma(3); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetGamma(); }, 0.5,
+      "outside the stable range" },
+    { "Gamma -1", [](vtkDeformableSurfaceFilter* f) { f->SetGamma(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetGamma(); }, 1e-6,
+      "outside the stable range" },
+    { "Gamma NaN", [](vtkDeformableSurfaceFilter* f) { f->SetGamma(NaN); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetGamma(); }, 1e-6,
+      "outside the stable range" },
+    { "Tau 2", [](vtkDeformableSurfaceFilter* f) { f->SetTau(2); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetTau(); }, 1.0, "" },
+    { "Tau -1", [](vtkDeformableSurfaceFilter* f) { f->SetTau(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetTau(); }, 0.0, "" },
+    { "EdgeWeight -1", [](vtkDeformableSurfaceFilter* f) { f->SetEdgeWeight(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetEdgeWeight(); }, 0.0, "" },
+    { "ImageWeight -1", [](vtkDeformableSurfaceFilter* f) { f->SetImageWeight(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetImageWeight(); }, 0.0, "" },
+    { "RegionWeight -1", [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetRegionWeight(); }, 0.0, "" },
+    { "Sigma -1", [](vtkDeformableSurfaceFilter* f) { f->SetSigma(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetSigma(); }, 0.0, "" },
+    { "SigmaFraction 5",
+      [](vtkDeformableSurfaceFilter* f)
+      {
+        f->SetSigma(0);
+        f->SetSigmaFraction(5);
+      },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetSigmaFraction(); }, 1.0, "" },
+    { "ConvergenceTolerance -1",
+      [](vtkDeformableSurfaceFilter* f) { f->SetConvergenceTolerance(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetConvergenceTolerance(); }, 0.0, "" },
+    { "ConvergenceTolerance 7",
+      [](vtkDeformableSurfaceFilter* f) { f->SetConvergenceTolerance(7); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetConvergenceTolerance(); }, 1.0, "" },
+    { "RefinementThreshold -1",
+      [](vtkDeformableSurfaceFilter* f) { f->SetRefinementThreshold(-1); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetRefinementThreshold(); }, 0.0, "" },
+    { "MaxSweepsPerLevel 0", [](vtkDeformableSurfaceFilter* f) { f->SetMaxSweepsPerLevel(0); },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetMaxSweepsPerLevel(); }, 1.0, "" },
+    { "MaxLevels 99",
+      [](vtkDeformableSurfaceFilter* f)
+      {
+        f->SetMaxLevels(99);
+        f->SetMaxVertices(3000);
+      },
+      [](vtkDeformableSurfaceFilter* f) { return f->GetMaxLevels(); }, 10.0, "" },
   };
   for (const Clamp& c : clamps)
   {
@@ -574,11 +693,13 @@ void ClampRows()
     c.Set(f);
     const double value = c.Get(f);
     std::cout << "  clamped to " << value << std::endl;
-    DS_CHECK(value == c.Expected, c.Name + ": clamped to " + std::to_string(c.Expected) + ", got " + std::to_string(value));
+    DS_CHECK(value == c.Expected,
+      c.Name + ": clamped to " + std::to_string(c.Expected) + ", got " + std::to_string(value));
     CheckMessages(*setMessages, "", c.Warning, c.Name + " (setter)");
     setMessages->Reset();
     f->Update();
-    DS_CHECK(setMessages->Errors == 0, c.Name + ": no error in the run, got: " + setMessages->ErrorText);
+    DS_CHECK(
+      setMessages->Errors == 0, c.Name + ": no error in the run, got: " + setMessages->ErrorText);
     dstest::CheckSurfaceInvariants(start, f->GetOutput(), c.Name);
     guard.Check(c.Name);
   }

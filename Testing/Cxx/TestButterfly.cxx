@@ -73,11 +73,14 @@ int TestButterfly(int, char*[])
   // --- Regular patch: the 8-point butterfly reproduces quadrics and cubics exactly;
   // the midpoint does not.
   {
-    auto quad = [](double x, double y) { return 0.05 * x * x - 0.03 * x * y + 0.02 * y * y + 0.1 * x + 1; };
-    auto cubic = [](double x, double y) { return 0.01 * x * x * x - 0.004 * x * y * y + 0.02 * y * y + x; };
+    auto quad = [](double x, double y)
+    { return 0.05 * x * x - 0.03 * x * y + 0.02 * y * y + 0.1 * x + 1; };
+    auto cubic = [](double x, double y)
+    { return 0.01 * x * x * x - 0.004 * x * y * y + 0.02 * y * y + x; };
     for (int which = 0; which < 2; ++which)
     {
-      auto f = which == 0 ? std::function<double(double, double)>(quad) : std::function<double(double, double)>(cubic);
+      auto f = which == 0 ? std::function<double(double, double)>(quad)
+                          : std::function<double(double, double)>(cubic);
       TriangleMesh m = Grid(8, f);
       int regular = 0;
       double maxErr = 0, maxLinearErr = 0;
@@ -159,7 +162,9 @@ int TestButterfly(int, char*[])
   // adaptively (greens, Zorin, boundary and midpoint rules all occur).
   {
     std::mt19937 rng(7);
-    TriangleMesh m = Grid(10, [](double, double) { return 0.0; }, [](int i, int j) { return (i * 7 + j * 3) % 5 == 0; });
+    TriangleMesh m = Grid(
+      10, [](double, double) { return 0.0; },
+      [](int i, int j) { return (i * 7 + j * 3) % 5 == 0; });
     std::uniform_real_distribution<double> jitter(-0.3, 0.3);
     for (int v = 0; v < m.NumberOfPoints(); ++v)
     {
@@ -202,8 +207,9 @@ int TestButterfly(int, char*[])
     }
     DS_CHECK_LE(maxOff, 1e-12, "max distance of refined points from the plane");
     std::cout << "  rules seen: regular " << rules[ButterflyRule::Regular] << ", extraordinary "
-              << rules[ButterflyRule::Extraordinary] << ", both " << rules[ButterflyRule::BothExtraordinary]
-              << ", boundary " << rules[ButterflyRule::Boundary] << ", midpoint " << rules[ButterflyRule::Midpoint]
+              << rules[ButterflyRule::Extraordinary] << ", both "
+              << rules[ButterflyRule::BothExtraordinary] << ", boundary "
+              << rules[ButterflyRule::Boundary] << ", midpoint " << rules[ButterflyRule::Midpoint]
               << std::endl;
     DS_CHECK(rules[ButterflyRule::Regular] > 0 && rules[ButterflyRule::Extraordinary] > 0 &&
         rules[ButterflyRule::Boundary] > 0 && rules[ButterflyRule::Midpoint] > 0,
@@ -225,7 +231,8 @@ int TestButterfly(int, char*[])
     ButterflyRule r;
     const Vec3 p = ButterflyEdgePoint(m, e, &flags, &r);
     DS_CHECK(r == ButterflyRule::Midpoint, "flagged stencil triangle -> midpoint rule");
-    DS_CHECK(Norm(p - 0.5 * (m.Points[m.Edges[e][0]] + m.Points[m.Edges[e][1]])) < 1e-15, "at the midpoint");
+    DS_CHECK(Norm(p - 0.5 * (m.Points[m.Edges[e][0]] + m.Points[m.Edges[e][1]])) < 1e-15,
+      "at the midpoint");
   }
 
   // --- Sphere: butterfly start values lie closer to the sphere than midpoints.
@@ -257,8 +264,8 @@ int TestButterfly(int, char*[])
       }
       rmsErr[mode] = std::sqrt(rmsErr[mode] / counts[mode]);
     }
-    std::cout << "  sphere: rms radius error of new points, butterfly " << rmsErr[0] << ", linear " << rmsErr[1]
-              << std::endl;
+    std::cout << "  sphere: rms radius error of new points, butterfly " << rmsErr[0] << ", linear "
+              << rmsErr[1] << std::endl;
     DS_CHECK_LE(rmsErr[0], 0.25 * rmsErr[1], "butterfly rms radius error (vs 1/4 of linear)");
   }
   return dstest::Result("TestButterfly");

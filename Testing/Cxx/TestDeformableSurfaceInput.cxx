@@ -5,8 +5,8 @@
 // Gamma is clamped, vertices outside the image are warned about.
 #include "DSSurfaceInvariants.h"
 
-#include <cmath>
 #include "TestSolverMeshes.h"
+#include <cmath>
 
 #include "vtkDeformableSurfaceFilter.h"
 
@@ -53,7 +53,8 @@ vtkSmartPointer<vtkImageData> TwoBalls()
         double v = 0;
         for (double cx : { 20.0, 44.0 })
         {
-          const double r = std::sqrt((i - cx) * (i - cx) + (j - 32.0) * (j - 32.0) + (k - 32.0) * (k - 32.0));
+          const double r =
+            std::sqrt((i - cx) * (i - cx) + (j - 32.0) * (j - 32.0) + (k - 32.0) * (k - 32.0));
           v = std::max(v, 1.0 / (1.0 + std::exp(3.0 * (r - 8.0))));
         }
         values->SetValue(i + n * (j + n * k), static_cast<float>(v));
@@ -119,7 +120,9 @@ double MeanDistance(vtkPolyData* pd, double cx, double r, vtkIdType begin, vtkId
   {
     double x[3];
     pd->GetPoint(i, x);
-    sum += std::abs(std::sqrt((x[0] - cx) * (x[0] - cx) + (x[1] - 32) * (x[1] - 32) + (x[2] - 32) * (x[2] - 32)) - r);
+    sum += std::abs(
+      std::sqrt((x[0] - cx) * (x[0] - cx) + (x[1] - 32) * (x[1] - 32) + (x[2] - 32) * (x[2] - 32)) -
+      r);
   }
   return sum / std::max<vtkIdType>(end - begin, 1);
 }
@@ -139,8 +142,8 @@ int TestDeformableSurfaceInput(int, char*[])
     box->Update();
     const Result r = Deform(image, box->GetOutput(), 20);
     std::cout << "Box: " << box->GetOutput()->GetNumberOfPoints() << " input points -> "
-              << r.Surface->GetNumberOfPoints() << " output points, " << r.Surface->GetNumberOfPolys()
-              << " triangles" << std::endl;
+              << r.Surface->GetNumberOfPoints() << " output points, "
+              << r.Surface->GetNumberOfPolys() << " triangles" << std::endl;
     DS_CHECK(r.Surface->GetNumberOfPoints() == 8, "the Box's 24 points merge into 8");
     DS_CHECK(r.Surface->GetNumberOfPolys() == 12, "the Box's 6 quads become 12 triangles");
 
@@ -151,8 +154,10 @@ int TestDeformableSurfaceInput(int, char*[])
     const vtkIdType ids[3] = { dot, dot, dot };
     boxAndDot->GetPolys()->InsertNextCell(3, ids);
     const Result d = Deform(image, boxAndDot, 20);
-    std::cout << "Box and a one-point polygon: " << d.Surface->GetNumberOfPoints() << " output points" << std::endl;
-    DS_CHECK(d.Errors == 0 && d.Surface->GetNumberOfPoints() == 8 && d.Surface->GetNumberOfPolys() == 12,
+    std::cout << "Box and a one-point polygon: " << d.Surface->GetNumberOfPoints()
+              << " output points" << std::endl;
+    DS_CHECK(
+      d.Errors == 0 && d.Surface->GetNumberOfPoints() == 8 && d.Surface->GetNumberOfPolys() == 12,
       "a one-point polygon leaves no point outside the surface: the cube's 8 points, 12 triangles");
     DS_CHECK(r.Errors == 0, "no error for the Box");
 
@@ -175,7 +180,8 @@ int TestDeformableSurfaceInput(int, char*[])
     tiny->SetMaxLevels(0);
     tiny->SetMaxSweepsPerLevel(5);
     dstest::UpdateAndCheckSurface(tiny, "Box, sigma 1e-9");
-    std::cout << "Box, sigma 1e-9: " << tiny->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
+    std::cout << "Box, sigma 1e-9: " << tiny->GetOutput()->GetNumberOfPoints() << " points"
+              << std::endl;
     DS_CHECK(tiny->GetOutput()->GetNumberOfPoints() == 1538, "subdivision floored at two voxels");
   }
 
@@ -206,7 +212,8 @@ int TestDeformableSurfaceInput(int, char*[])
     const Result strips = Deform(image, stripper->GetOutput());
     const double ds = MeanDistance(strips.Surface, 20, 8, 0, strips.Surface->GetNumberOfPoints());
     std::cout << "strips: " << strips.Surface->GetNumberOfPolys() << " triangles" << std::endl;
-    DS_CHECK(strips.Surface->GetNumberOfPolys() == tris.Surface->GetNumberOfPolys(), "strips: same triangle count");
+    DS_CHECK(strips.Surface->GetNumberOfPolys() == tris.Surface->GetNumberOfPolys(),
+      "strips: same triangle count");
     DS_CHECK_LE(ds, 0.4, "strips onto ball 1: mean |d|");
   }
 
@@ -234,56 +241,58 @@ int TestDeformableSurfaceInput(int, char*[])
     tri->Update();
     for (int levels : { 0, 2 })
     {
-    const Result r = Deform(image, cap, 300, 0.07, levels);
-    dsurf::TriangleMesh m;
-    for (vtkIdType i = 0; i < r.Surface->GetNumberOfPoints(); ++i)
-    {
-      dsurf::Vec3 x;
-      r.Surface->GetPoint(i, x.data());
-      m.Points.push_back(x);
-    }
-    vtkCellArray* polys = r.Surface->GetPolys();
-    polys->InitTraversal();
-    vtkIdType n;
-    const vtkIdType* ids;
-    while (polys->GetNextCell(n, ids))
-    {
-      m.Triangles.push_back({ static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
-    }
-    std::string err;
-    DS_CHECK(m.BuildTopology(&err), err);
-    // Every output boundary vertex must be an input point, unmoved.
-    int boundary = 0, moved = 0;
-    for (int v = 0; v < m.NumberOfPoints(); ++v)
-    {
-      if (!m.BoundaryVertex[v])
+      const Result r = Deform(image, cap, 300, 0.07, levels);
+      dsurf::TriangleMesh m;
+      for (vtkIdType i = 0; i < r.Surface->GetNumberOfPoints(); ++i)
       {
-        continue;
+        dsurf::Vec3 x;
+        r.Surface->GetPoint(i, x.data());
+        m.Points.push_back(x);
       }
-      ++boundary;
-      double best = 1e300;
-      for (vtkIdType i = 0; i < cap->GetNumberOfPoints(); ++i)
+      vtkCellArray* polys = r.Surface->GetPolys();
+      polys->InitTraversal();
+      vtkIdType n;
+      const vtkIdType* ids;
+      while (polys->GetNextCell(n, ids))
       {
-        double x[3];
-        cap->GetPoint(i, x);
-        best = std::min(best, std::abs(x[0] - m.Points[v][0]) + std::abs(x[1] - m.Points[v][1]) +
-            std::abs(x[2] - m.Points[v][2]));
+        m.Triangles.push_back(
+          { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
       }
-      moved += best > 0;
-    }
-    std::cout << "open cap, " << levels << " levels: " << boundary << " boundary vertices, "
-              << moved << " not on an input point" << std::endl;
-    if (levels == 0)
-    {
-      DS_CHECK(boundary == 24, "the cap's boundary ring has 24 vertices");
-      DS_CHECK_LE(moved, 0, "boundary vertices that moved");
-    }
-    else
-    {
-      // New boundary vertices come from refinement; the 24 input ones must stay put.
-      DS_CHECK_GE(boundary, 24, "refinement keeps the boundary ring");
-      DS_CHECK_GE(boundary - moved, 24, "input boundary vertices still at their input position");
-    }
+      std::string err;
+      DS_CHECK(m.BuildTopology(&err), err);
+      // Every output boundary vertex must be an input point, unmoved.
+      int boundary = 0, moved = 0;
+      for (int v = 0; v < m.NumberOfPoints(); ++v)
+      {
+        if (!m.BoundaryVertex[v])
+        {
+          continue;
+        }
+        ++boundary;
+        double best = 1e300;
+        for (vtkIdType i = 0; i < cap->GetNumberOfPoints(); ++i)
+        {
+          double x[3];
+          cap->GetPoint(i, x);
+          best = std::min(best,
+            std::abs(x[0] - m.Points[v][0]) + std::abs(x[1] - m.Points[v][1]) +
+              std::abs(x[2] - m.Points[v][2]));
+        }
+        moved += best > 0;
+      }
+      std::cout << "open cap, " << levels << " levels: " << boundary << " boundary vertices, "
+                << moved << " not on an input point" << std::endl;
+      if (levels == 0)
+      {
+        DS_CHECK(boundary == 24, "the cap's boundary ring has 24 vertices");
+        DS_CHECK_LE(moved, 0, "boundary vertices that moved");
+      }
+      else
+      {
+        // New boundary vertices come from refinement; the 24 input ones must stay put.
+        DS_CHECK_GE(boundary, 24, "refinement keeps the boundary ring");
+        DS_CHECK_GE(boundary - moved, 24, "input boundary vertices still at their input position");
+      }
     }
   }
 
@@ -297,9 +306,11 @@ int TestDeformableSurfaceInput(int, char*[])
 
     vtkNew<vtkPolyData> pointsOnly;
     pointsOnly->SetPoints(fin->GetPoints());
-    std::cout << "(an error message about a surface without polygons is expected next)" << std::endl;
+    std::cout << "(an error message about a surface without polygons is expected next)"
+              << std::endl;
     const Result e = Deform(image, pointsOnly);
-    DS_CHECK(e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
+    DS_CHECK(
+      e.Errors == 1 && e.Surface->GetNumberOfPoints() == 0, "no polygons: error, empty output");
   }
 
   // --- an inconsistently oriented start (one triangle reversed) is mended with a warning,
@@ -333,7 +344,8 @@ int TestDeformableSurfaceInput(int, char*[])
     filter->SetCheckTopology(true);
     dstest::UpdateAndCheckSurface(filter, "one reversed triangle");
     std::cout << "one reversed triangle: " << errors->Count << " error(s), " << warnings->Count
-              << " warning(s), " << filter->GetOutput()->GetNumberOfPoints() << " points" << std::endl;
+              << " warning(s), " << filter->GetOutput()->GetNumberOfPoints() << " points"
+              << std::endl;
     DS_CHECK(errors->Count == 0 && filter->GetOutput()->GetNumberOfPoints() > 0,
       "one reversed triangle: no error, a surface");
     DS_CHECK(warnings->Count >= 1, "one reversed triangle: a warning says it was mended");
@@ -348,21 +360,24 @@ int TestDeformableSurfaceInput(int, char*[])
     values->SetTuple1(values->GetNumberOfTuples() / 3, std::nan(""));
     std::cout << "(an error message about non-finite values is expected next)" << std::endl;
     const Result a = Deform(nan, sphere);
-    DS_CHECK(a.Errors == 1 && a.Surface->GetNumberOfPoints() == 0, "a NaN voxel: error, empty output");
+    DS_CHECK(
+      a.Errors == 1 && a.Surface->GetNumberOfPoints() == 0, "a NaN voxel: error, empty output");
 
     vtkNew<vtkImageData> flat;
     flat->DeepCopy(image);
     flat->GetPointData()->GetScalars()->Fill(7.0);
     std::cout << "(an error message about a constant image is expected next)" << std::endl;
     const Result b = Deform(flat, sphere);
-    DS_CHECK(b.Errors == 1 && b.Surface->GetNumberOfPoints() == 0, "a constant image: error, empty output");
+    DS_CHECK(b.Errors == 1 && b.Surface->GetNumberOfPoints() == 0,
+      "a constant image: error, empty output");
 
     vtkNew<vtkImageData> sheared;
     sheared->DeepCopy(image);
     sheared->SetDirectionMatrix(1, 0.5, 0, 0, 1, 0, 0, 0, 1);
     std::cout << "(an error message about the direction matrix is expected next)" << std::endl;
     const Result c = Deform(sheared, sphere);
-    DS_CHECK(c.Errors == 1 && c.Surface->GetNumberOfPoints() == 0, "a sheared direction: error, empty output");
+    DS_CHECK(c.Errors == 1 && c.Surface->GetNumberOfPoints() == 0,
+      "a sheared direction: error, empty output");
   }
 
   // --- Gamma clamped with a warning; vertices outside the image warned about once ---

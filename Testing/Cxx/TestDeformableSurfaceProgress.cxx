@@ -103,7 +103,8 @@ int TestDeformableSurfaceProgress(int, char*[])
     }
     else
     {
-      DS_CHECK(!log.Values.empty() && log.Values.back() < 1.0 + 1e-12, "progress stays within [0, 1]");
+      DS_CHECK(
+        !log.Values.empty() && log.Values.back() < 1.0 + 1e-12, "progress stays within [0, 1]");
       DS_CHECK_LE(sweeps, 0.8 * fullSweeps, "sweeps of the aborted run vs 0.8 x the full run");
       DS_CHECK_GE(sweeps, 1, "the aborted run did some sweeps");
     }

@@ -38,9 +38,10 @@ vtkSmartPointer<vtkImageData> CubePhantom(int n, double halfSide)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
       {
-        const bool inside = std::abs(i - c) <= halfSide && std::abs(j - c) <= halfSide &&
-          std::abs(k - c) <= halfSide;
-        values->SetValue(i + static_cast<vtkIdType>(n) * (j + static_cast<vtkIdType>(n) * k), inside ? 1.0f : 0.0f);
+        const bool inside =
+          std::abs(i - c) <= halfSide && std::abs(j - c) <= halfSide && std::abs(k - c) <= halfSide;
+        values->SetValue(i + static_cast<vtkIdType>(n) * (j + static_cast<vtkIdType>(n) * k),
+          inside ? 1.0f : 0.0f);
       }
   image->GetPointData()->SetScalars(values);
   return image;
@@ -51,7 +52,7 @@ struct Quality
   double MinAnglePercentile1 = 0; ///< 1st percentile of the triangles' smallest angle
   int Flipped = 0;                ///< triangles whose normal points against the vertex normals
   int SelfIntersections = 0;
-  double MeanDistance = 0;        ///< mean distance of the vertices to the cube surface
+  double MeanDistance = 0; ///< mean distance of the vertices to the cube surface
 };
 
 Quality Measure(vtkPolyData* out, double c, double halfSide)
@@ -69,7 +70,8 @@ Quality Measure(vtkPolyData* out, double c, double halfSide)
   const vtkIdType* ids;
   while (polys->GetNextCell(n, ids))
   {
-    m.Triangles.push_back({ static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+    m.Triangles.push_back(
+      { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
   }
   std::string err;
   m.BuildTopology(&err);
@@ -95,8 +97,8 @@ Quality Measure(vtkPolyData* out, double c, double halfSide)
     // Distance to the cube surface (outside or inside).
     const double dx = std::abs(x[0] - c) - halfSide, dy = std::abs(x[1] - c) - halfSide,
                  dz = std::abs(x[2] - c) - halfSide;
-    const double outside = std::sqrt(std::pow(std::max(dx, 0.0), 2) + std::pow(std::max(dy, 0.0), 2) +
-      std::pow(std::max(dz, 0.0), 2));
+    const double outside = std::sqrt(std::pow(std::max(dx, 0.0), 2) +
+      std::pow(std::max(dy, 0.0), 2) + std::pow(std::max(dz, 0.0), 2));
     sum += outside > 0 ? outside : -std::max({ dx, dy, dz });
   }
   q.MeanDistance = sum / m.NumberOfPoints();

@@ -24,7 +24,8 @@
 
 namespace
 {
-vtkSmartPointer<vtkImageData> SpherePhantom(int n, double radiusVoxels, double spacing, const double origin[3])
+vtkSmartPointer<vtkImageData> SpherePhantom(
+  int n, double radiusVoxels, double spacing, const double origin[3])
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(n, n, n);
@@ -64,7 +65,8 @@ Run Deform(vtkImageData* image, vtkPolyData* start, double sigma, int threads)
   filter->SetConvergenceTolerance(1e-4);
   filter->SetNumberOfThreads(threads);
   const auto t0 = std::chrono::steady_clock::now();
-  dstest::UpdateAndCheckSurface(filter, "sphere phantom, " + std::to_string(threads) + " thread(s)");
+  dstest::UpdateAndCheckSurface(
+    filter, "sphere phantom, " + std::to_string(threads) + " thread(s)");
   Run run;
   run.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run.Surface = filter->GetOutput();
@@ -73,7 +75,8 @@ Run Deform(vtkImageData* image, vtkPolyData* start, double sigma, int threads)
 }
 
 /// Checks the distance of every vertex to the true sphere, in voxels.
-void CheckSphere(const Run& run, const double centre[3], double radius, double spacing, const std::string& label)
+void CheckSphere(
+  const Run& run, const double centre[3], double radius, double spacing, const std::string& label)
 {
   vtkPolyData* out = run.Surface;
   const vtkIdType n = out->GetNumberOfPoints();
@@ -98,11 +101,13 @@ void CheckSphere(const Run& run, const double centre[3], double radius, double s
   std::cout << "  signed distance: mean " << signedSum / std::max<vtkIdType>(n, 1) << ", range ["
             << minSigned << ", " << maxSigned << "]" << std::endl;
   DS_CHECK(n > 0, label + ": output has points");
-  DS_CHECK_LE(sum / std::max<vtkIdType>(n, 1), 0.15, label + ": mean |distance| to the sphere (voxels)");
+  DS_CHECK_LE(
+    sum / std::max<vtkIdType>(n, 1), 0.15, label + ": mean |distance| to the sphere (voxels)");
   DS_CHECK_LE(maxD, 0.4, label + ": max |distance| to the sphere (voxels)");
   DS_CHECK_LE(selfIntersections, 0, label + ": self-intersections");
   DS_CHECK(run.Table->GetNumberOfRows() == sweeps, label + ": one table row per sweep");
-  DS_CHECK(out->GetPointData()->GetArray("Displacement") && out->GetPointData()->GetArray("ExternalForce") &&
+  DS_CHECK(out->GetPointData()->GetArray("Displacement") &&
+      out->GetPointData()->GetArray("ExternalForce") &&
       out->GetPointData()->GetArray("ErrorIndicator") && out->GetPointData()->GetNormals(),
     label + ": point arrays present");
 }
@@ -120,7 +125,8 @@ int TestDeformableSurfaceSphere(int, char*[])
     const Run one = Deform(image, start, 2.0, 1);
     CheckSphere(one, centre, 32, 1.0, "spacing 1");
     const Run two = Deform(image, start, 2.0, 2);
-    std::cout << "  1 thread " << one.Seconds << " s, 2 threads " << two.Seconds << " s" << std::endl;
+    std::cout << "  1 thread " << one.Seconds << " s, 2 threads " << two.Seconds << " s"
+              << std::endl;
     int differing = 0;
     for (vtkIdType i = 0; i < one.Surface->GetNumberOfPoints(); ++i)
     {
@@ -129,7 +135,8 @@ int TestDeformableSurfaceSphere(int, char*[])
       two.Surface->GetPoint(i, b);
       differing += (a[0] != b[0] || a[1] != b[1] || a[2] != b[2]);
     }
-    DS_CHECK(one.Surface->GetNumberOfPoints() == two.Surface->GetNumberOfPoints(), "same point count");
+    DS_CHECK(
+      one.Surface->GetNumberOfPoints() == two.Surface->GetNumberOfPoints(), "same point count");
     DS_CHECK_LE(differing, 0, "points differing between 1 and 2 threads");
   }
   // Spacing 0.5 and a shifted origin: the same accuracy in voxels.
@@ -138,7 +145,8 @@ int TestDeformableSurfaceSphere(int, char*[])
     const double s = 0.5;
     auto image = SpherePhantom(n, 32, s, origin);
     const double centre[3] = { origin[0] + 63.5 * s, origin[1] + 63.5 * s, origin[2] + 63.5 * s };
-    auto start = dstest::ToPolyData(dstest::MakeIcosphere(4, 36 * s, { centre[0], centre[1], centre[2] }));
+    auto start =
+      dstest::ToPolyData(dstest::MakeIcosphere(4, 36 * s, { centre[0], centre[1], centre[2] }));
     const Run run = Deform(image, start, 2.0 * s, 0);
     CheckSphere(run, centre, 32 * s, s, "spacing 0.5, shifted origin");
   }

@@ -1,6 +1,7 @@
 // Bad input must give a clear error or warning and an empty (or still valid) output, never a
-// crash: no points, 3 points (now a sphere around each: one click), collinear, coplanar, duplicates, NaN, out-of-range IDs, every
-// tetrahedron removed, the intensity rule without an image.
+// crash: no points, 3 points (now a sphere around each: one click), collinear, coplanar,
+// duplicates, NaN, out-of-range IDs, every tetrahedron removed, the intensity rule without an
+// image.
 #include "TestDelaunaySeedUtils.h"
 #include "vtkDelaunaySeedSurface.h"
 
@@ -23,8 +24,8 @@ struct Outcome
   vtkIdType Triangles, Tetrahedra;
 };
 
-Outcome Run(vtkPoints* points, const std::function<void(vtkDelaunaySeedSurface*)>& configure = nullptr,
-  long expectedEuler = 2)
+Outcome Run(vtkPoints* points,
+  const std::function<void(vtkDelaunaySeedSurface*)>& configure = nullptr, long expectedEuler = 2)
 {
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
@@ -71,11 +72,13 @@ int main()
   three->InsertNextPoint(0, 0, 0);
   three->InsertNextPoint(1, 0, 0);
   three->InsertNextPoint(0, 1, 0);
-  o = Run(three, [](vtkDelaunaySeedSurface* s) { s->SetSeedRadius(0.4); }, 6);
+  o = Run(
+    three, [](vtkDelaunaySeedSurface* s) { s->SetSeedRadius(0.4); }, 6);
   DS_CHECK(o.Errors == 0 && o.Warnings == 0 && o.Triangles == 3 * 320 && o.Tetrahedra == 0,
     "3 points -> three seed spheres (320 triangles each), no tetrahedra");
   o = Run(three, nullptr, 6); // SeedRadius 5 around points 1 apart: the spheres overlap
-  DS_CHECK(o.Errors == 0 && o.Warnings == 3 && o.Triangles == 3 * 320, "3 close points -> a warning per overlap");
+  DS_CHECK(o.Errors == 0 && o.Warnings == 3 && o.Triangles == 3 * 320,
+    "3 close points -> a warning per overlap");
 
   std::cout << "The same click twice, and four picks of which two coincide:" << std::endl;
   vtkNew<vtkPoints> twice;
@@ -89,7 +92,8 @@ int main()
   fourWithRepeat->InsertNextPoint(0, 20, 0);
   fourWithRepeat->InsertNextPoint(20, 0, 0);
   o = Run(fourWithRepeat, nullptr, 6);
-  DS_CHECK(o.Errors == 0 && o.Triangles == 3 * 320, "four picks, three distinct -> three seed spheres");
+  DS_CHECK(
+    o.Errors == 0 && o.Triangles == 3 * 320, "four picks, three distinct -> three seed spheres");
 
   std::cout << "Collinear:" << std::endl;
   vtkNew<vtkPoints> line;
@@ -118,7 +122,8 @@ int main()
     same->InsertNextPoint(5, 5, 5);
   }
   o = Run(same);
-  DS_CHECK(o.Errors == 0 && o.Triangles == 320, "four coincident points -> one seed sphere (a repeated click)");
+  DS_CHECK(o.Errors == 0 && o.Triangles == 320,
+    "four coincident points -> one seed sphere (a repeated click)");
 
   std::cout << "Cube corners, each twice, plus a NaN and an infinite point:" << std::endl;
   vtkNew<vtkPoints> dup;
@@ -133,13 +138,15 @@ int main()
   std::cout << "Every tetrahedron removed by ID, plus an out-of-range ID:" << std::endl;
   vtkNew<vtkPoints> cube;
   AddCube(cube);
-  o = Run(cube, [](vtkDelaunaySeedSurface* s) {
-    for (vtkIdType id = 0; id < 6; ++id)
+  o = Run(cube,
+    [](vtkDelaunaySeedSurface* s)
     {
-      s->AddRemovedTetrahedron(id);
-    }
-    s->AddRemovedTetrahedron(1000);
-  });
+      for (vtkIdType id = 0; id < 6; ++id)
+      {
+        s->AddRemovedTetrahedron(id);
+      }
+      s->AddRemovedTetrahedron(1000);
+    });
   DS_CHECK(o.Errors == 0 && o.Warnings >= 2, "warnings for empty surface and bad ID");
   DS_CHECK(o.Triangles == 0 && o.Tetrahedra > 0, "empty surface, tetrahedra still shown");
 
@@ -147,20 +154,24 @@ int main()
   o = Run(cube, [](vtkDelaunaySeedSurface* s) { s->UseIntensityRangeOn(); });
   DS_CHECK(o.Errors == 0 && o.Warnings == 1 && o.Triangles == 12, "warning, rule skipped");
 
-  std::cout << "One click at the largest coordinates (the seed sphere would overflow):" << std::endl;
+  std::cout << "One click at the largest coordinates (the seed sphere would overflow):"
+            << std::endl;
   vtkNew<vtkPoints> huge;
   huge->SetDataTypeToDouble();
   huge->InsertNextPoint(-std::numeric_limits<double>::max(), 0, 0);
   o = Run(huge);
-  DS_CHECK(o.Errors == 1 && o.Triangles == 0, "overflowing coordinates -> error, empty (no infinite points)");
+  DS_CHECK(o.Errors == 1 && o.Triangles == 0,
+    "overflowing coordinates -> error, empty (no infinite points)");
 
-  std::cout << "Cube corners plus a point at z = 1.7e308 (vtkDelaunay3D's bounds would overflow):" << std::endl;
+  std::cout << "Cube corners plus a point at z = 1.7e308 (vtkDelaunay3D's bounds would overflow):"
+            << std::endl;
   vtkNew<vtkPoints> far;
   far->SetDataTypeToDouble();
   AddCube(far);
   far->InsertNextPoint(2, 6, 1.7e308);
   o = Run(far);
-  DS_CHECK(o.Errors == 0 && o.Warnings == 1 && o.Triangles == 12, "out-of-range point dropped with a warning: the cube");
+  DS_CHECK(o.Errors == 0 && o.Warnings == 1 && o.Triangles == 12,
+    "out-of-range point dropped with a warning: the cube");
 
   // The input is never modified in place.
   DS_CHECK(dup->GetNumberOfPoints() == 18, "input untouched");

@@ -6,9 +6,9 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkMath.h"
-#include "vtkTetra.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cmath>
@@ -43,7 +43,8 @@ int main()
   vtkUnstructuredGrid* tets = seed->GetTetrahedra();
   vtkDataArray* ids = tets->GetCellData()->GetArray("TetraId");
   vtkDataArray* removed = tets->GetCellData()->GetArray("Removed");
-  DS_CHECK(ids && removed && tets->GetCellData()->GetArray("Circumradius"), "output 1 arrays exist");
+  DS_CHECK(
+    ids && removed && tets->GetCellData()->GetArray("Circumradius"), "output 1 arrays exist");
   std::cout << "  tetrahedra: " << tets->GetNumberOfCells() << std::endl;
   DS_CHECK(tets->GetNumberOfCells() >= 5, "at least 5 tetrahedra");
   double tetVolume = 0.0;
@@ -55,7 +56,8 @@ int main()
     {
       tets->GetPoint(tets->GetCell(c)->GetPointId(k), x[k]);
     }
-    tetVolume += removed->GetTuple1(c) == 0 ? std::abs(vtkTetra::ComputeVolume(x[0], x[1], x[2], x[3])) : 0.0;
+    tetVolume +=
+      removed->GetTuple1(c) == 0 ? std::abs(vtkTetra::ComputeVolume(x[0], x[1], x[2], x[3])) : 0.0;
   }
   DS_CHECK_LE(std::abs(tetVolume - 1000.0), 1e-6, "|volume of kept tetrahedra - 1000|");
 

@@ -15,25 +15,25 @@
 #include "vtkDeformableSurfaceFilter.h"
 #include "vtkDelaunaySeedSurface.h"
 
-#include "vtkDataArray.h"
 #include "vtkCell.h"
-#include "vtkUnstructuredGrid.h"
-#include "vtkIdList.h"
 #include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <cstdint>
 #include <functional>
+#include <limits>
 
 namespace
 {
@@ -104,8 +104,9 @@ Deformed Deform(vtkImageData* image, vtkPolyData* seed)
     d.Sweeps = static_cast<int>(fd->GetArray("Sweeps")->GetTuple1(0));
     d.SelfIntersections = static_cast<int>(fd->GetArray("SelfIntersections")->GetTuple1(0));
   }
-  std::cout << "  deformed: " << d.Surface->GetNumberOfPoints() << " vertices, " << d.Sweeps << " sweeps, "
-            << d.Seconds << " s, " << d.SelfIntersections << " self-intersections" << std::endl;
+  std::cout << "  deformed: " << d.Surface->GetNumberOfPoints() << " vertices, " << d.Sweeps
+            << " sweeps, " << d.Seconds << " s, " << d.SelfIntersections << " self-intersections"
+            << std::endl;
   return d;
 }
 
@@ -114,7 +115,8 @@ struct DistanceStats
   double Mean = 0, Max = 0, MeanSigned = 0;
 };
 
-DistanceStats Distances(vtkPolyData* surface, const std::function<double(const double*)>& signedDistance)
+DistanceStats Distances(
+  vtkPolyData* surface, const std::function<double(const double*)>& signedDistance)
 {
   DistanceStats s;
   const vtkIdType n = surface->GetNumberOfPoints();
@@ -170,7 +172,8 @@ void TorusCase()
   const auto seedFacts = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(seedFacts, seed->GetOutput()->GetNumberOfPoints(), 0);
   const DistanceStats before = Distances(seed->GetOutput(), TorusSignedDistance);
-  std::cout << "  seed distance to the torus: mean |d| " << before.Mean << ", max " << before.Max << std::endl;
+  std::cout << "  seed distance to the torus: mean |d| " << before.Mean << ", max " << before.Max
+            << std::endl;
   DS_CHECK(messages->Errors == 0, "seed: no errors");
   DS_CHECK_GE(seed->GetOutput()->GetNumberOfPoints(), 1000, "seed vertices after TargetEdgeLength");
 
@@ -207,7 +210,8 @@ void TorusClosePicksCase()
         const double v = 2.0 * vtkMath::Pi() * (k + 0.5 * (side > 0)) / 8, rr = r + 3.0;
         const double rho = R + rr * std::cos(v);
         picks->InsertNextPoint(centre[0] + side * rho * std::cos(u) + Jitter(state),
-          centre[1] + side * rho * std::sin(u) + Jitter(state), centre[2] + rr * std::sin(v) + Jitter(state));
+          centre[1] + side * rho * std::sin(u) + Jitter(state),
+          centre[2] + rr * std::sin(v) + Jitter(state));
       }
     }
   }
@@ -240,7 +244,8 @@ void TorusClosePicksCase()
   const auto seedFacts = dsseedtest::Measure(seed->GetOutput());
   DS_CHECK(seedFacts.Euler == 0, "close picks: the seed has the torus's genus");
   const DistanceStats before = Distances(seed->GetOutput(), TorusSignedDistance);
-  std::cout << "  " << picks->GetNumberOfPoints() << " picks; seed mean |d| " << before.Mean << std::endl;
+  std::cout << "  " << picks->GetNumberOfPoints() << " picks; seed mean |d| " << before.Mean
+            << std::endl;
 
   for (const bool paper : { false, true })
   {
@@ -257,15 +262,17 @@ void TorusClosePicksCase()
     // wall it squeezes may touch itself; the defaults must keep the invariants whole.
     dstest::SurfaceAllowance allow;
     allow.SelfIntersections = paper ? std::numeric_limits<int>::max() : 0;
-    dstest::UpdateAndCheckSurface(filter, paper ? "close picks, the paper's sigma_0" : "close picks, defaults", allow);
+    dstest::UpdateAndCheckSurface(
+      filter, paper ? "close picks, the paper's sigma_0" : "close picks, defaults", allow);
     vtkPolyData* out = filter->GetOutput();
     const auto facts = dsseedtest::Measure(out);
     const DistanceStats after = Distances(out, TorusSignedDistance);
     const double sigma0 = out->GetFieldData()->GetArray("InitialSigma")->GetTuple1(0);
-    const int selfx = static_cast<int>(out->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0));
-    std::cout << "  " << (paper ? "paper's sigma_0: " : "defaults: ") << "sigma_0 " << sigma0 << ", mean |d| "
-              << after.Mean << ", max " << after.Max << ", Euler " << facts.Euler << ", " << selfx
-              << " self-intersections" << std::endl;
+    const int selfx =
+      static_cast<int>(out->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0));
+    std::cout << "  " << (paper ? "paper's sigma_0: " : "defaults: ") << "sigma_0 " << sigma0
+              << ", mean |d| " << after.Mean << ", max " << after.Max << ", Euler " << facts.Euler
+              << ", " << selfx << " self-intersections" << std::endl;
     if (!paper)
     {
       // The default region force is on for a start that does not span the image: the range it
@@ -274,9 +281,10 @@ void TorusClosePicksCase()
       DS_CHECK(range != nullptr, "close picks, defaults: the region force estimated a range");
       if (range)
       {
-        std::cout << "  region force range [" << range->GetComponent(0, 0) << ", " << range->GetComponent(0, 1)
-                  << "]" << std::endl;
-        DS_CHECK_LE(std::abs(range->GetComponent(0, 0) - 0.5), 0.05, "close picks: range low end at the half level");
+        std::cout << "  region force range [" << range->GetComponent(0, 0) << ", "
+                  << range->GetComponent(0, 1) << "]" << std::endl;
+        DS_CHECK_LE(std::abs(range->GetComponent(0, 0) - 0.5), 0.05,
+          "close picks: range low end at the half level");
       }
       DS_CHECK_LE(after.Mean, 0.3, "close picks, defaults: mean |distance| to the torus (voxels)");
       DS_CHECK(facts.Euler == 0, "close picks, defaults: Euler characteristic 0 (the hole kept)");
@@ -285,7 +293,8 @@ void TorusClosePicksCase()
     }
     else
     {
-      DS_CHECK_GE(after.Mean, 1.0, "close picks, the paper's sigma_0: spans the hole (mean |d| voxels)");
+      DS_CHECK_GE(
+        after.Mean, 1.0, "close picks, the paper's sigma_0: spans the hole (mean |d| voxels)");
     }
   }
 }
@@ -293,11 +302,12 @@ void TorusClosePicksCase()
 void TwoObjectsCase()
 {
   const double ballCentre[3] = { 42.0, 64.0, 64.0 }, ballRadius = 16.0;
-  const double cubeCentre[3] = { 92.0, 63.0, 65.0 }, cubeHalf = 14.0; // faces 18 voxels from the ball
-  auto ballDistance = [&](const double* x) {
-    return std::sqrt(vtkMath::Distance2BetweenPoints(x, ballCentre)) - ballRadius;
-  };
-  auto cubeDistance = [&](const double* x) {
+  const double cubeCentre[3] = { 92.0, 63.0, 65.0 },
+               cubeHalf = 14.0; // faces 18 voxels from the ball
+  auto ballDistance = [&](const double* x)
+  { return std::sqrt(vtkMath::Distance2BetweenPoints(x, ballCentre)) - ballRadius; };
+  auto cubeDistance = [&](const double* x)
+  {
     double outside = 0, inside = -1e300;
     for (int d = 0; d < 3; ++d)
     {
@@ -320,8 +330,8 @@ void TwoObjectsCase()
     const double z = 1.0 - (2.0 * i + 1.0) / n, rho = std::sqrt(1.0 - z * z);
     const double phi = i * vtkMath::Pi() * (3.0 - std::sqrt(5.0));
     const double rr = ballRadius + 3.0 + 2.0 * Jitter(state);
-    picks->InsertNextPoint(ballCentre[0] + rr * rho * std::cos(phi), ballCentre[1] + rr * rho * std::sin(phi),
-      ballCentre[2] + rr * z);
+    picks->InsertNextPoint(ballCentre[0] + rr * rho * std::cos(phi),
+      ballCentre[1] + rr * rho * std::sin(phi), ballCentre[2] + rr * z);
   }
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(picks);
@@ -350,8 +360,9 @@ void TwoObjectsCase()
   }
   const double centroidOff = std::sqrt(vtkMath::Distance2BetweenPoints(centroid, ballCentre));
   std::cout << "  distance to the ball: mean |d| " << toBall.Mean << ", max " << toBall.Max
-            << "; centroid " << centroidOff << " voxel from the ball centre; nearest vertex to the cube "
-            << nearestToCube << " voxels" << std::endl;
+            << "; centroid " << centroidOff
+            << " voxel from the ball centre; nearest vertex to the cube " << nearestToCube
+            << " voxels" << std::endl;
   DS_CHECK_LE(toBall.Max, 1.0, "two objects: every vertex within 1 voxel of the ball's boundary");
   DS_CHECK_LE(centroidOff, 0.5, "two objects: vertex centroid at the ball centre (voxels)");
   DS_CHECK_GE(nearestToCube, 10.0, "two objects: no vertex near the cube (voxels)");
@@ -365,7 +376,8 @@ int main()
   TorusCase();
   TorusClosePicksCase();
   TwoObjectsCase();
-  std::cout << "total " << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s"
+  std::cout << "total "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s"
             << std::endl;
   return dstest::Result("TestDelaunaySeedEndToEnd");
 }

@@ -1,7 +1,7 @@
 // IntensityRange on a phantom: a bright ball (100, radius 20) in a dark volume (0), seed points
-// on a sphere of radius 18 inside it and on a box around it. [50, 1000] must keep exactly the tetrahedra inside
-// the ball (a bright object); [-10, 50] the shell between ball and box (a dark region around
-// a bright one: two closed surfaces, the inner one oriented into the ball).
+// on a sphere of radius 18 inside it and on a box around it. [50, 1000] must keep exactly the
+// tetrahedra inside the ball (a bright object); [-10, 50] the shell between ball and box (a dark
+// region around a bright one: two closed surfaces, the inner one oriented into the ball).
 #include "TestDelaunaySeedUtils.h"
 #include "vtkDelaunaySeedSurface.h"
 
@@ -52,8 +52,8 @@ int main()
   {
     const double z = 1.0 - (2.0 * i + 1.0) / nBall, rho = std::sqrt(1.0 - z * z);
     const double phi = i * vtkMath::Pi() * (3.0 - std::sqrt(5.0));
-    points->InsertNextPoint(c[0] + ballRadius * rho * std::cos(phi), c[1] + ballRadius * rho * std::sin(phi),
-      c[2] + ballRadius * z);
+    points->InsertNextPoint(c[0] + ballRadius * rho * std::cos(phi),
+      c[1] + ballRadius * rho * std::sin(phi), c[2] + ballRadius * z);
   }
   const int nb = 7; // box faces, slightly perturbed so the grid is not co-spherical
   for (int i = 0; i <= nb; ++i)
@@ -66,7 +66,8 @@ int main()
         }
         const double t = 0.013 * ((i * 7 + j * 3 + k * 5) % 11);
         points->InsertNextPoint(c[0] - boxHalf + 2 * boxHalf * i / nb + t,
-          c[1] - boxHalf + 2 * boxHalf * j / nb - t, c[2] - boxHalf + 2 * boxHalf * k / nb + 0.5 * t);
+          c[1] - boxHalf + 2 * boxHalf * j / nb - t,
+          c[2] - boxHalf + 2 * boxHalf * k / nb + 0.5 * t);
       }
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
@@ -118,8 +119,9 @@ int main()
     keptWithBoxCorner += (flag == 0 && !allOnBall) ? 1 : 0;
     removedInside += (flag == 3 && allOnBall) ? 1 : 0;
   }
-  std::cout << "  " << tets->GetNumberOfCells() << " tetrahedra, " << kept << " kept; kept with a box corner "
-            << keptWithBoxCorner << ", removed with all corners on the ball " << removedInside << std::endl;
+  std::cout << "  " << tets->GetNumberOfCells() << " tetrahedra, " << kept
+            << " kept; kept with a box corner " << keptWithBoxCorner
+            << ", removed with all corners on the ball " << removedInside << std::endl;
   DS_CHECK(keptWithBoxCorner == 0, "no kept tetrahedron reaches the box");
   DS_CHECK(removedInside == 0, "no tetrahedron inside the ball removed");
 

@@ -23,7 +23,8 @@ double Jitter(std::uint32_t& state)
 
 bool InOpenL(double x, double y)
 {
-  return (x > 0 && x < armLength && y > 0 && y < armWidth) || (x > 0 && x < armWidth && y > 0 && y < armLength);
+  return (x > 0 && x < armLength && y > 0 && y < armWidth) ||
+    (x > 0 && x < armWidth && y > 0 && y < armLength);
 }
 bool InClosedL(double x, double y)
 {
@@ -47,16 +48,17 @@ int main(int argc, char* argv[])
         const bool onBoundary = InClosedL(x, y) && (k == 0 || k == nz || !InOpenL(x, y));
         if (onBoundary)
         {
-          points->InsertNextPoint(x + 0.3 * spacing * Jitter(state), y + 0.3 * spacing * Jitter(state),
-            z + 0.3 * spacing * Jitter(state));
+          points->InsertNextPoint(x + 0.3 * spacing * Jitter(state),
+            y + 0.3 * spacing * Jitter(state), z + 0.3 * spacing * Jitter(state));
         }
       }
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
   const double lVolume = (armLength * armWidth + (armLength - armWidth) * armWidth) * height;
-  const double hullVolume = (armLength * armLength - 0.5 * (armLength - armWidth) * (armLength - armWidth)) * height;
-  std::cout << points->GetNumberOfPoints() << " points; L volume " << lVolume << ", hull volume " << hullVolume
-            << std::endl;
+  const double hullVolume =
+    (armLength * armLength - 0.5 * (armLength - armWidth) * (armLength - armWidth)) * height;
+  std::cout << points->GetNumberOfPoints() << " points; L volume " << lVolume << ", hull volume "
+            << hullVolume << std::endl;
 
   vtkNew<vtkDelaunaySeedSurface> seed;
   vtkNew<dsseedtest::MessageCounter> messages;

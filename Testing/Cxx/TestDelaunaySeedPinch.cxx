@@ -40,7 +40,8 @@ double MinCopyDistance(const dsurf::SeedSurface& s)
       if (s.SourcePoint[a] == s.SourcePoint[b])
       {
         const double d = std::sqrt(std::pow(s.Points[a][0] - s.Points[b][0], 2) +
-          std::pow(s.Points[a][1] - s.Points[b][1], 2) + std::pow(s.Points[a][2] - s.Points[b][2], 2));
+          std::pow(s.Points[a][1] - s.Points[b][1], 2) +
+          std::pow(s.Points[a][2] - s.Points[b][2], 2));
         best = std::min(best, d);
       }
   return best;
@@ -51,8 +52,8 @@ int main()
 {
   {
     std::cout << "Two tetrahedra sharing vertex 0:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { -1, 0, 0 },
-      { 0, -1, 0 }, { 0, 0, -1 } };
+    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
+      { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 } };
     std::vector<dsurf::SeedTet> t = { { 0, 1, 2, 3 }, { 0, 4, 6, 5 } };
     std::vector<unsigned char> status(2, dsurf::SeedKept);
     dsurf::SeedBoundaryReport report;
@@ -68,8 +69,8 @@ int main()
   }
   {
     std::cout << "Two tetrahedra sharing edge 0-1:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }, { 0.5, 1, 0.5 }, { -1, 0, 0 },
-      { -0.5, -1, 0.5 } };
+    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }, { 0.5, 1, 0.5 },
+      { -1, 0, 0 }, { -0.5, -1, 0.5 } };
     std::vector<dsurf::SeedTet> t = { { 0, 1, 2, 3 }, { 0, 1, 4, 5 } };
     std::vector<unsigned char> status(2, dsurf::SeedKept);
     dsurf::SeedBoundaryReport report;
@@ -78,7 +79,8 @@ int main()
     auto poly = ToPolyData(s);
     const auto f = dsseedtest::Measure(poly);
     dsseedtest::CheckClosedManifold(f, poly->GetNumberOfPoints(), 4);
-    DS_CHECK(report.PinchedEdges == 1 && report.PinchedVertices == 2, "one edge, two vertices pinched");
+    DS_CHECK(
+      report.PinchedEdges == 1 && report.PinchedVertices == 2, "one edge, two vertices pinched");
     DS_CHECK(report.PinchTetsRemoved == 0, "resolved without removing tetrahedra");
   }
   {
@@ -119,7 +121,8 @@ int main()
   }
   {
     std::cout << "A flat tetrahedron on top of a solid one is peeled off:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 1, 1, 0 } };
+    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, -1 },
+      { 1, 1, 0 } };
     std::vector<dsurf::SeedTet> t = { { 0, 1, 2, 3 }, { 0, 1, 2, 4 } };
     std::vector<unsigned char> status(2, dsurf::SeedKept);
     dsurf::SeedBoundaryReport report;
@@ -127,7 +130,8 @@ int main()
     auto poly = ToPolyData(s);
     const auto f = dsseedtest::Measure(poly);
     dsseedtest::CheckClosedManifold(f, poly->GetNumberOfPoints(), 2);
-    DS_CHECK(status[1] == dsurf::SeedRemovedDegenerate && f.Triangles == 4, "flat one removed, 4 triangles");
+    DS_CHECK(status[1] == dsurf::SeedRemovedDegenerate && f.Triangles == 4,
+      "flat one removed, 4 triangles");
   }
   return dstest::Result("TestDelaunaySeedPinch");
 }

@@ -54,7 +54,8 @@ int main()
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
   const double torusVolume = 2.0 * vtkMath::Pi() * vtkMath::Pi() * R * r * r;
-  std::cout << "torus volume " << torusVolume << ", " << points->GetNumberOfPoints() << " points" << std::endl;
+  std::cout << "torus volume " << torusVolume << ", " << points->GetNumberOfPoints() << " points"
+            << std::endl;
 
   vtkNew<vtkDelaunaySeedSurface> seed;
   vtkNew<dsseedtest::MessageCounter> messages;
@@ -122,7 +123,8 @@ int main()
   dstest::UpdateWithInputsUnchanged(seed, "seed");
   const auto byAlpha = dsseedtest::Measure(seed->GetOutput());
   dsseedtest::CheckClosedManifold(byAlpha, seed->GetOutput()->GetNumberOfPoints(), 0);
-  DS_CHECK_LE(std::abs(byAlpha.MassVolume / torusVolume - 1.0), 0.10, "relative volume error (Alpha)");
+  DS_CHECK_LE(
+    std::abs(byAlpha.MassVolume / torusVolume - 1.0), 0.10, "relative volume error (Alpha)");
 
   // Every surface point lies on (the sampled) torus: no hull points left in the hole.
   double worst = 0.0;

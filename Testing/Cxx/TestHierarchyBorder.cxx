@@ -48,7 +48,7 @@ TriangleMesh EquilateralSheet(int n)
 
 struct Drift
 {
-  double MaxRelative = 0;  ///< max over border vertices of |moved| / local edge length
+  double MaxRelative = 0; ///< max over border vertices of |moved| / local edge length
   double MeanRelative = 0;
   double MinAngle = 180;
   int BorderVertices = 0;
@@ -113,8 +113,9 @@ Drift Run(bool useLabelWeights, int sweeps)
     const double rel = Norm(m.Points[v] - start[v]) / len;
     if (getenv("DS_VERBOSE") && rel > 0.01)
     {
-      std::cout << "    v " << v << " label " << int(m.Labels[v]) << " level " << m.Levels[v] << " valence " << k
-                << " at " << start[v][0] << "," << start[v][1] << " drift " << rel << std::endl;
+      std::cout << "    v " << v << " label " << int(m.Labels[v]) << " level " << m.Levels[v]
+                << " valence " << k << " at " << start[v][0] << "," << start[v][1] << " drift "
+                << rel << std::endl;
     }
     d.MaxRelative = std::max(d.MaxRelative, rel);
     d.MeanRelative += rel;
@@ -146,7 +147,8 @@ int TestHierarchyBorder(int, char*[])
   DS_CHECK_GE(table.BorderVertices, 20, "border vertices in the test");
   DS_CHECK_LE(table.MaxRelative, 0.01, "weight table: max border drift / local edge length");
   DS_CHECK_GE(table.MinAngle, 20.0, "weight table: min angle after 500 sweeps (degrees)");
-  DS_CHECK_GE(ones.MaxRelative, 2.0 * table.MaxRelative, "all weights 1: max drift (>= 2x the table's)");
+  DS_CHECK_GE(
+    ones.MaxRelative, 2.0 * table.MaxRelative, "all weights 1: max drift (>= 2x the table's)");
   DS_CHECK_GE(ones.MaxRelative, 0.01, "all weights 1: max drift exceeds 1% of the edge length");
   return dstest::Result("TestHierarchyBorder");
 }

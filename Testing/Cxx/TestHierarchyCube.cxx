@@ -29,17 +29,19 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p)
   Outcome o;
   o.Mesh = dsphantom::EnclosingBox(N, 2);
   p.CheckTopology = true; // topology invariants after every level
-  p.SweepBatch = 1;         // the callback measures the mesh after every sweep
+  p.SweepBatch = 1;       // the callback measures the mesh after every sweep
   MultilevelSolver s;
   s.SetParameters(p);
   auto dist = [](const Vec3& x) { return dsphantom::CubeDistance(x, N, Half); };
-  s.SetSweepCallback([&](const SweepRecord& r, const TriangleMesh& m) {
-    if (o.FirstSweepWithin2 < 0 && dsphantom::Measure(m, dist).Mean < 2.0)
+  s.SetSweepCallback(
+    [&](const SweepRecord& r, const TriangleMesh& m)
     {
-      o.FirstSweepWithin2 = r.Sweep;
-    }
-    return true;
-  });
+      if (o.FirstSweepWithin2 < 0 && dsphantom::Measure(m, dist).Mean < 2.0)
+      {
+        o.FirstSweepWithin2 = r.Sweep;
+      }
+      return true;
+    });
   std::string err;
   o.Ok = s.Run(volume.data(), dsphantom::Geometry(N), o.Mesh, &err);
   DS_CHECK(o.Ok, err);
@@ -49,8 +51,8 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p)
   for (const auto& l : o.Levels)
   {
     std::cout << "    level " << l.Level << ": sigma " << l.Sigma << ", sweeps " << l.Sweeps
-              << (l.Converged ? "" : " (cap)") << ", triangles " << l.Triangles << ", marked " << l.MarkedTriangles
-              << ", greens after " << l.Refinement.Greens << std::endl;
+              << (l.Converged ? "" : " (cap)") << ", triangles " << l.Triangles << ", marked "
+              << l.MarkedTriangles << ", greens after " << l.Refinement.Greens << std::endl;
   }
   return o;
 }
@@ -90,7 +92,8 @@ int TestHierarchyCube(int, char*[])
   std::cout << "  first sweep with mean |d| < 2: halving " << h.FirstSweepWithin2 << ", constant "
             << c.FirstSweepWithin2 << std::endl;
   DS_CHECK(h.FirstSweepWithin2 > 0, "halving sigma comes within 2 voxels");
-  const double ratio = c.FirstSweepWithin2 < 0 ? 1e9 : double(c.FirstSweepWithin2) / h.FirstSweepWithin2;
+  const double ratio =
+    c.FirstSweepWithin2 < 0 ? 1e9 : double(c.FirstSweepWithin2) / h.FirstSweepWithin2;
   DS_CHECK_GE(ratio, 3.0, "sweeps to mean |d| < 2: constant / halving");
   for (const auto& l : c.Levels)
   {
@@ -106,9 +109,9 @@ int TestHierarchyCube(int, char*[])
   const Outcome u = Solve(volume, uni);
   const auto au = dsphantom::MeasureArea(u.Mesh, dist);
   const auto aa = dsphantom::MeasureArea(h.Mesh, dist);
-  std::cout << "  uniform: " << u.Mesh.NumberOfTriangles() << " triangles, area-mean " << au.Mean << ", max "
-            << au.Max << "; adaptive: " << h.Mesh.NumberOfTriangles() << " triangles, area-mean " << aa.Mean
-            << ", max " << aa.Max << std::endl;
+  std::cout << "  uniform: " << u.Mesh.NumberOfTriangles() << " triangles, area-mean " << au.Mean
+            << ", max " << au.Max << "; adaptive: " << h.Mesh.NumberOfTriangles()
+            << " triangles, area-mean " << aa.Mean << ", max " << aa.Max << std::endl;
   DS_CHECK_LE(aa.Mean, au.Mean, "adaptive area-weighted mean |d| (<= uniform's)");
   DS_CHECK_LE(aa.Max, au.Max, "adaptive max |d| on the surface (<= uniform's)");
   DS_CHECK_LE(double(h.Mesh.NumberOfTriangles()) / u.Mesh.NumberOfTriangles(), 0.5,

@@ -56,7 +56,8 @@ int TestHierarchyFilter(int, char*[])
     level->GetRange(range);
     DS_CHECK(range[0] == 0 && range[1] == 4, name + ": levels 0..4 present");
     label->GetRange(range);
-    DS_CHECK(uniform ? range[1] == 0 : range[1] >= 2, name + ": labels (all N when uniform, M/D when adaptive)");
+    DS_CHECK(uniform ? range[1] == 0 : range[1] >= 2,
+      name + ": labels (all N when uniform, M/D when adaptive)");
     const int levels = static_cast<int>(out->GetFieldData()->GetArray("Levels")->GetTuple1(0));
     DS_CHECK(levels == 5, name + ": five levels solved");
     // Sigma per sweep halves from level to level.
@@ -82,7 +83,8 @@ int TestHierarchyFilter(int, char*[])
               << table->GetNumberOfRows() << " sweeps" << std::endl;
     DS_CHECK_LE(sum / out->GetNumberOfPoints(), 0.15, name + ": mean |distance| (voxels)");
     DS_CHECK_LE(maxD, 0.5, name + ": max |distance| (voxels)");
-    DS_CHECK_LE(out->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0), 0, name + ": self-intersections");
+    DS_CHECK_LE(out->GetFieldData()->GetArray("SelfIntersections")->GetTuple1(0), 0,
+      name + ": self-intersections");
   }
 
   // A start finer than the voxels (ParaView's Sphere, radius 30, 320 x 320: edges <= 0.85
@@ -112,8 +114,8 @@ int TestHierarchyFilter(int, char*[])
       sum += dsphantom::SphereDistance({ p[0], p[1], p[2] }, n, 32.0);
     }
     std::cout << "  fine start: " << fine->GetOutput()->GetNumberOfPoints() << " input points -> "
-              << out->GetNumberOfPoints() << " output points, " << levels << " level(s), final sigma "
-              << finalSigma << std::endl;
+              << out->GetNumberOfPoints() << " output points, " << levels
+              << " level(s), final sigma " << finalSigma << std::endl;
     DS_CHECK(levels == 3 && finalSigma == 0.5, "sigma halves to half a voxel: three levels");
     DS_CHECK_LE(out->GetNumberOfPoints(), fine->GetOutput()->GetNumberOfPoints(),
       "output points of a sub-voxel start (not refined: at most the input's)");

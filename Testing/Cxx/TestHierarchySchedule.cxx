@@ -64,7 +64,8 @@ Run Solve(vtkImageData* image, int resolution, long long maxVertices)
     double p[3];
     out->GetPoint(i, p);
     r.MeanDistance += dsphantom::SphereDistance({ p[0], p[1], p[2] }, N, R);
-    r.MeanRadius += std::sqrt((p[0] - c) * (p[0] - c) + (p[1] - c) * (p[1] - c) + (p[2] - c) * (p[2] - c));
+    r.MeanRadius +=
+      std::sqrt((p[0] - c) * (p[0] - c) + (p[1] - c) * (p[1] - c) + (p[2] - c) * (p[2] - c));
   }
   r.MeanDistance /= std::max(1, r.Points);
   r.MeanRadius /= std::max(1, r.Points);
@@ -86,8 +87,9 @@ int TestHierarchySchedule(int, char*[])
   // A fine start (resolution 120: edges ~1.4 voxels after it shrinks onto the ball, so
   // little or nothing is refined): sigma still goes 10.7 -> 5.3 -> 2.7 -> 1.3 -> 0.67.
   const Run fine = Solve(image, 120, 2000000);
-  std::cout << "fine start: " << fine.Points << " points, " << fine.Levels << " levels, final sigma "
-            << fine.FinalSigma << ", mean radius " << fine.MeanRadius << std::endl;
+  std::cout << "fine start: " << fine.Points << " points, " << fine.Levels
+            << " levels, final sigma " << fine.FinalSigma << ", mean radius " << fine.MeanRadius
+            << std::endl;
   DS_CHECK(fine.Levels == 5, "fine start: all five levels solved");
   DS_CHECK_LE(fine.FinalSigma, 0.7, "fine start: final sigma (voxels)");
   DS_CHECK_LE(fine.MeanDistance, 0.2, "fine start: mean |distance| to the ball (voxels)");
@@ -95,8 +97,9 @@ int TestHierarchySchedule(int, char*[])
   // A vertex budget that stops refinement after the first step: one warning, and the
   // remaining levels still sharpen sigma.
   const Run budget = Solve(image, 16, 600);
-  std::cout << "budget 600: " << budget.Points << " points, " << budget.Levels << " levels, final sigma "
-            << budget.FinalSigma << ", mean radius " << budget.MeanRadius << std::endl;
+  std::cout << "budget 600: " << budget.Points << " points, " << budget.Levels
+            << " levels, final sigma " << budget.FinalSigma << ", mean radius " << budget.MeanRadius
+            << std::endl;
   DS_CHECK(budget.Warnings == 1, "budget: one warning");
   DS_CHECK(budget.Levels == 5, "budget: all five levels solved");
   DS_CHECK_LE(budget.FinalSigma, 0.7, "budget: final sigma (voxels)");

@@ -23,7 +23,8 @@ struct Outcome
   double FirstCorrection = 0;
 };
 
-Outcome Solve(const std::vector<float>& volume, MultilevelParameters p, TriangleMesh& mesh, const std::string& name)
+Outcome Solve(const std::vector<float>& volume, MultilevelParameters p, TriangleMesh& mesh,
+  const std::string& name)
 {
   mesh = dsphantom::EnclosingBox(N, 2);
   p.CheckTopology = true;
@@ -59,7 +60,8 @@ Outcome Solve(const std::vector<float>& volume, MultilevelParameters p, Triangle
   }
   o.FirstCorrection /= std::max(1, refined);
   std::cout << " = " << o.Sweeps << ", triangles " << mesh.NumberOfTriangles()
-            << ", first-sweep correction after refinement " << o.FirstCorrection << " edge" << std::endl;
+            << ", first-sweep correction after refinement " << o.FirstCorrection << " edge"
+            << std::endl;
   return o;
 }
 } // namespace
@@ -75,7 +77,8 @@ int TestHierarchySphere(int, char*[])
   const auto acc = dsphantom::Measure(mesh, dist);
   DS_CHECK_LE(acc.Mean, 0.15, "mean |distance| to the sphere (voxels)");
   DS_CHECK_LE(acc.Max, 0.5, "max |distance| (voxels)");
-  DS_CHECK_GE(dsphantom::FractionMinAngleAtLeast(mesh, 20.0), 0.99, "fraction of triangles with min angle >= 20 deg");
+  DS_CHECK_GE(dsphantom::FractionMinAngleAtLeast(mesh, 20.0), 0.99,
+    "fraction of triangles with min angle >= 20 deg");
   DS_CHECK_LE(CountSelfIntersections(mesh), 0, "self-intersecting triangle pairs");
   std::string msg;
   DS_CHECK(CheckTopologyInvariants(mesh, 2, true, &msg), msg);
@@ -105,7 +108,8 @@ int TestHierarchySphere(int, char*[])
       kind + ": first-sweep correction after refinement, butterfly / linear");
     if (uniform)
     {
-      DS_CHECK_GE(ol.Sweeps - ob.Sweeps, 1, kind + ": sweeps saved by butterfly prolongation (linear - butterfly)");
+      DS_CHECK_GE(ol.Sweeps - ob.Sweeps, 1,
+        kind + ": sweeps saved by butterfly prolongation (linear - butterfly)");
     }
   }
   return dstest::Result("TestHierarchySphere");

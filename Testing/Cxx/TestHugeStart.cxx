@@ -49,7 +49,8 @@ void CoarsenedSphere(vtkImageData* image)
   start->SetThetaResolution(250);
   start->SetPhiResolution(250);
   start->Update();
-  std::cout << "sphere start: " << start->GetOutput()->GetNumberOfPolys() << " triangles" << std::endl;
+  std::cout << "sphere start: " << start->GetOutput()->GetNumberOfPolys() << " triangles"
+            << std::endl;
 
   vtkNew<vtkDeformableSurfaceFilter> filter;
   vtkNew<Messages> warnings;
@@ -64,13 +65,15 @@ void CoarsenedSphere(vtkImageData* image)
   {
     double p[3];
     out->GetPoint(i, p);
-    sum += std::abs(std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
+    sum += std::abs(
+      std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
   }
   const double mean = sum / std::max<vtkIdType>(1, out->GetNumberOfPoints());
-  std::cout << "  " << out->GetNumberOfPoints() << " vertices, mean |d| " << mean << " voxel; warnings: " << warnings->Text
-            << std::endl;
+  std::cout << "  " << out->GetNumberOfPoints() << " vertices, mean |d| " << mean
+            << " voxel; warnings: " << warnings->Text << std::endl;
   DS_CHECK(warnings->Count == 1, "one warning");
-  DS_CHECK(warnings->Text.find("were coarsened to") != std::string::npos, "the warning names the coarsening");
+  DS_CHECK(warnings->Text.find("were coarsened to") != std::string::npos,
+    "the warning names the coarsening");
   DS_CHECK(facts.Euler == 2, "closed, genus 0");
   DS_CHECK_LE(mean, 0.1, "mean |distance| to the ball (voxels)");
   DS_CHECK_LE(out->GetNumberOfPoints(), 40000, "far fewer vertices than the start's 62 252");
@@ -104,8 +107,8 @@ void ThinTorusKept(vtkImageData* image)
   filter->Update();
   vtkPolyData* out = filter->GetOutput();
   const auto facts = dstest::Measure(out);
-  std::cout << "  " << out->GetNumberOfPoints() << " vertices, Euler " << facts.Euler << "; warnings: " << warnings->Text
-            << std::endl;
+  std::cout << "  " << out->GetNumberOfPoints() << " vertices, Euler " << facts.Euler
+            << "; warnings: " << warnings->Text << std::endl;
   DS_CHECK(warnings->Text.find("would change its topology") != std::string::npos,
     "the coarse copy is refused with a warning");
   DS_CHECK(facts.Euler == 0, "the torus's genus kept");

@@ -46,7 +46,8 @@ vtkSmartPointer<vtkFloatArray> Ball(const char* name, int components = 1)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
       {
-        const double r = std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
+        const double r =
+          std::sqrt((i - 16.0) * (i - 16.0) + (j - 16.0) * (j - 16.0) + (k - 16.0) * (k - 16.0));
         for (int c = 0; c < components; ++c)
         {
           values->SetComponent(i + n * (j + n * k), c, 1.0 / (1.0 + std::exp(2.0 * (r - 8.0))));
@@ -117,8 +118,8 @@ int TestImageScalarsChoice(int, char*[])
     for (const char* selected : { "", "no such array" })
     {
       const Outcome o = Run(image, selected);
-      std::cout << "selected '" << selected << "', active scalars: " << o.SurfacePoints << " points, "
-                << o.Errors << " errors" << std::endl;
+      std::cout << "selected '" << selected << "', active scalars: " << o.SurfacePoints
+                << " points, " << o.Errors << " errors" << std::endl;
       DS_CHECK(o.Errors == 0 && o.SurfacePoints > 0 && o.GradientPoints > 0,
         std::string("selection '") + selected + "' falls back to the active scalars");
     }
@@ -128,7 +129,8 @@ int TestImageScalarsChoice(int, char*[])
     auto image = Image();
     image->GetPointData()->AddArray(Ball("only"));
     const Outcome o = Run(image, "");
-    DS_CHECK(o.Errors == 0 && o.SurfacePoints > 0 && o.GradientPoints > 0, "the only point array is used");
+    DS_CHECK(
+      o.Errors == 0 && o.SurfacePoints > 0 && o.GradientPoints > 0, "the only point array is used");
   }
   // No active scalars, two point arrays, nothing selected: an error naming both, empty outputs.
   {
@@ -137,8 +139,10 @@ int TestImageScalarsChoice(int, char*[])
     image->GetPointData()->AddArray(Ball("second"));
     std::cout << "(two error messages naming the choices are expected next)" << std::endl;
     const Outcome o = Run(image, "");
-    DS_CHECK(o.Errors == 2 && o.SurfacePoints == 0 && o.GradientPoints == 0, "two arrays, none chosen: errors");
-    DS_CHECK(o.Text.find("'first', 'second'") != std::string::npos, "the error names the choices: " + o.Text);
+    DS_CHECK(o.Errors == 2 && o.SurfacePoints == 0 && o.GradientPoints == 0,
+      "two arrays, none chosen: errors");
+    DS_CHECK(o.Text.find("'first', 'second'") != std::string::npos,
+      "the error names the choices: " + o.Text);
     // Choosing one of them works.
     const Outcome chosen = Run(image, "second");
     DS_CHECK(chosen.Errors == 0 && chosen.SurfacePoints > 0, "two arrays, one chosen: no error");
@@ -150,9 +154,12 @@ int TestImageScalarsChoice(int, char*[])
     image->GetPointData()->AddArray(Ball("density"));
     std::cout << "(two error messages about 'vectors' are expected next)" << std::endl;
     const Outcome o = Run(image, "vectors");
-    DS_CHECK(o.Errors == 2 && o.SurfacePoints == 0 && o.GradientPoints == 0, "three components: errors");
-    DS_CHECK(o.Text.find("'vectors' has 3 components") != std::string::npos, "the error names the array: " + o.Text);
-    DS_CHECK(o.Text.find("'density'") != std::string::npos, "the error names the choices: " + o.Text);
+    DS_CHECK(
+      o.Errors == 2 && o.SurfacePoints == 0 && o.GradientPoints == 0, "three components: errors");
+    DS_CHECK(o.Text.find("'vectors' has 3 components") != std::string::npos,
+      "the error names the array: " + o.Text);
+    DS_CHECK(
+      o.Text.find("'density'") != std::string::npos, "the error names the choices: " + o.Text);
   }
   return dstest::Result("TestImageScalarsChoice");
 }

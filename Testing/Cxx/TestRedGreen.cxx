@@ -68,14 +68,15 @@ int CountLabel(const TriangleMesh& m, unsigned char label)
 }
 
 /// Checks the invariants and the label rules after a step; returns the number of problems.
-void CheckStep(const RedGreenRefiner& rg, const TriangleMesh& m, const RefinementCounts& c, int euler,
-  bool closed, const std::string& what)
+void CheckStep(const RedGreenRefiner& rg, const TriangleMesh& m, const RefinementCounts& c,
+  int euler, bool closed, const std::string& what)
 {
   DS_CHECK(c.Ok, what + ": " + c.Error);
   std::string msg;
   DS_CHECK(CheckTopologyInvariants(m, euler, closed, &msg), what + ": " + msg);
   DS_CHECK(rg.CountTVertices(m) == 0, what + ": no T-vertex");
-  DS_CHECK(m.Labels.size() == m.Points.size() && m.Levels.size() == m.Points.size(), what + ": per-point arrays");
+  DS_CHECK(m.Labels.size() == m.Points.size() && m.Levels.size() == m.Points.size(),
+    what + ": per-point arrays");
 
   // Label rules rederived from the green pairs: M on midpoints, C on split-edge ends,
   // D on opposite corners, N elsewhere; priority M > C > D.
@@ -127,7 +128,8 @@ void CheckStep(const RedGreenRefiner& rg, const TriangleMesh& m, const Refinemen
     }
     wrong += m.Labels[v] == expect ? 0 : 1;
   }
-  DS_CHECK(wrong == 0, what + ": labels follow the green pairs (" + std::to_string(wrong) + " wrong)");
+  DS_CHECK(
+    wrong == 0, what + ": labels follow the green pairs (" + std::to_string(wrong) + " wrong)");
 }
 } // namespace
 
@@ -148,8 +150,10 @@ int TestRedGreen(int, char*[])
     DS_CHECK(m.NumberOfTriangles() == 14, "8 - 1 - 3 + 4 + 6 = 14 triangles");
     DS_CHECK(CountLabel(m, LabelM) == 3 && CountLabel(m, LabelC) == 3 && CountLabel(m, LabelD) == 3,
       "3 M, 3 C, 3 D");
-    DS_CHECK(m.Labels[0] == LabelC && m.Labels[2] == LabelC && m.Labels[4] == LabelC, "corners of the red are C");
-    DS_CHECK(m.Labels[1] == LabelD && m.Labels[3] == LabelD && m.Labels[5] == LabelD, "opposite corners are D");
+    DS_CHECK(m.Labels[0] == LabelC && m.Labels[2] == LabelC && m.Labels[4] == LabelC,
+      "corners of the red are C");
+    DS_CHECK(m.Labels[1] == LabelD && m.Labels[3] == LabelD && m.Labels[5] == LabelD,
+      "opposite corners are D");
     DS_CHECK(m.Levels[6] == 1 && m.Levels[0] == 0, "levels");
     // Linear prolongation: the midpoint of (0, 2) is the first new point.
     DS_CHECK(Norm(m.Points[6] - Vec3{ 0.5, 0.5, 0 }) < 1e-15, "linear midpoint");
@@ -169,8 +173,9 @@ int TestRedGreen(int, char*[])
     const int nBefore = m.NumberOfPoints();
     c = rg.Refine(m, marks2, Prolongation::Linear);
     CheckStep(rg, m, c, 2, true, "marked green on the octahedron");
-    std::cout << "  marked green: red " << c.RedSplits << " (closure " << c.ClosureRedSplits << "), greens "
-              << c.Greens << ", undone " << c.UndoneGreens << ", triangles " << m.NumberOfTriangles() << std::endl;
+    std::cout << "  marked green: red " << c.RedSplits << " (closure " << c.ClosureRedSplits
+              << "), greens " << c.Greens << ", undone " << c.UndoneGreens << ", triangles "
+              << m.NumberOfTriangles() << std::endl;
     DS_CHECK(c.UndoneGreens >= 1, "the marked green is undone");
     DS_CHECK(c.RedSplits >= 1, "its parent is red-split");
     // The old M is now an inner vertex of a red split on both sides: valence 6, label N.
@@ -231,8 +236,8 @@ int TestRedGreen(int, char*[])
       }
       const std::vector<Vec3> oldPoints = m.Points;
       RefinementCounts c = rg.Refine(m, marks, Prolongation::Butterfly);
-      const std::string what = (shape == 0 ? "octahedron" : "icosahedron") + std::string(" random level ") +
-        std::to_string(level);
+      const std::string what = (shape == 0 ? "octahedron" : "icosahedron") +
+        std::string(" random level ") + std::to_string(level);
       CheckStep(rg, m, c, 2, true, what);
       bool kept = true;
       for (size_t v = 0; v < oldPoints.size(); ++v)
@@ -243,10 +248,12 @@ int TestRedGreen(int, char*[])
       undone += c.UndoneGreens;
       closure += c.ClosureRedSplits;
       maxGreens = std::max(maxGreens, c.Greens);
-      hadAllRoles += (CountLabel(m, LabelM) > 0 && CountLabel(m, LabelC) > 0 && CountLabel(m, LabelD) > 0) ? 1 : 0;
-      std::cout << "  " << what << ": triangles " << m.NumberOfTriangles() << ", red " << c.RedSplits
-                << " (closure " << c.ClosureRedSplits << "), greens " << c.Greens << ", undone "
-                << c.UndoneGreens << std::endl;
+      hadAllRoles +=
+        (CountLabel(m, LabelM) > 0 && CountLabel(m, LabelC) > 0 && CountLabel(m, LabelD) > 0) ? 1
+                                                                                              : 0;
+      std::cout << "  " << what << ": triangles " << m.NumberOfTriangles() << ", red "
+                << c.RedSplits << " (closure " << c.ClosureRedSplits << "), greens " << c.Greens
+                << ", undone " << c.UndoneGreens << std::endl;
     }
     DS_CHECK(undone > 0, "random marks exercised undoing greens");
     DS_CHECK(closure > 0, "random marks exercised the red closure");

@@ -1,6 +1,6 @@
 // The region force and the start-dependent first sigma (beyond the paper, docs/METHOD.md §9),
-// through vtkDeformableSurfaceFilter with its defaults and RegionWeight 0.3, on a soft ball of radius 16 (intensity
-// 100 inside, 0 outside) in a 64^3 image:
+// through vtkDeformableSurfaceFilter with its defaults and RegionWeight 0.3, on a soft ball of
+// radius 16 (intensity 100 inside, 0 outside) in a 64^3 image:
 // - one click: vtkDelaunaySeedSurface makes a sphere of radius 3 around one point inside the
 //   ball; the region force (range estimated from the click) grows it to the boundary;
 // - a sphere of radius 26 around the ball shrinks onto it (range estimated: object vs
@@ -67,7 +67,8 @@ struct Result
   bool Finite = true, RangeReported = false;
 };
 
-Result Deform(vtkImageData* image, vtkPolyData* start, const std::function<void(vtkDeformableSurfaceFilter*)>& configure)
+Result Deform(vtkImageData* image, vtkPolyData* start,
+  const std::function<void(vtkDeformableSurfaceFilter*)>& configure)
 {
   vtkNew<vtkDeformableSurfaceFilter> filter;
   vtkNew<Counter> warnings, errors;
@@ -90,7 +91,8 @@ Result Deform(vtkImageData* image, vtkPolyData* start, const std::function<void(
     double p[3];
     out->GetPoint(i, p);
     r.Finite = r.Finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-    const double d = std::abs(std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
+    const double d = std::abs(
+      std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
     r.Mean += d;
     r.Max = std::max(r.Max, d);
   }
@@ -108,8 +110,9 @@ Result Deform(vtkImageData* image, vtkPolyData* start, const std::function<void(
   {
     r.RangeReported = a->GetComponent(0, 0) < a->GetComponent(0, 1);
   }
-  std::cout << "  " << out->GetNumberOfPoints() << " points, mean |d| " << r.Mean << ", max " << r.Max
-            << ", sigma_0 " << r.InitialSigma << ", " << r.Warnings << " warning(s)" << std::endl;
+  std::cout << "  " << out->GetNumberOfPoints() << " points, mean |d| " << r.Mean << ", max "
+            << r.Max << ", sigma_0 " << r.InitialSigma << ", " << r.Warnings << " warning(s)"
+            << std::endl;
   return r;
 }
 } // namespace
@@ -145,12 +148,15 @@ int TestRegionForce(int, char*[])
 
   std::cout << "an intensity range that matches nothing:" << std::endl;
   {
-    const Result off = Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(0); });
-    const Result r = Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetIntensityRange(500, 600); });
+    const Result off =
+      Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(0); });
+    const Result r = Deform(
+      ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetIntensityRange(500, 600); });
     DS_CHECK(r.Warnings == 1 && r.Errors == 0, "range matching nothing: one warning, no error");
     DS_CHECK(r.Finite, "range matching nothing: finite coordinates");
     DS_CHECK(!r.RangeReported, "range matching nothing: the force is off");
-    DS_CHECK_LE(std::abs(r.Mean - off.Mean), 1e-9, "range matching nothing: same surface as without the force");
+    DS_CHECK_LE(std::abs(r.Mean - off.Mean), 1e-9,
+      "range matching nothing: same surface as without the force");
   }
 
   std::cout << "sigma_0 from the start:" << std::endl;
@@ -162,13 +168,15 @@ int TestRegionForce(int, char*[])
     box->SetZLength(N);
     box->Update();
     const Result spanning = Deform(ball, box->GetOutput(), nullptr);
-    DS_CHECK_LE(std::abs(spanning.InitialSigma - N / 6.0), 1e-9, "box spanning the image: sigma_0 = extent / 6");
+    DS_CHECK_LE(std::abs(spanning.InitialSigma - N / 6.0), 1e-9,
+      "box spanning the image: sigma_0 = extent / 6");
     DS_CHECK_LE(spanning.Mean, 0.3, "box spanning the image: mean |d| (voxels)");
     const Result near = Deform(ball, Sphere(19), nullptr);
     DS_CHECK_GE(near.InitialSigma, 2.0, "start 3 voxels outside: sigma_0 at least 2 voxels");
     DS_CHECK_LE(near.InitialSigma, 4.0, "start 3 voxels outside: sigma_0 at most 4 voxels");
     DS_CHECK_LE(near.Mean, 0.15, "start 3 voxels outside: mean |d| (voxels)");
-    const Result paper = Deform(ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetSigmaFraction(1.0 / 6.0); });
+    const Result paper = Deform(
+      ball, Sphere(19), [](vtkDeformableSurfaceFilter* f) { f->SetSigmaFraction(1.0 / 6.0); });
     DS_CHECK_LE(std::abs(paper.InitialSigma - N / 6.0), 1e-9, "SigmaFraction overrides the rule");
   }
   return dstest::Result("TestRegionForce");

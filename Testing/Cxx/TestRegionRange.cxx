@@ -45,14 +45,17 @@ int TestRegionRange(int, char*[])
   DS_CHECK(box.BuildTopology(&error), error);
   RangeEstimate e;
   DS_CHECK(EstimateIntensityRange(image.data(), g, box, 1.0, e, &error), error);
-  std::cout << "box start: " << e.Samples << " voxels inside, median " << e.Median << ", range [" << e.Range[0]
-            << ", " << e.Range[1] << "], separation " << e.Separation << std::endl;
+  std::cout << "box start: " << e.Samples << " voxels inside, median " << e.Median << ", range ["
+            << e.Range[0] << ", " << e.Range[1] << "], separation " << e.Separation << std::endl;
   // Centres strictly inside (9..27)^3 = 19^3; those on the box's faces (8 or 28) may count.
   DS_CHECK_GE(e.Samples, 19 * 19 * 19, "voxels inside the box: at least those strictly inside");
-  DS_CHECK_LE(e.Samples, 21 * 21 * 21, "voxels inside the box: at most those within its closed bounds");
+  DS_CHECK_LE(
+    e.Samples, 21 * 21 * 21, "voxels inside the box: at most those within its closed bounds");
   DS_CHECK(e.Contrast, "object against background");
-  DS_CHECK_LE(std::abs(e.Range[0] - 50.0), 2.0, "range low end midway between object (100) and background (0)");
-  DS_CHECK(e.Range[1] >= 100.0 && e.Range[1] < 250.0, "range high end above the object, below the bright slab");
+  DS_CHECK_LE(std::abs(e.Range[0] - 50.0), 2.0,
+    "range low end midway between object (100) and background (0)");
+  DS_CHECK(e.Range[1] >= 100.0 && e.Range[1] < 250.0,
+    "range high end above the object, below the bright slab");
 
   // The same box, inward-oriented, turned outward first: the same estimate.
   TriangleMesh inward = box;
@@ -61,7 +64,8 @@ int TestRegionRange(int, char*[])
     std::swap(t[1], t[2]);
   }
   DS_CHECK(inward.BuildTopology(&error), error);
-  DS_CHECK(inward.OrientPiecesOutward() == inward.NumberOfTriangles(), "every triangle of the inward box reversed");
+  DS_CHECK(inward.OrientPiecesOutward() == inward.NumberOfTriangles(),
+    "every triangle of the inward box reversed");
   RangeEstimate f;
   DS_CHECK(EstimateIntensityRange(image.data(), g, inward, 1.0, f, &error), error);
   DS_CHECK(f.Samples == e.Samples && f.Range[0] == e.Range[0] && f.Range[1] == e.Range[1],
@@ -72,10 +76,11 @@ int TestRegionRange(int, char*[])
   DS_CHECK(click.BuildTopology(&error), error);
   RangeEstimate c;
   DS_CHECK(EstimateIntensityRange(image.data(), g, click, 1.0, c, &error), error);
-  std::cout << "click: median " << c.Median << ", spread " << c.Spread << ", range [" << c.Range[0] << ", "
-            << c.Range[1] << "]" << std::endl;
+  std::cout << "click: median " << c.Median << ", spread " << c.Spread << ", range [" << c.Range[0]
+            << ", " << c.Range[1] << "]" << std::endl;
   DS_CHECK(!c.Contrast, "a start inside one region: no contrast");
-  DS_CHECK(c.Median == 100.0 && c.Range[0] < 100.0 && c.Range[1] > 100.0, "click: the region's value in the range");
+  DS_CHECK(c.Median == 100.0 && c.Range[0] < 100.0 && c.Range[1] > 100.0,
+    "click: the region's value in the range");
   DS_CHECK(c.Range[1] < 250.0 && c.Range[0] > 0.0, "click: neither the background nor the slab");
 
   // A blurred ball in an empty image (1 / (1 + exp(3 (r - 8))), 0 far away), a sphere three
@@ -90,8 +95,10 @@ int TestRegionRange(int, char*[])
       for (int j = 0; j < nb; ++j)
         for (int i = 0; i < nb; ++i)
         {
-          const double r = std::sqrt((i - 20.0) * (i - 20.0) + (j - 20.0) * (j - 20.0) + (k - 20.0) * (k - 20.0));
-          ball[(static_cast<size_t>(k) * nb + j) * nb + i] = static_cast<float>(1.0 / (1.0 + std::exp(3.0 * (r - 8.0))));
+          const double r =
+            std::sqrt((i - 20.0) * (i - 20.0) + (j - 20.0) * (j - 20.0) + (k - 20.0) * (k - 20.0));
+          ball[(static_cast<size_t>(k) * nb + j) * nb + i] =
+            static_cast<float>(1.0 / (1.0 + std::exp(3.0 * (r - 8.0))));
         }
     for (double radius : { 10.0, 11.0, 14.0 })
     {
@@ -99,8 +106,8 @@ int TestRegionRange(int, char*[])
       DS_CHECK(sphere.BuildTopology(&error), error);
       RangeEstimate b;
       DS_CHECK(EstimateIntensityRange(ball.data(), gb, sphere, 1.0, b, &error), error);
-      std::cout << "sphere of radius " << radius << " around the blurred ball: range [" << b.Range[0] << ", "
-                << b.Range[1] << "]" << std::endl;
+      std::cout << "sphere of radius " << radius << " around the blurred ball: range ["
+                << b.Range[0] << ", " << b.Range[1] << "]" << std::endl;
       DS_CHECK(b.Contrast, "blurred ball: object against background");
       DS_CHECK_LE(std::abs(b.Range[0] - 0.5), 0.05, "blurred ball: low end at the half level");
       DS_CHECK_GE(b.Range[1], 0.99, "blurred ball: the ball's inside in the range");
@@ -108,7 +115,8 @@ int TestRegionRange(int, char*[])
   }
 
   // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
-  DS_CHECK(RegionSpeed(75, 50, 150) == 1.0 && RegionSpeed(0, 50, 150) == -1.0 && RegionSpeed(50, 50, 150) == 0.0,
+  DS_CHECK(RegionSpeed(75, 50, 150) == 1.0 && RegionSpeed(0, 50, 150) == -1.0 &&
+      RegionSpeed(50, 50, 150) == 0.0,
     "speed +1 inside, -1 outside, 0 at the ends");
   DS_CHECK(RegionSpeed(std::nan(""), 50, 150) == 0.0, "NaN intensity: no force");
   return dstest::Result("TestRegionRange");

@@ -3,8 +3,8 @@
 // ErrorEvent observer) and leave an empty output; a good image afterwards works.
 #include "DSTestHelpers.h"
 
-#include <cmath>
 #include "ScaleSpaceTestUtils.h"
+#include <cmath>
 
 #include "dsScaleSpace.h"
 #include "vtkCommand.h"

@@ -25,7 +25,8 @@ void ImpulseMoments(int axis, double sigma)
   }
   std::vector<float> v(g.NumberOfVoxels(), 0.0f);
   const int c = n / 2;
-  auto at = [&](int t) {
+  auto at = [&](int t)
+  {
     int ijk[3] = { 0, 0, 0 };
     ijk[axis] = t;
     return static_cast<size_t>(ijk[0] + g.Dimensions[0] * (ijk[1] + g.Dimensions[1] * ijk[2]));
@@ -126,7 +127,8 @@ int TestScaleSpaceCore(int, char*[])
     g.Origin[2] = 1;
     const double Rz[9] = { 0, -1, 0, 1, 0, 0, 0, 0, 1 };
     std::copy(Rz, Rz + 9, g.Direction);
-    auto lin = [](double i, double j, double k) { return 1 + 2 * i - j + 0.5 * k + 0.1 * i * j * k; };
+    auto lin = [](double i, double j, double k)
+    { return 1 + 2 * i - j + 0.5 * k + 0.1 * i * j * k; };
     for (int k = 0; k < 3; ++k)
       for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 5; ++i)
@@ -172,8 +174,8 @@ int TestScaleSpaceCore(int, char*[])
     DS_CHECK(!field.SampleForce(xOut, f) && f[0] == 0 && f[1] == 0 && f[2] == 0,
       "outside -> false, zero force");
     DS_CHECK(field.SamplePotential(xOut) == 0.0, "outside -> zero potential");
-    DS_CHECK_LE(std::fabs(g.MeanExtent() - (5 * 0.5 + 4 * 2.0 + 3 * 1.5) / 3.0), 1e-12,
-      "MeanExtent error");
+    DS_CHECK_LE(
+      std::fabs(g.MeanExtent() - (5 * 0.5 + 4 * 2.0 + 3 * 1.5) / 3.0), 1e-12, "MeanExtent error");
   }
   return dstest::Result("TestScaleSpaceCore");
 }

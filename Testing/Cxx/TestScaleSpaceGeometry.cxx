@@ -53,7 +53,8 @@ int TestScaleSpaceGeometry(int, char*[])
   double origin[3];
   for (int r = 0; r < 3; ++r)
   {
-    origin[r] = Center[r] - (Dir[3 * r] * half[0] + Dir[3 * r + 1] * half[1] + Dir[3 * r + 2] * half[2]);
+    origin[r] =
+      Center[r] - (Dir[3 * r] * half[0] + Dir[3 * r + 1] * half[1] + Dir[3 * r + 2] * half[2]);
   }
   auto aniso = sstest::MakeImage(ext, spacing, origin, Dir, Phantom);
   vtkNew<vtkImageScaleSpaceGradient> filter;
@@ -122,8 +123,8 @@ int TestScaleSpaceGeometry(int, char*[])
           continue; // see the comment at the top: the cone tip of |grad(G*f)|
         }
         const float* f = F->GetPointer(3 * id);
-        const double e = std::sqrt((f[0] - fr[0]) * (f[0] - fr[0]) + (f[1] - fr[1]) * (f[1] - fr[1]) +
-          (f[2] - fr[2]) * (f[2] - fr[2]));
+        const double e = std::sqrt((f[0] - fr[0]) * (f[0] - fr[0]) +
+          (f[1] - fr[1]) * (f[1] - fr[1]) + (f[2] - fr[2]) * (f[2] - fr[2]));
         maxRef = std::max(maxRef, std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]));
         if (e > maxErr)
         {
@@ -138,8 +139,8 @@ int TestScaleSpaceGeometry(int, char*[])
   DS_CHECK_LE(static_cast<double>(outside), 0.0, "anisotropic voxels outside the reference grid");
   DS_CHECK(maxRef > 0.0, "non-zero reference force");
   DS_CHECK_LE(maxErr / maxRef, 0.12, "max |F - F_ref| / max |F_ref|");
-  DS_CHECK_LE(std::sqrt(sumErr2 / std::max<long long>(n, 1)) / maxRef, 0.02,
-    "RMS |F - F_ref| / max |F_ref|");
+  DS_CHECK_LE(
+    std::sqrt(sumErr2 / std::max<long long>(n, 1)) / maxRef, 0.02, "RMS |F - F_ref| / max |F_ref|");
 
   // The same comparison with the direction matrix ignored must fail clearly: it
   // shows the check above can tell a wrong geometry from a right one.
@@ -161,8 +162,9 @@ int TestScaleSpaceGeometry(int, char*[])
           out->GetPoint(id, x); // the true world point of this voxel
           reference.SampleForce(x, fr);
           const float* f = Fw->GetPointer(3 * id);
-          maxWrong = std::max(maxWrong, std::sqrt((f[0] - fr[0]) * (f[0] - fr[0]) +
-            (f[1] - fr[1]) * (f[1] - fr[1]) + (f[2] - fr[2]) * (f[2] - fr[2])));
+          maxWrong = std::max(maxWrong,
+            std::sqrt((f[0] - fr[0]) * (f[0] - fr[0]) + (f[1] - fr[1]) * (f[1] - fr[1]) +
+              (f[2] - fr[2]) * (f[2] - fr[2])));
         }
     DS_CHECK_GE(maxWrong / maxRef, 0.3, "(control) error when the direction is dropped");
   }

@@ -37,7 +37,8 @@ double MaxError(vtkImageData* out, const double expected[3], int margin, int& co
     {
       for (int i = margin; i < dims[0] - margin; ++i)
       {
-        const vtkIdType id = i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k);
+        const vtkIdType id =
+          i + static_cast<vtkIdType>(dims[0]) * (j + static_cast<vtkIdType>(dims[1]) * k);
         const float* f = force->GetPointer(3 * id);
         const double d[3] = { f[0] - expected[0], f[1] - expected[1], f[2] - expected[2] };
         worst = std::max(worst, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
@@ -48,8 +49,8 @@ double MaxError(vtkImageData* out, const double expected[3], int margin, int& co
   return worst;
 }
 
-void RunCase(const char* name, const int extent[6], const double spacing[3],
-  const double origin[3], const double direction[9], double sigma, int margin)
+void RunCase(const char* name, const int extent[6], const double spacing[3], const double origin[3],
+  const double direction[9], double sigma, int margin)
 {
   std::cout << name << " (sigma " << sigma << ", margin " << margin << " voxels)" << std::endl;
   auto image = sstest::MakeImage(extent, spacing, origin, direction,

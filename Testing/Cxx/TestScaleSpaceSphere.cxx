@@ -28,10 +28,12 @@ void RunSigma(double sigma, double peakTolerance)
   const int ext[6] = { 0, 63, 0, 63, 0, 63 };
   const double spacing[3] = { 1, 1, 1 }, origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  auto image = sstest::MakeImage(ext, spacing, origin, identity, [](const double* x) {
-    const double d[3] = { x[0] - Center[0], x[1] - Center[1], x[2] - Center[2] };
-    return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < R ? 1.0 : 0.0;
-  });
+  auto image = sstest::MakeImage(ext, spacing, origin, identity,
+    [](const double* x)
+    {
+      const double d[3] = { x[0] - Center[0], x[1] - Center[1], x[2] - Center[2] };
+      return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < R ? 1.0 : 0.0;
+    });
   vtkNew<vtkImageScaleSpaceGradient> filter;
   filter->SetInputData(image);
   filter->SetSigma(sigma);
@@ -82,8 +84,10 @@ void RunSigma(double sigma, double peakTolerance)
   }
   std::cout << "  shell voxels tested: " << tested << std::endl;
   DS_CHECK(tested > 1000, "shell has voxels");
-  DS_CHECK_LE(static_cast<double>(wrongSign), 0.0, "voxels whose Force points away from the boundary");
-  DS_CHECK_GE(worstCos, std::cos(25.0 * 3.14159265358979 / 180.0), "worst cos(Force, direction to boundary)");
+  DS_CHECK_LE(
+    static_cast<double>(wrongSign), 0.0, "voxels whose Force points away from the boundary");
+  DS_CHECK_GE(
+    worstCos, std::cos(25.0 * 3.14159265358979 / 180.0), "worst cos(Force, direction to boundary)");
 
   // Radial rays: argmin of P (peak of the edge strength) and zero crossing of the
   // radial force, sampled trilinearly every 0.02 voxel.
@@ -98,7 +102,8 @@ void RunSigma(double sigma, double peakTolerance)
     for (int b = 0; b < 6; ++b, ++rays)
     {
       const double th = 2 * 3.14159265358979 * a / 12.0, ph = 3.14159265358979 * (b + 0.5) / 6.0;
-      const double u[3] = { std::sin(ph) * std::cos(th), std::sin(ph) * std::sin(th), std::cos(ph) };
+      const double u[3] = { std::sin(ph) * std::cos(th), std::sin(ph) * std::sin(th),
+        std::cos(ph) };
       double bestR = 0, bestP = 1e30, zeroR = -1;
       double prevRadial = 0;
       for (double r = R - 2 * sigma; r <= R + 2 * sigma; r += 0.02)

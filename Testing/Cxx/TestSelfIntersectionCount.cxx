@@ -1,8 +1,8 @@
 // Unit test of the self-intersection count (dsSelfIntersectionCount): the tri-tri test on
 // hand-made pairs, a clean icosphere, an icosphere with one vertex pushed through the
-// opposite side, a fold at a shared vertex, a random fan at one vertex, and the BVH search and classification against
-// an independent brute-force oracle (orientation signs, below), also on meshes mixing tiny
-// and huge triangles (which once made a uniform grid run out of memory).
+// opposite side, a fold at a shared vertex, a random fan at one vertex, and the BVH search and
+// classification against an independent brute-force oracle (orientation signs, below), also on
+// meshes mixing tiny and huge triangles (which once made a uniform grid run out of memory).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -34,13 +34,15 @@ int Orient3(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 /// Sign of the 2-D orientation of (a, b, c) in the coordinate plane (i, j).
 int Orient2(const Vec3& a, const Vec3& b, const Vec3& c, int i, int j)
 {
-  const long double v = static_cast<long double>((b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i]));
+  const long double v =
+    static_cast<long double>((b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i]));
   return (v > 0) - (v < 0);
 }
 
 /// Segment pq against triangle abc, both in one plane: projected onto the coordinate plane
 /// the normal is most orthogonal to, either an end lies in the triangle or pq crosses an edge.
-bool CoplanarSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c)
+bool CoplanarSegmentTriangle(
+  const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c)
 {
   const Vec3 n = Cross(b - a, c - a);
   const int drop = std::abs(n[0]) > std::abs(n[1]) ? (std::abs(n[0]) > std::abs(n[2]) ? 0 : 2)
@@ -48,7 +50,8 @@ bool CoplanarSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const 
   const int i = (drop + 1) % 3, j = (drop + 2) % 3;
   const Vec3 tri[3] = { a, b, c };
   const int turn = Orient2(a, b, c, i, j);
-  const auto inside = [&](const Vec3& x) {
+  const auto inside = [&](const Vec3& x)
+  {
     for (int k = 0; k < 3; ++k)
     {
       if (Orient2(tri[k], tri[(k + 1) % 3], x, i, j) * turn < 0)
@@ -66,7 +69,8 @@ bool CoplanarSegmentTriangle(const Vec3& p, const Vec3& q, const Vec3& a, const 
   {
     const Vec3& e0 = tri[k];
     const Vec3& e1 = tri[(k + 1) % 3];
-    if (Orient2(p, q, e0, i, j) * Orient2(p, q, e1, i, j) <= 0 && Orient2(e0, e1, p, i, j) * Orient2(e0, e1, q, i, j) <= 0)
+    if (Orient2(p, q, e0, i, j) * Orient2(p, q, e1, i, j) <= 0 &&
+      Orient2(e0, e1, p, i, j) * Orient2(e0, e1, q, i, j) <= 0)
     {
       return true;
     }
@@ -115,7 +119,8 @@ bool InWedge(const Vec3& d, const Vec3& e1, const Vec3& e2)
 /// Triangles (s, a1, a2) and (s, b1, b2) in different planes meet along a segment of the
 /// planes' common line through s; they overlap beyond s iff one direction of that line
 /// enters both wedges at s.
-bool OracleOverlapBeyondVertex(const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2)
+bool OracleOverlapBeyondVertex(
+  const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2)
 {
   const Vec3 d = Cross(Cross(a1 - s, a2 - s), Cross(b1 - s, b2 - s));
   if (Dot(d, d) == 0)
@@ -140,7 +145,8 @@ std::vector<std::pair<int, int>> BruteForcePairs(const TriangleMesh& m, bool ski
   {
     for (int a = 0; a < 3; ++a)
     {
-      box[t][a] = std::min({ P[m.Triangles[t][0]][a], P[m.Triangles[t][1]][a], P[m.Triangles[t][2]][a] });
+      box[t][a] =
+        std::min({ P[m.Triangles[t][0]][a], P[m.Triangles[t][1]][a], P[m.Triangles[t][2]][a] });
       box[t][a + 3] =
         std::max({ P[m.Triangles[t][0]][a], P[m.Triangles[t][1]][a], P[m.Triangles[t][2]][a] });
     }
@@ -174,8 +180,8 @@ std::vector<std::pair<int, int>> BruteForcePairs(const TriangleMesh& m, bool ski
       }
       else if (shared == 1)
       {
-        hit = OracleOverlapBeyondVertex(P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]],
-          P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
+        hit = OracleOverlapBeyondVertex(
+          P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]], P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
       }
       if (hit)
       {
@@ -212,15 +218,15 @@ int TestSelfIntersectionCount(int, char*[])
     }
     DS_CHECK(CountSelfIntersections(m) == 0, "two separated triangles: 0 pairs");
     // Parallel planes, overlapping in x/y: 0.
-    DS_CHECK(!TrianglesIntersect({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 0.1 }, { 1, 0, 0.1 },
-               { 0, 1, 0.1 }),
+    DS_CHECK(!TrianglesIntersect(
+               { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 0.1 }, { 1, 0, 0.1 }, { 0, 1, 0.1 }),
       "parallel triangles do not intersect");
     // Coplanar, overlapping: 1; coplanar, apart: 0.
-    DS_CHECK(TrianglesIntersect({ 0, 0, 0 }, { 2, 0, 0 }, { 0, 2, 0 }, { 0.5, 0.5, 0 }, { 3, 0.5, 0 },
-               { 0.5, 3, 0 }),
+    DS_CHECK(TrianglesIntersect({ 0, 0, 0 }, { 2, 0, 0 }, { 0, 2, 0 }, { 0.5, 0.5, 0 },
+               { 3, 0.5, 0 }, { 0.5, 3, 0 }),
       "overlapping coplanar triangles intersect");
-    DS_CHECK(!TrianglesIntersect({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 2, 2, 0 }, { 3, 2, 0 },
-               { 2, 3, 0 }),
+    DS_CHECK(!TrianglesIntersect(
+               { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 2, 2, 0 }, { 3, 2, 0 }, { 2, 3, 0 }),
       "separated coplanar triangles do not intersect");
     // A triangle piercing another near its edge, and one just missing it.
     DS_CHECK(TrianglesIntersect({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0.49, 0.49, -1 },
@@ -234,12 +240,15 @@ int TestSelfIntersectionCount(int, char*[])
   // --- shared vertex: a fold through the neighbour counts, a normal fan does not ---
   {
     const Vec3 s{ 0, 0, 0 };
-    DS_CHECK(!SharedVertexTrianglesOverlap(s, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { -1, 1, 0.2 }),
+    DS_CHECK(
+      !SharedVertexTrianglesOverlap(s, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { -1, 1, 0.2 }),
       "neighbouring fan triangles do not overlap");
     // B's plane crosses A's interior beyond s on the same side: a fold.
-    DS_CHECK(SharedVertexTrianglesOverlap(s, { 2, -1, 0 }, { 2, 1, 0 }, { 1, 0, -1 }, { 1, 0.2, 1 }),
+    DS_CHECK(
+      SharedVertexTrianglesOverlap(s, { 2, -1, 0 }, { 2, 1, 0 }, { 1, 0, -1 }, { 1, 0.2, 1 }),
       "a triangle folded through its neighbour at a shared vertex");
-    DS_CHECK(!SharedVertexTrianglesOverlap(s, { 2, -1, 0 }, { 2, 1, 0 }, { -1, 0, -1 }, { -1, 0.2, 1 }),
+    DS_CHECK(
+      !SharedVertexTrianglesOverlap(s, { 2, -1, 0 }, { 2, 1, 0 }, { -1, 0, -1 }, { -1, 0.2, 1 }),
       "the same triangle on the other side of s");
   }
 
@@ -266,7 +275,8 @@ int TestSelfIntersectionCount(int, char*[])
 
     // Brute force over all pairs gives the same set.
     const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, false);
-    std::cout << "  BVH pairs " << pairs.size() << ", brute-force pairs " << brute.size() << std::endl;
+    std::cout << "  BVH pairs " << pairs.size() << ", brute-force pairs " << brute.size()
+              << std::endl;
     DS_CHECK(pairs == brute, "BVH search finds exactly the brute-force pairs");
   }
 
@@ -287,8 +297,8 @@ int TestSelfIntersectionCount(int, char*[])
     const int found = CountSelfIntersections(m, &pairs);
     const std::vector<std::pair<int, int>> brute = BruteForcePairs(m, false);
     const int all = 150 * 149 / 2;
-    std::cout << "  fan of 150 triangles at one vertex: BVH " << found << ", oracle " << brute.size() << " of "
-              << all << " pairs" << std::endl;
+    std::cout << "  fan of 150 triangles at one vertex: BVH " << found << ", oracle "
+              << brute.size() << " of " << all << " pairs" << std::endl;
     DS_CHECK(pairs == brute, "BVH pairs equal the oracle on a random fan at one shared vertex");
     DS_CHECK(found > 0 && found < all, "the fan has overlapping and separate pairs");
   }

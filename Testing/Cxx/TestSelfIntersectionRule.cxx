@@ -22,36 +22,44 @@ double Distance(const Vec3& a, const Vec3& b)
 void CheckVector(const Vec3& got, const Vec3& want, const std::string& what)
 {
   DS_CHECK(Distance(got, want) <= 1e-14,
-    what + ": got (" + std::to_string(got[0]) + ", " + std::to_string(got[1]) + ", " + std::to_string(got[2]) + ")");
+    what + ": got (" + std::to_string(got[0]) + ", " + std::to_string(got[1]) + ", " +
+      std::to_string(got[2]) + ")");
 }
 } // namespace
 
 int TestSelfIntersectionRule(int, char*[])
 {
   // F . U = 4 > 0: along U, the tangential x part dropped.
-  CheckVector(SelfIntersectionRule({ 1, 2, 0 }, { 0, 2, 0 }, Vec3{ 0, 0, 1 }), { 0, 2, 0 }, "F.U > 0");
+  CheckVector(
+    SelfIntersectionRule({ 1, 2, 0 }, { 0, 2, 0 }, Vec3{ 0, 0, 1 }), { 0, 2, 0 }, "F.U > 0");
   // F . U = -4 < 0: along n = (0, 1, 1): (F . n / n . n) n = (-2 / 2) n.
-  CheckVector(SelfIntersectionRule({ 1, -2, 0 }, { 0, 2, 0 }, Vec3{ 0, 1, 1 }), { 0, -1, -1 }, "F.U < 0");
+  CheckVector(
+    SelfIntersectionRule({ 1, -2, 0 }, { 0, 2, 0 }, Vec3{ 0, 1, 1 }), { 0, -1, -1 }, "F.U < 0");
   // F . U = 0 counts as not positive: along n.
-  CheckVector(SelfIntersectionRule({ 1, 0, 0 }, { 0, 1, 0 }, Vec3{ 2, 0, 0 }), { 1, 0, 0 }, "F.U = 0");
+  CheckVector(
+    SelfIntersectionRule({ 1, 0, 0 }, { 0, 1, 0 }, Vec3{ 2, 0, 0 }), { 1, 0, 0 }, "F.U = 0");
   // The normal's length does not matter.
   CheckVector(SelfIntersectionRule({ 0.3, -0.7, 0.2 }, { 0, 1, 0 }, Vec3{ 5, 5, 0 }),
     SelfIntersectionRule({ 0.3, -0.7, 0.2 }, { 0, 1, 0 }, Vec3{ 1, 1, 0 }), "normal length");
   // No normal (a degenerate fan) and F . U <= 0: nothing is applied.
-  CheckVector(SelfIntersectionRule({ 1, -2, 3 }, { 0, 2, 0 }, Vec3{ 0, 0, 0 }), { 0, 0, 0 }, "zero normal");
+  CheckVector(
+    SelfIntersectionRule({ 1, -2, 3 }, { 0, 2, 0 }, Vec3{ 0, 0, 0 }), { 0, 0, 0 }, "zero normal");
   // No force: nothing is applied.
-  CheckVector(SelfIntersectionRule({ 0, 0, 0 }, { 0, 2, 0 }, Vec3{ 0, 0, 1 }), { 0, 0, 0 }, "zero force");
+  CheckVector(
+    SelfIntersectionRule({ 0, 0, 0 }, { 0, 2, 0 }, Vec3{ 0, 0, 1 }), { 0, 0, 0 }, "zero force");
 
   // The normal is computed only when the umbrella does not take the force.
   int normalCalls = 0;
-  const auto countingNormal = [&normalCalls]() {
+  const auto countingNormal = [&normalCalls]()
+  {
     ++normalCalls;
     return Vec3{ 0, 0, 1 };
   };
   SelfIntersectionRule({ 1, 2, 0 }, { 0, 2, 0 }, countingNormal);
   DS_CHECK(normalCalls == 0, "normal evaluated although F.U > 0");
   SelfIntersectionRule({ 1, -2, 0 }, { 0, 2, 0 }, countingNormal);
-  DS_CHECK(normalCalls == 1, "normal not evaluated once for F.U < 0: " + std::to_string(normalCalls));
+  DS_CHECK(
+    normalCalls == 1, "normal not evaluated once for F.U < 0: " + std::to_string(normalCalls));
 
   // Projection properties on random cases.
   std::mt19937 rng(7);
@@ -71,7 +79,8 @@ int TestSelfIntersectionRule(int, char*[])
   std::cout << "  random cases along the umbrella: " << alongUmbrella << " of 1000" << std::endl;
   DS_CHECK(alongUmbrella > 300 && alongUmbrella < 700, "random cases should take both branches");
   DS_CHECK(notParallel == 0, std::to_string(notParallel) + " results not parallel to U or n");
-  DS_CHECK(notOrthogonal == 0, std::to_string(notOrthogonal) + " remainders not orthogonal to U or n");
+  DS_CHECK(
+    notOrthogonal == 0, std::to_string(notOrthogonal) + " remainders not orthogonal to U or n");
   DS_CHECK(longer == 0, std::to_string(longer) + " results longer than F");
   return dstest::Result("TestSelfIntersectionRule");
 }

@@ -115,7 +115,8 @@ int TestSolver(int, char*[])
     DS_CHECK_LE(s.NumberOfColors(), 24, "number of colours");
   }
 
-  // --- weighted umbrella (docs/METHOD.md §6.4): a C vertex gives N/C/M neighbours weight 2, D weight 1 ---
+  // --- weighted umbrella (docs/METHOD.md §6.4): a C vertex gives N/C/M neighbours weight 2, D
+  // weight 1 ---
   {
     TriangleMesh m;
     // A fan: centre 0 and a hexagon 1..6 in the plane z = 0, plus one lifted vertex.
@@ -137,7 +138,8 @@ int TestSolver(int, char*[])
     s.SetMesh(&m);
     const Vec3 u = s.Umbrella(0);
     // W = 1 + 5 * 2 = 11; z component = 1 * 1 / 11.
-    DS_CHECK_LE(std::abs(u[2] - 1.0 / 11.0), 1e-12, "|U_z - 1/11| for a C vertex with one D neighbour");
+    DS_CHECK_LE(
+      std::abs(u[2] - 1.0 / 11.0), 1e-12, "|U_z - 1/11| for a C vertex with one D neighbour");
     m.Labels[0] = LabelN;
     s.SetMesh(&m);
     DS_CHECK_LE(std::abs(s.Umbrella(0)[2] - 1.0 / 6.0), 1e-12, "|U_z - 1/6| for an N vertex");
@@ -147,7 +149,8 @@ int TestSolver(int, char*[])
       l = LabelM;
     }
     s.SetMesh(&m);
-    DS_CHECK_LE(std::abs(s.Umbrella(0)[2] - 1.0 / 6.0), 1e-12, "|U_z - 1/6| for the uniform fallback");
+    DS_CHECK_LE(
+      std::abs(s.Umbrella(0)[2] - 1.0 / 6.0), 1e-12, "|U_z - 1/6| for the uniform fallback");
   }
 
   // --- tau = 1 (membrane), no external force: the sphere shrinks monotonically ---
@@ -283,27 +286,32 @@ int TestSolver(int, char*[])
       sc.SetMesh(&c);
       sc.SetForceField(&field, 1.0);
       std::vector<double> means;
-      const int done = sc.Sweeps(100, [&](const SweepStatistics& st) {
-        means.push_back(st.MeanCorrection);
-        return means.size() < 7;
-      });
+      const int done = sc.Sweeps(100,
+        [&](const SweepStatistics& st)
+        {
+          means.push_back(st.MeanCorrection);
+          return means.size() < 7;
+        });
       for (int i = 0; i < 7; ++i)
       {
         sb.Sweep();
       }
       // 30 + 7 sweeps on b against 30 + 7 on c (c started from b after 30).
       const double meanLast = sb.Sweep().MeanCorrection;
-      const int done2 = sc.Sweeps(1, [&](const SweepStatistics& st) {
-        means.push_back(st.MeanCorrection);
-        return true;
-      });
+      const int done2 = sc.Sweeps(1,
+        [&](const SweepStatistics& st)
+        {
+          means.push_back(st.MeanCorrection);
+          return true;
+        });
       int differ = 0;
       for (int v = 0; v < b.NumberOfPoints(); ++v)
       {
         differ += b.Points[v] != c.Points[v];
       }
       const std::string label = "Sweeps() with " + std::to_string(threads) + " thread(s)";
-      DS_CHECK(done == 7 && done2 == 1 && means.size() == 8, label + ": stops when the callback returns false");
+      DS_CHECK(done == 7 && done2 == 1 && means.size() == 8,
+        label + ": stops when the callback returns false");
       DS_CHECK_LE(differ, 0, label + ": points differing from single sweeps");
       DS_CHECK(means.back() == meanLast, label + ": statistics identical to single sweeps");
       b = c; // continue the comparison from the same state

@@ -29,7 +29,8 @@ template <typename Place>
 inline void Subdivide(std::vector<Vec3>& p, std::vector<std::array<int, 3>>& f, Place place)
 {
   std::map<std::pair<int, int>, int> mid;
-  auto midpoint = [&](int a, int b) {
+  auto midpoint = [&](int a, int b)
+  {
     auto key = std::make_pair(std::min(a, b), std::max(a, b));
     auto it = mid.find(key);
     if (it != mid.end())
@@ -44,7 +45,8 @@ inline void Subdivide(std::vector<Vec3>& p, std::vector<std::array<int, 3>>& f, 
   g.reserve(f.size() * 4);
   for (auto& tri : f)
   {
-    const int a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), d = midpoint(tri[2], tri[0]);
+    const int a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]),
+              d = midpoint(tri[2], tri[0]);
     g.push_back({ tri[0], a, d });
     g.push_back({ tri[1], b, a });
     g.push_back({ tri[2], d, b });
@@ -62,19 +64,21 @@ inline dsurf::TriangleMesh MakeIcosphere(int levels, double radius, const Vec3& 
     { 0, 1, t }, { 0, -1, -t }, { 0, 1, -t }, { t, 0, -1 }, { t, 0, 1 }, { -t, 0, -1 },
     { -t, 0, 1 } };
   std::vector<std::array<int, 3>> f = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 },
-    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 },
-    { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 },
-    { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
+    { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 }, { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 },
+    { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 }, { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 },
+    { 8, 6, 7 }, { 9, 8, 1 } };
   for (auto& x : p)
   {
     x = (1.0 / dsurf::Norm(x)) * x;
   }
   for (int l = 0; l < levels; ++l)
   {
-    Subdivide(p, f, [](const Vec3& a, const Vec3& b) {
-      const Vec3 x = 0.5 * (a + b);
-      return (1.0 / dsurf::Norm(x)) * x;
-    });
+    Subdivide(p, f,
+      [](const Vec3& a, const Vec3& b)
+      {
+        const Vec3 x = 0.5 * (a + b);
+        return (1.0 / dsurf::Norm(x)) * x;
+      });
   }
   for (auto& x : p)
   {
@@ -136,8 +140,8 @@ inline vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
 inline vtkSmartPointer<vtkPolyData> MakeFin(const dsurf::Vec3& corner)
 {
   dsurf::TriangleMesh m;
-  for (const dsurf::Vec3& d : { dsurf::Vec3{ 0, 0, 0 }, dsurf::Vec3{ 4, 0, 0 }, dsurf::Vec3{ 2, 4, 0 },
-         dsurf::Vec3{ 2, -4, 0 }, dsurf::Vec3{ 2, 0, 4 } })
+  for (const dsurf::Vec3& d : { dsurf::Vec3{ 0, 0, 0 }, dsurf::Vec3{ 4, 0, 0 },
+         dsurf::Vec3{ 2, 4, 0 }, dsurf::Vec3{ 2, -4, 0 }, dsurf::Vec3{ 2, 0, 4 } })
   {
     m.Points.push_back(corner + d);
   }

@@ -78,7 +78,8 @@ void CheckRun(int threads, int blocksPerThread)
 {
   const StepScheduler scheduler(threads, blocksPerThread);
   const int blocks = scheduler.NumberOfBlocks();
-  const std::string what = std::to_string(threads) + " threads, " + std::to_string(blocksPerThread) + " blocks each";
+  const std::string what =
+    std::to_string(threads) + " threads, " + std::to_string(blocksPerThread) + " blocks each";
   DS_CHECK(blocks == threads * blocksPerThread, what);
   RecordingJob job(blocks);
   const long long steps = scheduler.Run(job);
@@ -115,9 +116,12 @@ void CheckRun(int threads, int blocksPerThread)
       }
     }
   }
-  DS_CHECK(wrongCounts == 0, what + ": blocks not run exactly once: " + std::to_string(wrongCounts));
-  DS_CHECK(overlaps == 0, what + ": steps that started before the previous one finished: " + std::to_string(overlaps));
-  DS_CHECK(endsOutOfOrder == 0, what + ": EndStep calls out of place: " + std::to_string(endsOutOfOrder));
+  DS_CHECK(
+    wrongCounts == 0, what + ": blocks not run exactly once: " + std::to_string(wrongCounts));
+  DS_CHECK(overlaps == 0,
+    what + ": steps that started before the previous one finished: " + std::to_string(overlaps));
+  DS_CHECK(
+    endsOutOfOrder == 0, what + ": EndStep calls out of place: " + std::to_string(endsOutOfOrder));
 }
 
 void CheckBlockRange()
@@ -136,7 +140,8 @@ void CheckBlockRange()
         expectedFirst = last;
       }
       DS_CHECK(contiguous && expectedFirst == count,
-        std::to_string(count) + " items in " + std::to_string(blocks) + " blocks: not cut into contiguous pieces");
+        std::to_string(count) + " items in " + std::to_string(blocks) +
+          " blocks: not cut into contiguous pieces");
     }
   }
 }

@@ -48,7 +48,8 @@ int TestTriangleMesh(int, char*[])
     }
     DS_CHECK(m.BuildTopology(&err), err);
     DS_CHECK(m.OrientConsistently() == 3, "the three minority faces flipped");
-    DS_CHECK(m.IsConsistentlyOriented() && m.SignedVolume() < 0, "consistent, inward like the majority");
+    DS_CHECK(
+      m.IsConsistentlyOriented() && m.SignedVolume() < 0, "consistent, inward like the majority");
   }
   {
     TriangleMesh m = Octahedron();

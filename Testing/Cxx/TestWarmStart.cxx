@@ -41,11 +41,12 @@ Run Measure(vtkDeformableSurfaceFilter* f)
   {
     double p[3];
     out->GetPoint(i, p);
-    r.Mean += std::abs(std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
+    r.Mean += std::abs(
+      std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
   }
   r.Mean /= std::max<vtkIdType>(1, out->GetNumberOfPoints());
-  std::cout << "  " << (r.Warm ? "warm" : "cold") << ": " << r.Sweeps << " sweeps, " << out->GetNumberOfPoints()
-            << " points, mean |d| " << r.Mean << std::endl;
+  std::cout << "  " << (r.Warm ? "warm" : "cold") << ": " << r.Sweeps << " sweeps, "
+            << out->GetNumberOfPoints() << " points, mean |d| " << r.Mean << std::endl;
   return r;
 }
 } // namespace
@@ -73,11 +74,14 @@ int TestWarmStart(int, char*[])
   cold->SetTau(0.15);
   const Run reference = Measure(cold);
 
-  DS_CHECK(first.Warm == 0 && warm.Warm == 1 && reference.Warm == 0, "the second run of the tuned filter is warm");
+  DS_CHECK(first.Warm == 0 && warm.Warm == 1 && reference.Warm == 0,
+    "the second run of the tuned filter is warm");
   DS_CHECK_LE(warm.Sweeps, 0.5 * reference.Sweeps, "warm start: sweeps (<= half the cold run's)");
-  DS_CHECK_LE(std::abs(warm.Mean - reference.Mean), 0.05, "warm vs cold: mean |d| difference (voxels)");
+  DS_CHECK_LE(
+    std::abs(warm.Mean - reference.Mean), 0.05, "warm vs cold: mean |d| difference (voxels)");
   DS_CHECK_LE(warm.Mean, 0.2, "warm: mean |d| to the sphere (voxels)");
-  std::cout << "  sweeps saved: " << reference.Sweeps - warm.Sweeps << " of " << reference.Sweeps << std::endl;
+  std::cout << "  sweeps saved: " << reference.Sweeps - warm.Sweeps << " of " << reference.Sweeps
+            << std::endl;
 
   start->SetRadius(21.0); // a new input: start over
   const Run again = Measure(tuned);

@@ -30,7 +30,8 @@ constexpr int Cells = 6;     // lattice cells per axis: points in [0, 9]^3, the 
 /// A soft ball of radius 3 in the middle of a 10^3 image (built once, never modified).
 vtkImageData* Ball()
 {
-  static vtkImageData* image = [] {
+  static vtkImageData* image = []
+  {
     auto* im = vtkImageData::New();
     im->SetDimensions(10, 10, 10);
     vtkNew<vtkFloatArray> values;
@@ -39,7 +40,8 @@ vtkImageData* Ball()
     for (int i = 0; i < 1000; ++i)
     {
       const double x = i % 10 - 4.5, y = (i / 10) % 10 - 4.5, z = i / 100 - 4.5;
-      values->SetValue(i, static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (std::sqrt(x * x + y * y + z * z) - 3.0)))));
+      values->SetValue(i,
+        static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (std::sqrt(x * x + y * y + z * z) - 3.0)))));
     }
     im->GetPointData()->SetScalars(values);
     return im;
@@ -79,14 +81,15 @@ vtkSmartPointer<vtkPolyData> RandomSurface(FuzzedDataProvider& in)
   const int n = in.ConsumeIntegralInRange(0, 24);
   for (int i = 0; i < n; ++i)
   {
-    points->InsertNextPoint(fuzzvtk::Coordinate(in, Step, Cells), fuzzvtk::Coordinate(in, Step, Cells),
-      fuzzvtk::Coordinate(in, Step, Cells));
+    points->InsertNextPoint(fuzzvtk::Coordinate(in, Step, Cells),
+      fuzzvtk::Coordinate(in, Step, Cells), fuzzvtk::Coordinate(in, Step, Cells));
   }
   const vtkIdType nPoints = points->GetNumberOfPoints();
   const int nCells = nPoints > 0 ? in.ConsumeIntegralInRange(0, 24) : 0;
   for (int c = 0; c < nCells; ++c)
   {
-    const int kind = in.ConsumeIntegralInRange(0, 5); // vertex, line, triangle, quad, polygon, strip
+    const int kind =
+      in.ConsumeIntegralInRange(0, 5); // vertex, line, triangle, quad, polygon, strip
     static const int minSize[6] = { 1, 2, 3, 4, 5, 3 }, maxSize[6] = { 2, 4, 3, 4, 7, 7 };
     const int k = in.ConsumeIntegralInRange(minSize[kind], maxSize[kind]);
     std::vector<vtkIdType> ids(k);
@@ -94,7 +97,10 @@ vtkSmartPointer<vtkPolyData> RandomSurface(FuzzedDataProvider& in)
     {
       id = in.ConsumeIntegralInRange<vtkIdType>(0, nPoints - 1);
     }
-    vtkCellArray* cells = kind == 0 ? verts.Get() : kind == 1 ? lines.Get() : kind == 5 ? strips.Get() : polys.Get();
+    vtkCellArray* cells = kind == 0 ? verts.Get()
+      : kind == 1                   ? lines.Get()
+      : kind == 5                   ? strips.Get()
+                                    : polys.Get();
     cells->InsertNextCell(k, ids.data());
   }
   auto surface = vtkSmartPointer<vtkPolyData>::New();
@@ -130,7 +136,8 @@ bool GivenTopology(vtkPolyData* surface, dsurf::TriangleMesh& given)
   merged->Update();
   std::string error;
   return fuzzvtk::ToMesh(merged->GetOutput(), given) && !given.Triangles.empty() &&
-    given.BuildTopology(&error) && fuzzcheck::AllFinite(given) && given.CountNonManifoldVertices() == 0;
+    given.BuildTopology(&error) && fuzzcheck::AllFinite(given) &&
+    given.CountNonManifoldVertices() == 0;
 }
 
 void Configure(vtkDeformableSurfaceFilter* filter, FuzzedDataProvider& in)
@@ -184,7 +191,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   const std::string problem = fuzzcheck::SurfaceProblem(result, closed);
   FUZZ_CHECK(problem.empty(), "a finite, oriented 2-manifold: " + problem);
   FUZZ_CHECK(result.EulerCharacteristic() == fuzzcheck::SurfaceEuler(given),
-    "the Euler characteristic of the given surface: " + std::to_string(result.EulerCharacteristic()) +
+    "the Euler characteristic of the given surface: " +
+      std::to_string(result.EulerCharacteristic()) +
       " != " + std::to_string(fuzzcheck::SurfaceEuler(given)));
   return 0;
 }

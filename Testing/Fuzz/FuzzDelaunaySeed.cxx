@@ -6,8 +6,9 @@
 // TargetEdgeLength (bounded so the subdivision stays small) and the intensity rule on a tiny
 // image. The class's promises (its header comment): no crash; either an empty surface with an
 // error or a warning, or a closed, 2-manifold, consistently and outward-oriented (a positive
-// enclosed volume) triangle surface with finite points and a SeedPointId per point indexing the input (or -1); the
-// tetrahedra output carries TetraId and Removed per cell; the input is unchanged.
+// enclosed volume) triangle surface with finite points and a SeedPointId per point indexing the
+// input (or -1); the tetrahedra output carries TetraId and Removed per cell; the input is
+// unchanged.
 #include "FuzzVTK.h"
 #include "vtkDelaunaySeedSurface.h"
 
@@ -28,7 +29,8 @@ constexpr int Cells = 4;     // lattice cells per axis: points in [0, 8]^3
 /// A 5^3 image over the lattice, bright in its middle (for the intensity rule).
 vtkImageData* TinyImage()
 {
-  static vtkImageData* image = [] {
+  static vtkImageData* image = []
+  {
     auto* im = vtkImageData::New();
     im->SetDimensions(5, 5, 5);
     im->SetSpacing(Step, Step, Step);
@@ -38,7 +40,8 @@ vtkImageData* TinyImage()
     for (int i = 0; i < 125; ++i)
     {
       const int x = i % 5, y = (i / 5) % 5, z = i / 25;
-      values->SetValue(i, static_cast<float>(12 - (x - 2) * (x - 2) - (y - 2) * (y - 2) - (z - 2) * (z - 2)));
+      values->SetValue(
+        i, static_cast<float>(12 - (x - 2) * (x - 2) - (y - 2) * (y - 2) - (z - 2) * (z - 2)));
     }
     im->GetPointData()->SetScalars(values);
     return im;
@@ -60,7 +63,8 @@ void Configure(vtkDelaunaySeedSurface* seed, FuzzedDataProvider& in)
   static const double radii[] = { 5, 0.5, 1e-3 };
   seed->SetSeedRadius(radii[in.ConsumeIntegralInRange(0, 2)]);
   // At least an eighth of the lattice's extent: a few subdivisions at most.
-  seed->SetTargetEdgeLength(in.ConsumeBool() ? 0.0 : Step * Cells * (0.125 + in.ConsumeProbability<double>()));
+  seed->SetTargetEdgeLength(
+    in.ConsumeBool() ? 0.0 : Step * Cells * (0.125 + in.ConsumeProbability<double>()));
   if (in.ConsumeBool())
   {
     seed->SetUseIntensityRange(true);
@@ -84,7 +88,8 @@ void CheckSurface(vtkDelaunaySeedSurface* seed, vtkIdType nInput)
   FUZZ_CHECK(mesh.SignedVolume() > 0, "oriented outward: the surface encloses a positive volume");
 
   vtkDataArray* ids = out->GetPointData()->GetArray("SeedPointId");
-  FUZZ_CHECK(ids && ids->GetNumberOfTuples() == out->GetNumberOfPoints(), "a SeedPointId per point");
+  FUZZ_CHECK(
+    ids && ids->GetNumberOfTuples() == out->GetNumberOfPoints(), "a SeedPointId per point");
   for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i)
   {
     const double id = ids->GetTuple1(i);
@@ -134,7 +139,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   FUZZ_CHECK(fuzzvtk::Fingerprint(cloud) == before, "the input points are unchanged");
   if (seed->GetOutput()->GetNumberOfCells() == 0)
   {
-    FUZZ_CHECK(messages->Errors + messages->Warnings > 0, "an empty surface comes with an error or a warning");
+    FUZZ_CHECK(messages->Errors + messages->Warnings > 0,
+      "an empty surface comes with an error or a warning");
   }
   else
   {
@@ -145,7 +151,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   for (const char* name : { "TetraId", "Removed" })
   {
     vtkDataArray* a = tets->GetCellData()->GetArray(name);
-    FUZZ_CHECK(nTets == 0 || (a && a->GetNumberOfTuples() == nTets), std::string("one ") + name + " per tetrahedron");
+    FUZZ_CHECK(nTets == 0 || (a && a->GetNumberOfTuples() == nTets),
+      std::string("one ") + name + " per tetrahedron");
   }
   return 0;
 }

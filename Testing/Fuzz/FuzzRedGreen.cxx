@@ -39,7 +39,8 @@ TriangleMesh Torus(int n, int m)
     for (int i = 0; i < n; ++i)
     {
       const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-      t.Points.push_back({ (2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v) });
+      t.Points.push_back(
+        { (2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v) });
     }
   }
   auto id = [n, m](int i, int j) { return (j % m) * n + (i % n); };
@@ -156,7 +157,8 @@ void Jitter(std::vector<Vec3>& points, FuzzedDataProvider& in, double amount)
 void CheckLabels(const dsurf::RedGreenRefiner& rg, const TriangleMesh& m)
 {
   std::vector<unsigned char> expect(m.Points.size(), dsurf::LabelN);
-  auto raise = [&expect](int v, unsigned char label) {
+  auto raise = [&expect](int v, unsigned char label)
+  {
     static const int rank[4] = { 0, 2, 3, 1 }; // N, C, M, D
     if (rank[label] > rank[expect[v]])
     {
@@ -218,7 +220,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     {
       mark = in.ConsumeProbability<double>() < density ? 1 : 0;
     }
-    const auto mode = in.ConsumeBool() ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
+    const auto mode =
+      in.ConsumeBool() ? dsurf::Prolongation::Butterfly : dsurf::Prolongation::Linear;
     const std::vector<Vec3> before = mesh.Points;
     const dsurf::RefinementCounts counts = rg.Refine(mesh, marks, mode);
     FUZZ_CHECK(counts.Ok, "the step succeeds: " + counts.Error);

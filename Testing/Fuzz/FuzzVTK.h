@@ -11,8 +11,8 @@
 #include "vtkDataArray.h"
 #include "vtkIdList.h"
 #include "vtkObject.h"
-#include "vtkPoints.h"
 #include "vtkPointSet.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 
 #include <fuzzer/FuzzedDataProvider.h>
@@ -39,7 +39,8 @@ public:
 inline std::vector<unsigned char> Fingerprint(vtkPolyData* pd)
 {
   std::vector<unsigned char> bytes;
-  auto add = [&bytes](const void* p, size_t n) {
+  auto add = [&bytes](const void* p, size_t n)
+  {
     const auto* c = static_cast<const unsigned char*>(p);
     bytes.insert(bytes.end(), c, c + n);
   };
@@ -72,12 +73,14 @@ inline void PrintPoints(const char* what, vtkPointSet* data)
   {
     return;
   }
-  std::fprintf(stderr, "%s: %lld points\n", what, static_cast<long long>(data->GetNumberOfPoints()));
+  std::fprintf(
+    stderr, "%s: %lld points\n", what, static_cast<long long>(data->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
   {
     double x[3];
     data->GetPoint(i, x);
-    std::fprintf(stderr, "  %lld: %.17g %.17g %.17g\n", static_cast<long long>(i), x[0], x[1], x[2]);
+    std::fprintf(
+      stderr, "  %lld: %.17g %.17g %.17g\n", static_cast<long long>(i), x[0], x[1], x[2]);
   }
 }
 
