@@ -285,12 +285,18 @@ bool CoarsenMesh(const dsurf::TriangleMesh& fine, double edge, dsurf::TriangleMe
   SetGeometry(fine, poly);
   double bounds[6];
   poly->GetBounds(bounds);
+  // The clustering keeps a dense grid (~90 bytes a cell): at most MaxClusterDivisions cells
+  // along the longest side (~190 MB), with edges longer than sigma_0 where that is finer.
+  constexpr double MaxClusterDivisions = 128.0;
+  const double longest =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double step = std::max(edge, (longest + edge) / MaxClusterDivisions);
   vtkNew<vtkQuadricClustering> cluster;
   cluster->SetInputData(poly);
   cluster->AutoAdjustNumberOfDivisionsOff();
   cluster->SetDivisionOrigin(
-    bounds[0] - 0.5 * edge, bounds[2] - 0.5 * edge, bounds[4] - 0.5 * edge);
-  cluster->SetDivisionSpacing(edge, edge, edge);
+    bounds[0] - 0.5 * step, bounds[2] - 0.5 * step, bounds[4] - 0.5 * step);
+  cluster->SetDivisionSpacing(step, step, step);
   cluster->Update();
   std::string error;
   return BuildMesh(cluster->GetOutput(), coarse, error);
@@ -873,7 +879,8 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
   this->Report(solver);
   FillOutput(mesh, solver, output);
-  AddFieldData(solver, mesh, this->RegionWeight > 0, warm, output->GetFieldData());
+  const double* used = solver.GetIntensityRange();
+  AddFieldData(solver, mesh, used[0] < used[1], warm, output->GetFieldData());
   // Warm start and time steps: only complete, serial results (an aborted run's steps would be
   // served as the solve's; a distributed run gathers a new surface every time).
   this->KeepResult(image, surface, key, !distributed && !solver.GetAborted(), output, table);

@@ -34,15 +34,18 @@
  *
  * Beyond the paper, for real scans (an object among neighbours, a seed near it): the first
  * sigma follows the start (Sigma), a region force pushes the surface through the object's
- * intensity range (RegionWeight, IntensityRange), and folds left by the forces are smoothed
- * open (dsUntangle.h).
+ * intensity range (RegionWeight, IntensityRange), folds left by the forces are smoothed
+ * open (dsUntangle.h), and a start of more than 100 000 triangles much finer than the first
+ * sigma begins on a coarse copy (vertex clustering, kept only when the topology is unchanged;
+ * a warning says so).
  *
- * Output 0: the surface (triangles, input orientation kept; point order of the merged
- * input) with point arrays Normals, Displacement (|c| of the last sweep), ExternalForce (|F|,
- * region force included), ErrorIndicator (|internal part of c| of the last sweep),
- * RefinementLevel, VertexLabel and field data Sweeps, Levels, InitialSubdivisions,
- * FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found with a
- * bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
+ * Output 0: the surface (triangles; the input's orientation, except that inward-facing closed
+ * pieces are turned outward when the region force is on; the merged input's points in their
+ * order, refined, unless the start was coarsened) with point arrays Normals, Displacement (|c| of
+ * the last sweep), ExternalForce (|F|, region force included), ErrorIndicator (|internal part of c|
+ * of the last sweep), RefinementLevel, VertexLabel and field data Sweeps, Levels,
+ * InitialSubdivisions, FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found
+ * with a bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
  * level), WarmStart and, with the region force, IntensityRange (the range it used).
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).

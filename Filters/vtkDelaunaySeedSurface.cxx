@@ -660,7 +660,7 @@ int vtkDelaunaySeedSurface::RequestData(
   }
   if (inputId.empty())
   {
-    vtkErrorMacro("No point with finite, in-range coordinates: nothing to seed from.");
+    vtkErrorMacro("No point with finite coordinates (within 1e100): nothing to seed from.");
     return 1;
   }
   const std::vector<vtkIdType> distinct = FirstDistinctPoints(finite, this->Tolerance, 4);

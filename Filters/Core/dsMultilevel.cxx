@@ -277,7 +277,9 @@ bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::st
   // A start far finer than sigma_0 (a million-triangle iso-surface) moves by a fraction of its
   // tiny edges per sweep: level 0 alone took the 2000-sweep cap (docs/METHOD.md §9.5). The
   // hierarchy starts coarse instead, and refines again where the image has detail.
-  if (!this->Coarsen || mesh.NumberOfTriangles() <= CoarsenAboveTriangles ||
+  // MaxLevels 0 asks for one level on the given mesh: nothing would refine a copy back.
+  if (!this->Coarsen || this->Parameters.MaxLevels < 1 ||
+    mesh.NumberOfTriangles() <= CoarsenAboveTriangles ||
     !(mesh.MeanEdgeLength() < 0.5 * state.Sigma))
   {
     return true;
@@ -567,7 +569,10 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
       P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * state.Voxel)) : sigma;
     if (!refined && !(nextSigma < sigma))
     {
-      this->SmoothFolds(mesh, this->Levels.back()); // this level's surface is delivered
+      if (!(rec.MeanEdgeLength <= rec.Sigma)) // else EndSweeps has smoothed it
+      {
+        this->SmoothFolds(mesh, this->Levels.back()); // this level's surface is delivered
+      }
       break;
     }
     state.Sigma = nextSigma;

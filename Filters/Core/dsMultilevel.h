@@ -29,7 +29,9 @@
 //
 // Beyond the paper (docs/METHOD.md §9): sigma_0 can follow the start (dsInitialSigma.h); a
 // region force (dsRegion.h), RegionWeight * h * min(1, sigma_l / sigma_0) * speed * normal,
-// joins the edge force; after each level's sweeps, folds are smoothed open (dsUntangle.h).
+// joins the edge force; folds are smoothed open on the delivered surface and after levels
+// whose mesh resolves their sigma (dsUntangle.h); a start far finer than sigma_0 begins on a
+// coarse copy (CoarsenStart).
 #ifndef dsMultilevel_h
 #define dsMultilevel_h
 
@@ -73,7 +75,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
   /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. Its range is
   /// IntensityRange when IntensityRange[0] < IntensityRange[1], else estimated from the image
-  /// inside the start surface (EstimateIntensityRange).
+  /// inside and just outside the start surface (EstimateIntensityRange); without a given range
+  /// it is off for a start spanning the image or an open one.
   double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
@@ -233,7 +236,8 @@ private:
   /// and check the invariants.
   bool RefineLevel(
     TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error);
-  /// A start of more than CoarsenAboveTriangles triangles whose mean edge is below sigma_0 / 2
+  /// With MaxLevels >= 1, a start of more than CoarsenAboveTriangles triangles whose mean edge
+  /// is below sigma_0 / 2
   /// is replaced by the Coarsen callback's copy with edges of about sigma_0, when that copy
   /// keeps the start's topology (closed or not, Euler characteristic, orientation).
   bool CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error);
@@ -247,7 +251,8 @@ private:
   /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
   /// convergence test, the records, progress and abort, MaxSweeps. True = stop the run.
   bool SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter);
-  /// The region force's range (given or estimated); false = no region force (a warning says why).
+  /// The region force's range (given or estimated); false = no region force (a warning says
+  /// why, except for a start spanning the image or an open start without a given range).
   bool RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh);
 };
 } // namespace dsurf

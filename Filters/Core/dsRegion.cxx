@@ -9,6 +9,13 @@ namespace dsurf
 {
 namespace
 {
+/// x clamped to [-1, n] in double, then cast: the callers clamp to 0..n-1 as before, without a
+/// cast of a double beyond int (undefined) for a start far outside the image.
+int ClampedIndex(double x, int n)
+{
+  return static_cast<int>(std::min(static_cast<double>(n), std::max(-1.0, x)));
+}
+
 /// Value at fraction q in [0, 1] of `v` (reorders v).
 double Quantile(std::vector<float>& v, double q)
 {
@@ -35,10 +42,11 @@ std::vector<float> ValuesInside(
   for (const auto& t : mesh.Triangles)
   {
     const Vec3 &a = ijk[t[0]], &b = ijk[t[1]], &c = ijk[t[2]];
-    const int j0 = std::max(0, static_cast<int>(std::ceil(std::min({ a[1], b[1], c[1] }))));
-    const int j1 = std::min(ny - 1, static_cast<int>(std::floor(std::max({ a[1], b[1], c[1] }))));
-    const int k0 = std::max(0, static_cast<int>(std::ceil(std::min({ a[2], b[2], c[2] }))));
-    const int k1 = std::min(nz - 1, static_cast<int>(std::floor(std::max({ a[2], b[2], c[2] }))));
+    // Clamped in double before the cast: a start far outside the image has indices beyond int.
+    const int j0 = std::max(0, ClampedIndex(std::ceil(std::min({ a[1], b[1], c[1] })), ny));
+    const int j1 = std::min(ny - 1, ClampedIndex(std::floor(std::max({ a[1], b[1], c[1] })), ny));
+    const int k0 = std::max(0, ClampedIndex(std::ceil(std::min({ a[2], b[2], c[2] })), nz));
+    const int k1 = std::min(nz - 1, ClampedIndex(std::floor(std::max({ a[2], b[2], c[2] })), nz));
     // Barycentric coordinates of (y, z) in the triangle's projection onto the y-z plane.
     const double det = (b[1] - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (b[2] - a[2]);
     if (det == 0.0)
@@ -72,8 +80,8 @@ std::vector<float> ValuesInside(
       std::sort(xs.begin(), xs.end());
       for (std::size_t p = 0; p + 1 < xs.size(); p += 2)
       {
-        const int i0 = std::max(0, static_cast<int>(std::ceil(xs[p])));
-        const int i1 = std::min(nx - 1, static_cast<int>(std::floor(xs[p + 1])));
+        const int i0 = std::max(0, ClampedIndex(std::ceil(xs[p]), nx));
+        const int i1 = std::min(nx - 1, ClampedIndex(std::floor(xs[p + 1]), nx));
         const float* row = scalars + (static_cast<std::size_t>(k) * ny + j) * nx;
         values.insert(values.end(), row + std::max(i0, 0), row + std::max(i0, i1 + 1));
       }
@@ -114,7 +122,7 @@ std::vector<float> ValuesOutside(
     }
     const Vec3 n = (outwardSign / area2) * cross;
     // m x m barycentric grid points per triangle, m ~ edge length / voxel (capped).
-    const int m = std::max(1, std::min(16, static_cast<int>(std::sqrt(area2) / voxel)));
+    const int m = static_cast<int>(std::max(1.0, std::min(16.0, std::sqrt(area2) / voxel)));
     for (int i = 0; i < m; ++i)
     {
       for (int j = 0; i + j < m; ++j)

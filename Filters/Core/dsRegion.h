@@ -40,7 +40,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
   long long Samples = 0;         ///< voxels inside the surface (or vertices, see below)
   long long OutsideSamples = 0;  ///< samples in the shell just outside it
   double Median = 0, Spread = 0; ///< of the inside
-  double Separation = 0;         ///< total variation between the inside and outside histograms
+  double Separation = 0;         ///< |inside - outside| share of the upper Otsu class
   double ObjectMedian = 0, BackgroundMedian = 0;
   bool FromVertices = false;
   bool Contrast = false; ///< the outside differs: one end of the range is the midpoint
