@@ -2,6 +2,7 @@
 // plane stays planar under every rule, the boundary 4-point rule, Zorin's extraordinary
 // weights, the fallback next to green triangles, and better start values than the
 // midpoint on a sphere.
+#include "DSSurfaceInvariants.h"
 #include "DSTestHelpers.h"
 #include "dsButterfly.h"
 #include "dsRedGreen.h"
@@ -250,6 +251,9 @@ int TestButterfly(int, char*[])
         const int before = m.NumberOfPoints();
         std::vector<char> all(m.NumberOfTriangles(), 1);
         rg.Refine(m, all, mode == 0 ? Prolongation::Butterfly : Prolongation::Linear);
+        dstest::CheckSurfaceInvariants(Icosahedron(), m,
+          std::string(mode == 0 ? "butterfly" : "linear") + " sphere, step " +
+            std::to_string(level + 1));
         for (int v = before; v < m.NumberOfPoints(); ++v)
         {
           const double d = Norm(m.Points[v]) - 1.0;

@@ -4,15 +4,20 @@
 //    20: one warning that names the coarsening, the surface on the ball (mean |d| <= 0.1
 //    voxel), closed, genus 0, far fewer vertices than the start (the hierarchy refines where
 //    the ball is), every invariant of DSSurfaceInvariants.h;
-// 2. a thin torus (tube radius 1 voxel, 150 k triangles) whose coarse copy would lose the tube:
+// 2. the same start solved again with AbortExecute set when the progress reaches 10 %: the
+//    abort is answered within a sweep batch (no progress event after it but the last), with
+//    fewer sweeps than the whole solve and a closed surface;
+// 3. a thin torus (tube radius 1 voxel, 150 k triangles) whose coarse copy would lose the tube:
 //    the copy is refused (a warning saying the start is solved as given) and the start's genus
 //    is kept. MaxSweeps bounds the run; only the decision is checked.
 // The time it saves is measured by BenchHugeStart, not here.
 #include "DSSurfaceInvariants.h"
 #include "SoftBallImage.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDeformableSurfaceFilter.h"
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkParametricFunctionSource.h"
 #include "vtkParametricTorus.h"
@@ -41,7 +46,7 @@ struct Messages : public vtkCommand
 const int N = 64;
 const double C = 31.5, R = 20.0;
 
-void CoarsenedSphere(vtkImageData* image)
+int CoarsenedSphere(vtkImageData* image)
 {
   vtkNew<vtkSphereSource> start;
   start->SetCenter(C, C, C);
@@ -77,6 +82,7 @@ void CoarsenedSphere(vtkImageData* image)
   DS_CHECK(facts.Euler == 2, "closed, genus 0");
   DS_CHECK_LE(mean, 0.1, "mean |distance| to the ball (voxels)");
   DS_CHECK_LE(out->GetNumberOfPoints(), 40000, "far fewer vertices than the start's 62 252");
+  return static_cast<int>(out->GetFieldData()->GetArray("Sweeps")->GetTuple1(0));
 }
 
 void ThinTorusKept(vtkImageData* image)
@@ -116,11 +122,66 @@ void ThinTorusKept(vtkImageData* image)
 }
 }
 
+/// Progress moves during a solve from a huge start and Abort stops it within a sweep or two,
+/// with a valid surface (ParaView's progress bar and its Abort button).
+struct AbortLog
+{
+  int Events = 0, AfterAbort = 0;
+  bool Aborted = false;
+  vtkAlgorithm* Algorithm = nullptr;
+};
+
+void OnProgress(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  auto* log = static_cast<AbortLog*>(clientData);
+  const double p = *static_cast<double*>(callData);
+  ++log->Events;
+  log->AfterAbort += log->Aborted && p < 1.0 ? 1 : 0;
+  if (!log->Aborted && p >= 0.1)
+  {
+    log->Aborted = true;
+    log->Algorithm->SetAbortExecute(1);
+  }
+}
+
+void AbortedSphere(vtkImageData* image, int fullSweeps)
+{
+  vtkNew<vtkSphereSource> start;
+  start->SetCenter(C, C, C);
+  start->SetRadius(R + 3.0);
+  start->SetThetaResolution(250);
+  start->SetPhiResolution(250);
+  vtkNew<vtkDeformableSurfaceFilter> filter;
+  filter->SetInputData(0, image);
+  filter->SetInitialSurfaceConnection(start->GetOutputPort());
+  filter->SetMaxLevels(10);
+  AbortLog log;
+  log.Algorithm = filter;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetCallback(OnProgress);
+  cb->SetClientData(&log);
+  filter->AddObserver(vtkCommand::ProgressEvent, cb);
+  const auto facts = dstest::UpdateAndCheckSurface(filter, "aborted huge start");
+  std::cout << "aborted at 10 %: " << log.Events << " progress events, " << log.AfterAbort
+            << " after the abort, " << filter->GetOutput()->GetNumberOfPoints() << " vertices"
+            << std::endl;
+  const int sweeps =
+    static_cast<int>(filter->GetOutput()->GetFieldData()->GetArray("Sweeps")->GetTuple1(0));
+  std::cout << "  " << sweeps << " sweeps (the whole solve: " << fullSweeps << ")" << std::endl;
+  DS_CHECK(log.Aborted, "the progress reached 10 %");
+  DS_CHECK(sweeps < fullSweeps, "aborted: fewer sweeps than the whole solve");
+  DS_CHECK_GE(
+    log.Events - log.AfterAbort, 4, "progress events up to the abort (the start read, levels)");
+  DS_CHECK_LE(log.AfterAbort, 2, "progress events after the abort (a sweep batch at most)");
+  DS_CHECK(facts.Euler == 2, "aborted: a closed genus-0 surface");
+}
+
 int TestHugeStart(int, char*[])
 {
   auto image = dstest::SoftBallImage(N, C, R);
-  CoarsenedSphere(image);
+  const int fullSweeps = CoarsenedSphere(image);
   ThinTorusKept(image);
+  AbortedSphere(image, fullSweeps);
   return dstest::Result("TestHugeStart");
 }
 

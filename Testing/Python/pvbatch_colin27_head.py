@@ -15,7 +15,9 @@ import sys
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "Examples"))
+sys.path.insert(0, here)
 import demo  # noqa: E402
+import ds_invariants  # noqa: E402
 
 demo.load_plugin(os.environ.get("DS_PLUGIN"))
 failures = []
@@ -33,6 +35,9 @@ for start in ("picks", "click"):
         result = demo.segment_head("colin27", start)
     except RuntimeError as error:
         raise SystemExit("FAIL: %s (the test setup installs mricron-data)" % error)
+    # The shared invariants (finite, closed 2-manifold oriented like the seed, its Euler
+    # characteristic, SelfIntersections 0) on the surface against its seed.
+    ds_invariants.check_surface(result["seed_polydata"], result["polydata"], start)
     m = demo.measure_head(result, iso=False)
     runs.append((start, m))
     volume_error = m["surface_volume"] / m["mask_volume"] - 1.0

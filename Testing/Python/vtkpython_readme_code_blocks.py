@@ -20,6 +20,9 @@ assert blocks, "no python blocks in the README"
 
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader  # noqa: E402
 
+sys.path.insert(0, here)
+import ds_invariants  # noqa: E402
+
 failures = []
 for i, code in enumerate(blocks):
     scratch = tempfile.mkdtemp(prefix="readme_block_")
@@ -37,6 +40,9 @@ for i, code in enumerate(blocks):
         reader.SetFileName(output)
         reader.Update()
         points = reader.GetOutput().GetNumberOfPoints()
+        # The README's jobs start from a closed box or seed: one closed genus-0 2-manifold.
+        label = "README block %d: brain.vtp" % i
+        ds_invariants.check_closed_manifold(ds_invariants.surface_facts(reader.GetOutput()), label, euler=2)
     print("block %d (%s): exit %d, brain.vtp with %d points" % (i, "pvpython" if pv else "python3",
                                                                 run.returncode, points))
     if run.returncode != 0 or " ERR| " in run.stderr or points <= 0:
