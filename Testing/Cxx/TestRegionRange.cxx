@@ -114,6 +114,32 @@ int TestRegionRange(int, char*[])
     }
   }
 
+  // A two-tone object (80 and 110, as grey and white matter) with a brighter neighbour (140,
+  // as fat) just outside the box: level + 3 s would reach past 140 (s ~ 22); the object's
+  // 99.5 % quantile caps the range at its own brightest values.
+  {
+    std::vector<float> mixed(static_cast<size_t>(n) * n * n, 0.f);
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+          float v = 0.f;
+          if (i >= 10 && i <= 26 && j >= 10 && j <= 26 && k >= 10 && k <= 26)
+            v = i < 18 ? 80.f : 110.f;
+          if (i >= 29)
+            v = 140.f;
+          mixed[(static_cast<size_t>(k) * n + j) * n + i] = v;
+        }
+    RangeEstimate mx;
+    DS_CHECK(EstimateIntensityRange(mixed.data(), g, box, 1.0, mx, &error), error);
+    std::cout << "two-tone object beside a brighter slab: range [" << mx.Range[0] << ", "
+              << mx.Range[1] << "]" << std::endl;
+    DS_CHECK(mx.Contrast, "two-tone object: object against background");
+    DS_CHECK(
+      mx.Range[0] < 80.0 && mx.Range[1] >= 110.0, "two-tone object: both tones in the range");
+    DS_CHECK(mx.Range[1] < 125.0, "two-tone object: the range stops below the brighter neighbour");
+  }
+
   // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
   DS_CHECK(RegionSpeed(75, 50, 150) == 1.0 && RegionSpeed(0, 50, 150) == -1.0 &&
       RegionSpeed(50, 50, 150) == 0.0,
