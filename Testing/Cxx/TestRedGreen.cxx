@@ -2,6 +2,7 @@
 // marked green, uniform refinement, random adaptive marks over several levels on closed
 // and open meshes, a point-focused cascade; after every step the topology invariants,
 // zero T-vertices and the label rules are checked independently of the refiner's code.
+#include "DSSurfaceInvariants.h"
 #include "DSTestHelpers.h"
 #include "dsRedGreen.h"
 
@@ -74,6 +75,9 @@ void CheckStep(const RedGreenRefiner& rg, const TriangleMesh& m, const Refinemen
   DS_CHECK(c.Ok, what + ": " + c.Error);
   std::string msg;
   DS_CHECK(CheckTopologyInvariants(m, euler, closed, &msg), what + ": " + msg);
+  // The shared surface checks (finite, 2-manifold, every point used, no self-intersection);
+  // the Euler characteristic and closedness against the start's are the line above's.
+  dstest::CheckSurfaceInvariants(m, m, what);
   DS_CHECK(rg.CountTVertices(m) == 0, what + ": no T-vertex");
   DS_CHECK(m.Labels.size() == m.Points.size() && m.Levels.size() == m.Points.size(),
     what + ": per-point arrays");
