@@ -209,9 +209,12 @@ void TorusClosePicksCase()
       {
         const double v = 2.0 * vtkMath::Pi() * (k + 0.5 * (side > 0)) / 8, rr = r + 3.0;
         const double rho = R + rr * std::cos(v);
-        picks->InsertNextPoint(centre[0] + side * rho * std::cos(u) + Jitter(state),
-          centre[1] + side * rho * std::sin(u) + Jitter(state),
-          centre[2] + rr * std::sin(v) + Jitter(state));
+        // Drawn in sequence (z, y, x: the order gcc evaluated the arguments in, so the picks
+        // stay the same): the order of a call's arguments is unspecified, and clang took the
+        // other one, giving other picks.
+        const double jz = Jitter(state), jy = Jitter(state), jx = Jitter(state);
+        picks->InsertNextPoint(centre[0] + side * rho * std::cos(u) + jx,
+          centre[1] + side * rho * std::sin(u) + jy, centre[2] + rr * std::sin(v) + jz);
       }
     }
   }

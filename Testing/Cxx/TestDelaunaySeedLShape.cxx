@@ -48,8 +48,11 @@ int main(int argc, char* argv[])
         const bool onBoundary = InClosedL(x, y) && (k == 0 || k == nz || !InOpenL(x, y));
         if (onBoundary)
         {
-          points->InsertNextPoint(x + 0.3 * spacing * Jitter(state),
-            y + 0.3 * spacing * Jitter(state), z + 0.3 * spacing * Jitter(state));
+          // In sequence (z, y, x, gcc's order of the arguments before): a call's argument
+          // order is unspecified, and clang's differs.
+          const double jz = Jitter(state), jy = Jitter(state), jx = Jitter(state);
+          points->InsertNextPoint(
+            x + 0.3 * spacing * jx, y + 0.3 * spacing * jy, z + 0.3 * spacing * jz);
         }
       }
   vtkNew<vtkPolyData> cloud;
