@@ -10,7 +10,7 @@ packages=(
   # ASan/UBSan runtimes)
   clang libclang-rt-14-dev
   # ParaView 5.11 with its bundled VTK 9.2 (do NOT add libvtk9-dev/python3-vtk9: they remove python3-paraview)
-  paraview-dev python3-paraview libopenmpi-dev
+  paraview paraview-dev python3-paraview libopenmpi-dev
   # XML_DOCUMENTATION ON (the GUI help pages)
   qttools5-dev qtxmlpatterns5-dev-tools libqt5svg5-dev
   # third-party headers/config that ParaView's bundled VTK asks find_package() for
