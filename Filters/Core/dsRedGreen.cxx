@@ -13,6 +13,25 @@ struct BaseTriangle
   bool Alive = true;
   int OldGreen = -1; ///< index of the green pair this base triangle merges, -1 otherwise
 };
+
+/// Whether some triangle shares all three of its edges with one other triangle (topology built).
+bool HasDoubledTriangle(const TriangleMesh& mesh)
+{
+  for (int t = 0; t < mesh.NumberOfTriangles(); ++t)
+  {
+    int other[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto& pair = mesh.EdgeTriangles[mesh.TriangleEdges[t][k]];
+      other[k] = pair[0] == t ? pair[1] : pair[0];
+    }
+    if (other[0] >= 0 && other[0] == other[1] && other[1] == other[2])
+    {
+      return true;
+    }
+  }
+  return false;
+}
 } // namespace
 
 bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
@@ -32,6 +51,17 @@ bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
     if (error)
     {
       *error = "the mesh has non-manifold (pinched) vertices";
+    }
+    this->ExpectedPoints = this->ExpectedTriangles = -1;
+    return false;
+  }
+  if (HasDoubledTriangle(mesh))
+  {
+    // Two triangles on the same three vertices (a closed two-triangle "pillow" is a valid
+    // 2-manifold) share their midpoints: their 1 -> 4 splits give four triangles on one edge.
+    if (error)
+    {
+      *error = "two triangles use the same three vertices (the surface folds flat onto itself)";
     }
     this->ExpectedPoints = this->ExpectedTriangles = -1;
     return false;

@@ -316,6 +316,18 @@ int TestRedGreen(int, char*[])
 
   // --- Bad input.
   {
+    // Two triangles on the same three vertices (a closed 2-manifold "pillow", found by the
+    // fuzzer): their 1 -> 4 splits would share midpoints and four triangles one edge, so the
+    // refiner refuses the mesh up front, with a message.
+    TriangleMesh pillow;
+    pillow.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } };
+    pillow.Triangles = { { 0, 1, 2 }, { 2, 1, 0 } };
+    RedGreenRefiner rg;
+    std::string why;
+    DS_CHECK(!rg.Initialize(pillow, &why), "a two-triangle pillow is refused");
+    DS_CHECK(why.find("same three vertices") != std::string::npos, "the pillow's message: " + why);
+  }
+  {
     TriangleMesh m = Octahedron();
     RedGreenRefiner rg;
     std::vector<char> marks(8, 1);
