@@ -12,9 +12,8 @@
 #
 # Usage: scripts/fuzz.sh [target ...]   (default: RedGreen DelaunaySeed DeformableSurfaceInput)
 # FUZZ_SECONDS (default 25) is the time per target; FUZZ_SEED (default 1) fixes libFuzzer's
-# random seed, so a run explores the same inputs each time (a slower machine only a prefix of
-# them) and CI fails only on a change of the code, not on a lucky draw; FUZZ_SEED=0 takes a
-# random seed for exploring locally. BUILD_ASAN_DIR as for scripts/sanitize.sh.
+# random seed (runs still differ somewhat: its schedule depends on timing, so a finding can
+# show in one run and not the next); FUZZ_SEED=0 takes a random seed for exploring locally. BUILD_ASAN_DIR as for scripts/sanitize.sh.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_ASAN_DIR:-$root/build-asan}"
