@@ -1,5 +1,7 @@
 #include "dsVTKImage.h"
 
+#include "dsMemory.h"
+
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
@@ -76,8 +78,8 @@ vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, st
   return nullptr;
 }
 
-bool GetImageVolume(
-  vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error)
+bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, double workBytesPerVoxel,
+  ImageVolume& volume, std::string& error)
 {
   if (!image || image->GetNumberOfPoints() <= 0)
   {
@@ -121,9 +123,19 @@ bool GetImageVolume(
   std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9,
     g.Direction);
 
+  vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars);
+  const double voxels = static_cast<double>(image->GetNumberOfPoints());
+  error = MemoryShortfall(voxels * (workBytesPerVoxel + (asFloat ? 0.0 : sizeof(float))),
+    "This image of " + std::to_string(g.Dimensions[0]) + "x" + std::to_string(g.Dimensions[1]) +
+      "x" + std::to_string(g.Dimensions[2]) + " voxels");
+  if (!error.empty())
+  {
+    return false;
+  }
+
   volume.Array = scalars;
   volume.Storage.clear();
-  if (vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars))
+  if (asFloat)
   {
     volume.Values = asFloat->GetPointer(0);
   }

@@ -36,10 +36,12 @@ vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, st
 /// Check that `image` is a 3-D image (>= 2 voxels per axis) and `scalars` one of its
 /// one-component point arrays (ChooseImageScalars when `scalars` is nullptr); fill the geometry
 /// (index 0 = the first voxel of the extent; spacing, origin and direction honoured) and the values
-/// (float input is used in place, any other type converted). Returns false with a user-facing
+/// (float input is used in place, any other type converted). workBytesPerVoxel: what the
+/// caller will allocate per voxel beyond the image; with the float copy it must fit in the
+/// memory available, checked before anything is allocated. Returns false with a user-facing
 /// message.
-bool GetImageVolume(
-  vtkImageData* image, vtkDataArray* scalars, ImageVolume& volume, std::string& error);
+bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, double workBytesPerVoxel,
+  ImageVolume& volume, std::string& error);
 
 /// The name of the first of the filter's (name, value) parameters that is not finite, or
 /// empty. vtkSetClampMacro lets NaN through (every comparison with it is false), and a NaN

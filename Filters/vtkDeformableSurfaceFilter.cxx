@@ -692,7 +692,7 @@ bool vtkDeformableSurfaceFilter::ReadImage(
   vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
 {
   std::string error;
-  if (!dsurf::GetImageVolume(image, array, volume, error))
+  if (!dsurf::GetImageVolume(image, array, dsurf::ForceFieldBytesPerVoxel, volume, error))
   {
     vtkErrorMacro(<< error << ".");
     return false;

@@ -71,7 +71,8 @@ int vtkImageScaleSpaceGradient::RequestData(
   output->Initialize();
   dsurf::ImageVolume volume;
   std::string error;
-  if (!dsurf::GetImageVolume(input, this->GetInputArrayToProcess(0, inputVector), volume, error))
+  if (!dsurf::GetImageVolume(input, this->GetInputArrayToProcess(0, inputVector),
+        dsurf::ForceFieldBytesPerVoxel, volume, error))
   {
     vtkErrorMacro(<< error << ".");
     return 1;

@@ -90,6 +90,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
   double SamplePotential(const double x[3]) const;
 };
 
+/// Bytes a ForceField takes per voxel (P and the three components of -grad P, as floats):
+/// what a solve, or the Scale-Space Gradient filter's output, allocates per voxel of the image.
+constexpr double ForceFieldBytesPerVoxel = 4 * sizeof(float);
+
 /// Trilinear sample of a one-value-per-voxel volume at world point x, with the same reach as
 /// ForceField::SampleForce (half a voxel past the outermost centres); 0 and *inside = false
 /// outside.
