@@ -260,6 +260,7 @@ struct MultilevelSolver::RunState
   RedGreenRefiner Refiner;
   Solver LevelSolver;
   ForceField Field;
+  VoxelBox FieldBox; ///< the image's voxels Field covers
   ScaleSpaceParameters FieldParameters;
   double Voxel = 0; ///< mean spacing: the finest detail the image shows
   double Sigma = 0; ///< this level's
@@ -383,12 +384,19 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
 {
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
-  // Force field at this level's sigma (rebuilt only when sigma changed).
-  if (state.Field.Empty() || std::abs(state.Field.Sigma - sigma) > 1e-12 * sigma)
+  // Force field at this level's sigma, over the whole image on the first level (a start may
+  // travel far, e.g. grown by the region force) and the surface's neighbourhood after it
+  // (dsFieldGrid.h); rebuilt when sigma changed or the surface needs more than it covers.
+  const VoxelBox box = rec.Level == 0
+    ? VoxelBox::Whole(geometry)
+    : SurfaceNeighbourhood(mesh, geometry, NeighbourhoodSigmas * sigma);
+  if (state.Field.Empty() || std::abs(state.Field.Sigma - sigma) > 1e-12 * sigma ||
+    !state.FieldBox.Contains(box))
   {
     state.FieldParameters.Sigma = sigma;
+    state.FieldBox = box;
     std::string msg;
-    if (!ComputeScaleSpaceForce(scalars, geometry, state.FieldParameters, state.Field, &msg))
+    if (!ComputeForceAtScale(scalars, geometry, box, state.FieldParameters, state.Field, &msg))
     {
       *error = "scale-space force: " + msg;
       return false;

@@ -3,8 +3,10 @@
 //
 // Per level l = 0, 1, ...:
 //   1. external force field at sigma_l (scale space of the volume, potential normalised
-//      to [0, 1]); F = ForceWeight * h_l * sigma_l * (-grad P) with h_l the mean edge
-//      length of the level's mesh (docs/METHOD.md §6b: force in edge lengths, scale-normalised);
+//      to [0, 1]; on a decimated grid at coarse sigma and over the surface's neighbourhood
+//      after the first level, dsFieldGrid.h); F = ForceWeight * h_l * sigma_l * (-grad P) with h_l
+//      the mean edge length of the level's mesh (docs/METHOD.md §6b: force in edge lengths,
+//      scale-normalised);
 //   2. Gauss-Seidel sweeps until the mean correction of a sweep is below
 //      ConvergenceTolerance * h_l, or MaxSweepsPerLevel sweeps;
 //   3. unless l == MaxLevels: error estimator e(v) = |internal part of the last
@@ -36,6 +38,7 @@
 #define dsMultilevel_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsFieldGrid.h"
 #include "dsInitialSigma.h"
 #include "dsRedGreen.h"
 #include "dsScaleSpace.h"

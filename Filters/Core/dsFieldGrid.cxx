@@ -1,0 +1,234 @@
+#include "dsFieldGrid.h"
+
+#include "dsThreads.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dsurf
+{
+int DecimationFactor(double sigma, const ImageGeometry& geometry)
+{
+  double samples = std::numeric_limits<double>::max();
+  for (int a = 0; a < 3; ++a)
+  {
+    samples = std::min(samples, sigma / (SamplesPerSigma * geometry.Spacing[a]));
+  }
+  int f = std::max(1, static_cast<int>(std::floor(samples)));
+  f -= 1 - f % 2; // odd: blocks centred on voxels (BlockMeans)
+  // Keep at least two coarse voxels along every axis (a 3-D image for the scale space).
+  for (int a = 0; a < 3; ++a)
+  {
+    while (f > 1 && (geometry.Dimensions[a] - 1) / f + 1 < 2)
+    {
+      f -= 2;
+    }
+  }
+  return f;
+}
+
+void BlockMeans(const float* values, const ImageGeometry& geometry, int f,
+  std::vector<float>& coarse, ImageGeometry& coarseGeometry, int numberOfThreads)
+{
+  // Blocks of f = 2h + 1 voxels centred on voxels: coarse voxel I sits on voxel
+  // first + I f, with as many voxels left over at each end of the axis (one more at the far
+  // end when their number is odd), so the coarse grid is the image's, only sparser. The
+  // blocks at the ends take in the voxels left over there.
+  const int h = f / 2;
+  const int* n = geometry.Dimensions;
+  int m[3], first[3];
+  double firstIndex[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    m[a] = (n[a] - 1) / f + 1;
+    first[a] = (n[a] - 1 - (m[a] - 1) * f) / 2;
+    firstIndex[a] = first[a];
+    coarseGeometry.Dimensions[a] = m[a];
+    coarseGeometry.Spacing[a] = f * geometry.Spacing[a];
+  }
+  geometry.IndexToWorld(firstIndex, coarseGeometry.Origin);
+  std::copy(geometry.Direction, geometry.Direction + 9, coarseGeometry.Direction);
+  // The voxels [begin, end) of block I along axis a.
+  const auto block = [&](int a, int I, int& begin, int& end)
+  {
+    begin = I == 0 ? 0 : first[a] + I * f - h;
+    end = I == m[a] - 1 ? n[a] : first[a] + I * f + h + 1;
+  };
+
+  coarse.assign(static_cast<std::size_t>(m[0]) * m[1] * m[2], 0.0f);
+  std::vector<int> column(n[0]); // the coarse column of every voxel of a row
+  for (int I = 0; I < m[0]; ++I)
+  {
+    int b, e;
+    block(0, I, b, e);
+    std::fill(column.begin() + b, column.begin() + e, I);
+  }
+  const std::ptrdiff_t nx = n[0], slice = static_cast<std::ptrdiff_t>(n[0]) * n[1];
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ ResolveThreads(numberOfThreads), "STDThread", false },
+    [&]
+    {
+      vtkSMPTools::For(0, m[2],
+        [&](int kBegin, int kEnd)
+        {
+          std::vector<double> sum(m[0]);
+          std::vector<int> count(m[0]);
+          for (int K = kBegin; K < kEnd; ++K)
+          {
+            int k0, k1;
+            block(2, K, k0, k1);
+            for (int J = 0; J < m[1]; ++J)
+            {
+              int j0, j1;
+              block(1, J, j0, j1);
+              std::fill(sum.begin(), sum.end(), 0.0);
+              std::fill(count.begin(), count.end(), 0);
+              for (int k = k0; k < k1; ++k)
+              {
+                for (int j = j0; j < j1; ++j)
+                {
+                  const float* line = values + k * slice + j * nx;
+                  for (int i = 0; i < n[0]; ++i)
+                  {
+                    sum[column[i]] += line[i];
+                    ++count[column[i]];
+                  }
+                }
+              }
+              float* out = coarse.data() + (static_cast<std::size_t>(K) * m[1] + J) * m[0];
+              for (int I = 0; I < m[0]; ++I)
+              {
+                out[I] = static_cast<float>(sum[I] / count[I]);
+              }
+            }
+          }
+        });
+    });
+}
+
+double RemainingSigma(double sigma, const ImageGeometry& geometry, int f)
+{
+  const double spacing =
+    std::max({ geometry.Spacing[0], geometry.Spacing[1], geometry.Spacing[2] });
+  const double boxVariance = (static_cast<double>(f) * f - 1.0) / 12.0 * spacing * spacing;
+  return std::sqrt(std::max(0.0, sigma * sigma - boxVariance));
+}
+
+VoxelBox VoxelBox::Whole(const ImageGeometry& geometry)
+{
+  VoxelBox box;
+  std::copy(geometry.Dimensions, geometry.Dimensions + 3, box.End);
+  return box;
+}
+
+bool VoxelBox::Contains(const VoxelBox& other) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    if (other.Begin[a] < this->Begin[a] || other.End[a] > this->End[a])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+long long VoxelBox::NumberOfVoxels() const
+{
+  long long n = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    n *= std::max(0, this->End[a] - this->Begin[a]);
+  }
+  return n;
+}
+
+VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geometry, double reach)
+{
+  double lo[3] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::max() };
+  double hi[3] = { -lo[0], -lo[1], -lo[2] };
+  for (const Vec3& p : mesh.Points)
+  {
+    double ijk[3];
+    geometry.WorldToIndex(p.data(), ijk);
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], ijk[a]);
+      hi[a] = std::max(hi[a], ijk[a]);
+    }
+  }
+  VoxelBox box = VoxelBox::Whole(geometry);
+  for (int a = 0; a < 3; ++a)
+  {
+    const double grow = reach / geometry.Spacing[a] + 1.0;
+    if (lo[a] <= hi[a]) // an empty mesh keeps the whole image
+    {
+      box.Begin[a] = static_cast<int>(std::max(0.0, std::floor(lo[a] - grow)));
+      box.End[a] = static_cast<int>(
+        std::min(static_cast<double>(geometry.Dimensions[a]), std::ceil(hi[a] + grow) + 1.0));
+      // at least two voxels, for a 3-D image
+      box.Begin[a] = std::min(box.Begin[a], geometry.Dimensions[a] - 2);
+      box.End[a] = std::max(box.End[a], box.Begin[a] + 2);
+    }
+  }
+  return box;
+}
+
+void ExtractBox(const float* values, const ImageGeometry& geometry, const VoxelBox& box,
+  std::vector<float>& out, ImageGeometry& outGeometry)
+{
+  outGeometry = geometry;
+  double first[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    outGeometry.Dimensions[a] = box.End[a] - box.Begin[a];
+    first[a] = box.Begin[a];
+  }
+  geometry.IndexToWorld(first, outGeometry.Origin);
+  out.resize(static_cast<std::size_t>(box.NumberOfVoxels()));
+  const std::ptrdiff_t nx = geometry.Dimensions[0],
+                       slice = static_cast<std::ptrdiff_t>(nx) * geometry.Dimensions[1];
+  float* o = out.data();
+  for (int k = box.Begin[2]; k < box.End[2]; ++k)
+  {
+    for (int j = box.Begin[1]; j < box.End[1]; ++j)
+    {
+      const float* line = values + k * slice + j * nx;
+      o = std::copy(line + box.Begin[0], line + box.End[0], o);
+    }
+  }
+}
+
+bool ComputeForceAtScale(const float* scalars, const ImageGeometry& geometry, const VoxelBox& box,
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+{
+  std::vector<float> cut;
+  ImageGeometry cutGeometry = geometry;
+  if (scalars && box.NumberOfVoxels() < geometry.NumberOfVoxels())
+  {
+    ExtractBox(scalars, geometry, box, cut, cutGeometry);
+    scalars = cut.data();
+  }
+  const int f = DecimationFactor(parameters.Sigma, cutGeometry);
+  if (f <= 1)
+  {
+    return ComputeScaleSpaceForce(scalars, cutGeometry, parameters, out, error);
+  }
+  std::vector<float> coarse;
+  ImageGeometry coarseGeometry;
+  BlockMeans(scalars, cutGeometry, f, coarse, coarseGeometry, parameters.NumberOfThreads);
+  std::vector<float>().swap(cut);
+  ScaleSpaceParameters remaining = parameters;
+  remaining.Sigma = RemainingSigma(parameters.Sigma, cutGeometry, f);
+  if (!ComputeScaleSpaceForce(coarse.data(), coarseGeometry, remaining, out, error))
+  {
+    return false;
+  }
+  out.Sigma = parameters.Sigma;
+  return true;
+}
+} // namespace dsurf

@@ -1,0 +1,78 @@
+// The grid a level's force field lives on (docs/METHOD.md §9.7). Memory and time follow the
+// surface and its scale, not the volume:
+// - coarse scales on coarse grids: a field at sigma needs no more than a few samples per
+//   sigma, so a level whose sigma spans many voxels computes it on a grid of f x f x f blocks
+//   of the image, each replaced by its mean, smoothed with the remaining sigma (f^3 times less
+//   memory and time; the first levels of a 512^3 volume, sigma 85, 42, 21 voxels, shrink to
+//   grids of 19^3-74^3);
+// - after the first level, only the surface's neighbourhood: the surface then lies near its
+//   object and moves a few sigma at most, so the field covers its bounding box grown by
+//   NeighbourhoodSigmas sigma (the reach and the Gaussian's support) and no more.
+// Plain C++.
+#ifndef dsFieldGrid_h
+#define dsFieldGrid_h
+
+#include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsScaleSpace.h"
+#include "dsTriangleMesh.h"
+
+#include <vector>
+
+namespace dsurf
+{
+/// Grid points per sigma kept on a coarse grid: the block size is the largest odd f with
+/// f <= sigma / (SamplesPerSigma * spacing) on every axis (1 = the image's own grid).
+constexpr double SamplesPerSigma = 4.0;
+
+/// The block size for a field at `sigma` (world units) on `geometry`.
+DEFORMABLESURFACEFILTERS_EXPORT int DecimationFactor(double sigma, const ImageGeometry& geometry);
+
+/// The mean of each f^3 block of `values` (x fastest; f odd, each block centred on a voxel,
+/// the blocks at the ends of an axis also taking in the few voxels left over there) into
+/// `coarse`, whose geometry places each coarse voxel on its block's centre voxel, with
+/// spacing f times the image's.
+DEFORMABLESURFACEFILTERS_EXPORT void BlockMeans(const float* values, const ImageGeometry& geometry,
+  int f, std::vector<float>& coarse, ImageGeometry& coarseGeometry, int numberOfThreads);
+
+/// The sigma left to smooth the block means with so that box and Gaussian together have the
+/// variance sigma^2 along the axis where the box adds the most, (f^2 - 1) / 12 spacing^2
+/// (the variance of a discrete box of f samples). Box then Gaussian is Gaussian to within
+/// ~1 % of the peak for f <= sigma / 2 voxels: the box holds 2 % of the variance.
+DEFORMABLESURFACEFILTERS_EXPORT double RemainingSigma(
+  double sigma, const ImageGeometry& geometry, int f);
+
+/// A box of voxels, [Begin, End) along each axis.
+struct DEFORMABLESURFACEFILTERS_EXPORT VoxelBox
+{
+  int Begin[3] = { 0, 0, 0 };
+  int End[3] = { 0, 0, 0 };
+  /// The whole image.
+  static VoxelBox Whole(const ImageGeometry& geometry);
+  bool Contains(const VoxelBox& other) const;
+  long long NumberOfVoxels() const;
+};
+
+/// How far, in sigmas, the field reaches past the surface's bounding box after the first
+/// level: 4 sigma of the Gaussian's support (its tail beyond holds < 1e-4 of the weight), so
+/// the cut does not change the field where the surface is, and 2 sigma the surface may move.
+constexpr double NeighbourhoodSigmas = 6.0;
+
+/// The voxels within `reach` (world units, plus one voxel) of the mesh's bounding box in
+/// index space, clipped to the image.
+DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
+  const TriangleMesh& mesh, const ImageGeometry& geometry, double reach);
+
+/// The voxels of `box` as an image of their own (values and geometry).
+DEFORMABLESURFACEFILTERS_EXPORT void ExtractBox(const float* values, const ImageGeometry& geometry,
+  const VoxelBox& box, std::vector<float>& out, ImageGeometry& outGeometry);
+
+/// The force field at parameters.Sigma over `box` of the image, on a grid decimated by
+/// DecimationFactor when that is above 1, else on the image's own grid
+/// (ComputeScaleSpaceForce). The edge strength is normalised within the box. out.Sigma is
+/// parameters.Sigma either way.
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const float* scalars,
+  const ImageGeometry& geometry, const VoxelBox& box, const ScaleSpaceParameters& parameters,
+  ForceField& out, std::string* error);
+} // namespace dsurf
+
+#endif
