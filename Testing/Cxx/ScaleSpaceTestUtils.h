@@ -2,6 +2,8 @@
 #ifndef ScaleSpaceTestUtils_h
 #define ScaleSpaceTestUtils_h
 
+#include "dsScaleSpace.h"
+
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
@@ -11,9 +13,28 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 namespace sstest
 {
+/// value(world point) at every voxel of the core's geometry g (x fastest).
+inline std::vector<float> SampleOnGrid(
+  const dsurf::ImageGeometry& g, const std::function<double(const double*)>& value)
+{
+  std::vector<float> values(static_cast<std::size_t>(g.NumberOfVoxels()));
+  for (int k = 0; k < g.Dimensions[2]; ++k)
+    for (int j = 0; j < g.Dimensions[1]; ++j)
+      for (int i = 0; i < g.Dimensions[0]; ++i)
+      {
+        const double ijk[3] = { double(i), double(j), double(k) };
+        double x[3];
+        g.IndexToWorld(ijk, x);
+        values[i + g.Dimensions[0] * (j + static_cast<std::size_t>(g.Dimensions[1]) * k)] =
+          static_cast<float>(value(x));
+      }
+  return values;
+}
+
 /// A float image whose point scalars "f" are value(world point) at every voxel.
 inline vtkSmartPointer<vtkImageData> MakeImage(const int extent[6], const double spacing[3],
   const double origin[3], const double direction[9],

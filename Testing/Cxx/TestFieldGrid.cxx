@@ -39,17 +39,8 @@ void CheckBlockMeansOfRamp()
 {
   const ImageGeometry g = Rotated(41, 30, 23);
   const double a[3] = { 0.3, -1.2, 0.7 }, b = 5.0;
-  std::vector<float> values(static_cast<std::size_t>(g.NumberOfVoxels()));
-  for (int k = 0; k < g.Dimensions[2]; ++k)
-    for (int j = 0; j < g.Dimensions[1]; ++j)
-      for (int i = 0; i < g.Dimensions[0]; ++i)
-      {
-        const double ijk[3] = { double(i), double(j), double(k) };
-        double x[3];
-        g.IndexToWorld(ijk, x);
-        values[(static_cast<std::size_t>(k) * g.Dimensions[1] + j) * g.Dimensions[0] + i] =
-          static_cast<float>(a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + b);
-      }
+  const std::vector<float> values = sstest::SampleOnGrid(
+    g, [&](const double* x) { return a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + b; });
   for (int f : { 3, 5 })
   {
     std::vector<float> coarse;

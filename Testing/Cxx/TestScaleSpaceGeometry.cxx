@@ -79,17 +79,7 @@ int TestScaleSpaceGeometry(int, char*[])
     g.Origin[a] = std::floor(bounds[2 * a]) - 2.0;
     g.Dimensions[a] = static_cast<int>(std::ceil(bounds[2 * a + 1] - g.Origin[a])) + 3;
   }
-  std::vector<float> values(g.NumberOfVoxels());
-  for (int k = 0; k < g.Dimensions[2]; ++k)
-    for (int j = 0; j < g.Dimensions[1]; ++j)
-      for (int i = 0; i < g.Dimensions[0]; ++i)
-      {
-        const double ijk[3] = { double(i), double(j), double(k) };
-        double x[3];
-        g.IndexToWorld(ijk, x);
-        values[i + g.Dimensions[0] * (j + static_cast<size_t>(g.Dimensions[1]) * k)] =
-          static_cast<float>(Phantom(x));
-      }
+  const std::vector<float> values = sstest::SampleOnGrid(g, Phantom);
   dsurf::ScaleSpaceParameters params;
   params.Sigma = sigma;
   params.NormalizePotential = false;
