@@ -1,0 +1,134 @@
+// What the benchmark tables report about an output surface, for any method alike (our filter,
+// an iso-surface, ITK's level set through an iso-surface): triangles, connected pieces, the
+// distribution of the smallest angle per triangle, and the analytic distance of the vertices to
+// the phantom's true boundary (mean and max, in voxels).
+#ifndef BenchMeasure_h
+#define BenchMeasure_h
+
+#include "vtkCellArray.h"
+#include "vtkIdList.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace dsbench
+{
+using Point = std::array<double, 3>;
+/// |distance| of a point (world = voxel coordinates: unit spacing, origin 0) to the boundary.
+using DistanceFunction = std::function<double(const Point&)>;
+
+struct SurfaceMeasures
+{
+  long long Triangles = 0;
+  long long Pieces = 0;
+  double MinAngle = 0, AngleP5 = 0, AngleMedian = 0; ///< smallest angle per triangle, degrees
+  double Below20 = 0;                                ///< fraction of triangles with one < 20 deg
+  double MeanDistance = 0, MaxDistance = 0;          ///< over the vertices, voxels
+};
+
+inline double SmallestAngleDegrees(const Point& a, const Point& b, const Point& c)
+{
+  const Point* p[3] = { &a, &b, &c };
+  double smallest = 180;
+  for (int k = 0; k < 3; ++k)
+  {
+    const Point &o = *p[k], &u = *p[(k + 1) % 3], &v = *p[(k + 2) % 3];
+    double du[3], dv[3], uu = 0, vv = 0, uv = 0;
+    for (int i = 0; i < 3; ++i)
+    {
+      du[i] = u[i] - o[i];
+      dv[i] = v[i] - o[i];
+      uu += du[i] * du[i];
+      vv += dv[i] * dv[i];
+      uv += du[i] * dv[i];
+    }
+    const double den = std::sqrt(uu * vv);
+    const double angle = den > 0 ? std::acos(std::clamp(uv / den, -1.0, 1.0)) * 180 / M_PI : 0.0;
+    smallest = std::min(smallest, angle);
+  }
+  return smallest;
+}
+
+/// Connected pieces of the triangles (sharing a point joins two triangles).
+inline long long CountPieces(vtkIdType points, const std::vector<std::array<vtkIdType, 3>>& tris)
+{
+  std::vector<vtkIdType> parent(static_cast<size_t>(points));
+  std::iota(parent.begin(), parent.end(), vtkIdType(0));
+  auto find = [&](vtkIdType x)
+  {
+    while (parent[x] != x)
+      x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& t : tris)
+    for (int k = 1; k < 3; ++k)
+      parent[find(t[k])] = find(t[0]);
+  long long pieces = 0;
+  std::vector<char> used(static_cast<size_t>(points), 0);
+  for (const auto& t : tris)
+    used[t[0]] = 1;
+  for (vtkIdType i = 0; i < points; ++i)
+    pieces += used[i] && find(i) == i ? 1 : 0;
+  return pieces;
+}
+
+inline SurfaceMeasures Measure(vtkPolyData* surface, const DistanceFunction& distance)
+{
+  SurfaceMeasures m;
+  std::vector<std::array<vtkIdType, 3>> tris;
+  vtkIdType npts;
+  const vtkIdType* ids;
+  vtkCellArray* polys = surface->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+    for (vtkIdType k = 1; k + 1 < npts; ++k) // fan: our outputs and iso-surfaces are triangles
+      tris.push_back({ ids[0], ids[k], ids[k + 1] });
+  const vtkIdType n = surface->GetNumberOfPoints();
+  std::vector<Point> p(static_cast<size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+    surface->GetPoint(i, p[i].data());
+  m.Triangles = static_cast<long long>(tris.size());
+  m.Pieces = CountPieces(n, tris);
+  std::vector<double> angles;
+  angles.reserve(tris.size());
+  for (const auto& t : tris)
+    angles.push_back(SmallestAngleDegrees(p[t[0]], p[t[1]], p[t[2]]));
+  if (!angles.empty())
+  {
+    std::sort(angles.begin(), angles.end());
+    m.MinAngle = angles.front();
+    m.AngleP5 = angles[angles.size() / 20];
+    m.AngleMedian = angles[angles.size() / 2];
+    m.Below20 = double(std::lower_bound(angles.begin(), angles.end(), 20.0) - angles.begin()) /
+      double(angles.size());
+  }
+  for (const auto& q : p)
+  {
+    const double d = distance(q);
+    m.MeanDistance += d;
+    m.MaxDistance = std::max(m.MaxDistance, d);
+  }
+  m.MeanDistance /= std::max<double>(1.0, double(n));
+  return m;
+}
+
+/// The table cells of a measured surface: triangles | pieces | min/p5/median angle | < 20 deg
+/// | mean d | max d.
+inline std::string MeasureCells(const SurfaceMeasures& m)
+{
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%lld | %lld | %.1f / %.1f / %.1f | %.1f%% | %.3f | %.3f",
+    m.Triangles, m.Pieces, m.MinAngle, m.AngleP5, m.AngleMedian, 100 * m.Below20, m.MeanDistance,
+    m.MaxDistance);
+  return buf;
+}
+} // namespace dsbench
+
+#endif
