@@ -38,7 +38,7 @@ std::vector<Phantom> GoalPhantoms()
 /// time covers the float copy, the feature image, the level set and the iso-surface.
 std::string RunGac(vtkImageData* image, const Phantom& ph)
 {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   vtkDataArray* values = image->GetPointData()->GetScalars();
   std::vector<float> volume(static_cast<size_t>(values->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
@@ -63,11 +63,11 @@ std::string RunGac(vtkImageData* image, const Phantom& ph)
   iso->ComputeGradientsOff();
   iso->ComputeScalarsOff();
   iso->Update();
-  const double seconds = SecondsSince(t0);
+  const std::string time = clock.Cell();
   char notes[96];
-  std::snprintf(notes, sizeof notes, " | %d iterations, RMS change %.3g", result.Iterations,
+  std::snprintf(notes, sizeof notes, "%d iterations, RMS change %.3g", result.Iterations,
     result.RMSChange);
-  return TimeAndMeasures(seconds, iso->GetOutput(), ph) + notes;
+  return TimeAndMeasures(time, iso->GetOutput(), ph, notes);
 }
 #endif
 } // namespace

@@ -32,6 +32,9 @@ struct SurfaceMeasures
   double MinAngle = 0, AngleP5 = 0, AngleMedian = 0; ///< smallest angle per triangle, degrees
   double Below20 = 0;                                ///< fraction of triangles with one < 20 deg
   double MeanDistance = 0, MaxDistance = 0;          ///< over the vertices, voxels
+  /// The same over the vertices of the largest piece (an iso-surface of a noisy volume has
+  /// many small pieces around noise; this is its main surface).
+  double LargestPieceMean = 0, LargestPieceMax = 0;
 };
 
 inline double SmallestAngleDegrees(const Point& a, const Point& b, const Point& c)
@@ -57,8 +60,10 @@ inline double SmallestAngleDegrees(const Point& a, const Point& b, const Point& 
   return smallest;
 }
 
-/// Connected pieces of the triangles (sharing a point joins two triangles).
-inline long long CountPieces(vtkIdType points, const std::vector<std::array<vtkIdType, 3>>& tris)
+/// The connected piece of each point (sharing a point joins two triangles): a representative
+/// point id per point, -1 for points no triangle uses.
+inline std::vector<vtkIdType> PieceOfPoints(
+  vtkIdType points, const std::vector<std::array<vtkIdType, 3>>& tris)
 {
   std::vector<vtkIdType> parent(static_cast<size_t>(points));
   std::iota(parent.begin(), parent.end(), vtkIdType(0));
@@ -71,13 +76,11 @@ inline long long CountPieces(vtkIdType points, const std::vector<std::array<vtkI
   for (const auto& t : tris)
     for (int k = 1; k < 3; ++k)
       parent[find(t[k])] = find(t[0]);
-  long long pieces = 0;
-  std::vector<char> used(static_cast<size_t>(points), 0);
+  std::vector<vtkIdType> piece(static_cast<size_t>(points), -1);
   for (const auto& t : tris)
-    used[t[0]] = 1;
-  for (vtkIdType i = 0; i < points; ++i)
-    pieces += used[i] && find(i) == i ? 1 : 0;
-  return pieces;
+    for (int k = 0; k < 3; ++k)
+      piece[t[k]] = find(t[k]);
+  return piece;
 }
 
 inline SurfaceMeasures Measure(vtkPolyData* surface, const DistanceFunction& distance)
@@ -95,7 +98,14 @@ inline SurfaceMeasures Measure(vtkPolyData* surface, const DistanceFunction& dis
   for (vtkIdType i = 0; i < n; ++i)
     surface->GetPoint(i, p[i].data());
   m.Triangles = static_cast<long long>(tris.size());
-  m.Pieces = CountPieces(n, tris);
+  const std::vector<vtkIdType> piece = PieceOfPoints(n, tris);
+  std::vector<vtkIdType> pieceSize(static_cast<size_t>(n), 0);
+  for (vtkIdType i = 0; i < n; ++i)
+    if (piece[i] >= 0)
+      m.Pieces += pieceSize[piece[i]]++ == 0 ? 1 : 0;
+  const vtkIdType largest = n > 0
+    ? static_cast<vtkIdType>(std::max_element(pieceSize.begin(), pieceSize.end()) - pieceSize.begin())
+    : -1;
   std::vector<double> angles;
   angles.reserve(tris.size());
   for (const auto& t : tris)
@@ -109,26 +119,40 @@ inline SurfaceMeasures Measure(vtkPolyData* surface, const DistanceFunction& dis
     m.Below20 = double(std::lower_bound(angles.begin(), angles.end(), 20.0) - angles.begin()) /
       double(angles.size());
   }
-  for (const auto& q : p)
+  for (vtkIdType i = 0; i < n; ++i)
   {
-    const double d = distance(q);
+    const double d = distance(p[i]);
     m.MeanDistance += d;
     m.MaxDistance = std::max(m.MaxDistance, d);
+    if (piece[i] == largest)
+    {
+      m.LargestPieceMean += d;
+      m.LargestPieceMax = std::max(m.LargestPieceMax, d);
+    }
   }
   m.MeanDistance /= std::max<double>(1.0, double(n));
+  m.LargestPieceMean /= std::max<double>(1.0, largest >= 0 ? double(pieceSize[largest]) : 0.0);
   return m;
 }
 
 /// The table cells of a measured surface: triangles | pieces | min/p5/median angle | < 20 deg
-/// | mean d | max d.
-inline std::string MeasureCells(const SurfaceMeasures& m)
+/// | mean d | max d; with several pieces, the largest piece's mean and max in `notes`.
+inline std::string MeasureCells(const SurfaceMeasures& m, std::string* notes = nullptr)
 {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%lld | %lld | %.1f / %.1f / %.1f | %.1f%% | %.3f | %.3f",
     m.Triangles, m.Pieces, m.MinAngle, m.AngleP5, m.AngleMedian, 100 * m.Below20, m.MeanDistance,
     m.MaxDistance);
+  if (notes && m.Pieces > 1)
+  {
+    char piece[96];
+    std::snprintf(piece, sizeof piece, "largest piece: mean %.3f, max %.3f; ", m.LargestPieceMean,
+      m.LargestPieceMax);
+    *notes = piece;
+  }
   return buf;
 }
+
 } // namespace dsbench
 
 #endif

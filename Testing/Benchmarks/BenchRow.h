@@ -20,7 +20,7 @@ inline void PrintHeader(const std::string& extra = "")
   std::string rule = "|---|---|---|---|---|---|---|---|---|---|---|";
   for (char c : extra)
     rule += c == '|' ? "---|" : "";
-  std::printf("| phantom | method | time s | triangles | pieces | min angle: min / p5 / median "
+  std::printf("| phantom | method | time s (cpu s) | triangles | pieces | min angle: min / p5 / median "
               "| < 20 deg | mean d | max d | notes | peak RSS GiB |%s\n%s\n",
     extra.c_str(), rule.c_str());
 }
