@@ -3,7 +3,7 @@
 // GeodesicActiveContourLevelSetImageFilter (when CMake found ITK; the column is skipped with a
 // line saying so otherwise). Every case runs in a child process of its own (peak RSS per case);
 // a case is started only when its memory estimate fits, and stopped at the time limit.
-// Usage: BenchAccuracy [--time-limit seconds (default 300)] [sizes... (default 128 256 512)]
+// Usage: BenchAccuracy [--time-limit CPU seconds (default 300)] [sizes... (default 128 256 512)]
 #include "BenchRow.h"
 #ifdef DS_BENCH_WITH_ITK
 #include "ItkGeodesicActiveContour.h"
@@ -125,7 +125,7 @@ int main(int argc, char* argv[])
       if (r.Ok)
       {
         memory.Record(m.Name, voxels, r.PeakBytes);
-        time.Record(m.Name, voxels, r.WallSeconds);
+        time.Record(m.Name, voxels, r.CpuSeconds);
       }
     }
   }

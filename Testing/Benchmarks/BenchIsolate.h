@@ -1,6 +1,7 @@
 // One benchmark case in a child process of its own, so that each case's memory high-water mark
 // (getrusage of the child: VmHWM) is its own, and a case that runs over its time budget is
-// stopped instead of holding the whole run. The child writes one line of results to a pipe.
+// stopped instead of holding the whole run. The budget is CPU time (all the child's threads),
+// not wall time, so that a case is run or skipped alike on a quiet and on a shared machine. The child writes one line of results to a pipe.
 // Memory estimates are made before a case starts: a case whose estimate does not fit is never
 // started (a system without swap would otherwise OOM-kill it, or a neighbour), nor one whose
 // time estimate exceeds its time limit.
@@ -18,7 +19,9 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -33,12 +36,31 @@ struct IsolatedResult
   std::string Line;      ///< what the child wrote (its result, or its error message)
   double PeakBytes = 0;  ///< the child's maximum resident set size
   double WallSeconds = 0;
+  double CpuSeconds = 0; ///< user + system time of the child, all threads
   std::string Status; ///< how the child ended, for a failed case
 };
 
-/// Runs work() in a forked child; its return value is the result line. The parent must not
-/// have started threads (fork copies only the calling thread): call this from main() only.
-inline IsolatedResult RunIsolated(const std::function<std::string()>& work, double timeLimitSeconds)
+/// CPU seconds (user + system, all threads) a running process has used so far; 0 if unknown.
+inline double ProcessCpuSeconds(pid_t pid)
+{
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t close = stat.rfind(')'); // the command name may hold spaces
+  if (close == std::string::npos)
+    return 0;
+  std::istringstream fields(stat.substr(close + 2));
+  std::string skip;
+  for (int f = 3; f < 14; ++f) // fields 3..13, then utime (14) and stime (15)
+    fields >> skip;
+  double utime = 0, stime = 0;
+  fields >> utime >> stime;
+  return (utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+/// Runs work() in a forked child; its return value is the result line. The child is killed
+/// when it has used cpuLimitSeconds of CPU (or after ten times that in wall time). The parent must not have started threads (fork
+/// copies only the calling thread): call this from main() only.
+inline IsolatedResult RunIsolated(const std::function<std::string()>& work, double cpuLimitSeconds)
 {
   IsolatedResult r;
   int fds[2];
@@ -77,9 +99,12 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
   std::thread watchdog(
     [&]
     {
-      const auto limit = t0 + std::chrono::duration<double>(timeLimitSeconds);
-      while (!done && std::chrono::steady_clock::now() < limit)
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      // A child that waits instead of computing (a hang) uses no CPU: a wall limit of ten
+      // times the CPU limit stops it too.
+      const auto wallLimit = t0 + std::chrono::duration<double>(10 * cpuLimitSeconds);
+      while (!done && ProcessCpuSeconds(pid) < cpuLimitSeconds &&
+        std::chrono::steady_clock::now() < wallLimit)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
       if (!done)
       {
         r.TimedOut = true;
@@ -100,9 +125,12 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
   r.WallSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.PeakBytes = 1024.0 * static_cast<double>(usage.ru_maxrss); // Linux: KiB
+  r.CpuSeconds = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+    1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   r.Ok = !r.TimedOut && WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r.Line.empty();
   if (r.TimedOut)
-    r.Status = "stopped after the time limit of " + std::to_string(int(timeLimitSeconds)) + " s";
+    r.Status = "stopped at the limit of " + std::to_string(int(cpuLimitSeconds)) +
+      " s of CPU (or 10x that of wall time)";
   else if (WIFSIGNALED(status))
     r.Status = std::string("killed by signal ") + strsignal(WTERMSIG(status));
   else if (!r.Ok)

@@ -29,8 +29,8 @@ struct RowLimits
 {
   double EstimateBytes = 0; ///< the case's estimated peak
   double BudgetBytes = 0;   ///< what it may use
-  double EstimateSeconds = 0;
-  double TimeLimit = 600; ///< seconds, then the child is stopped
+  double EstimateSeconds = 0; ///< CPU seconds
+  double TimeLimit = 600;     ///< CPU seconds, then the child is stopped
 };
 
 /// Runs `method` (building the phantom's image first, in the child) and prints the row.
@@ -44,7 +44,7 @@ inline IsolatedResult RunRow(const Phantom& ph, const std::string& method, const
     std::snprintf(why, sizeof why, "skipped: needs ~%.1f GiB (estimate), %.1f GiB may be used",
       limits.EstimateBytes / GiB, limits.BudgetBytes / GiB);
   else if (limits.EstimateSeconds > limits.TimeLimit)
-    std::snprintf(why, sizeof why, "skipped: needs ~%.0f s (estimate), time limit %.0f s",
+    std::snprintf(why, sizeof why, "skipped: needs ~%.0f s of CPU (estimate), limit %.0f s",
       limits.EstimateSeconds, limits.TimeLimit);
   if (*why)
   {

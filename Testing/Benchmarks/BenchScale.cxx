@@ -6,7 +6,7 @@
 // high-water mark, phantom included. Before a case starts its peak is estimated from the
 // largest size of the same method measured in this run (or a prior per voxel); a case whose
 // estimate exceeds the memory available minus a reserve is skipped with the estimate printed.
-// Usage: BenchScale [--time-limit seconds (default 600)] [--reserve-gib G (default 2)]
+// Usage: BenchScale [--time-limit CPU seconds (default 600)] [--reserve-gib G (default 2)]
 //                   [sizes... (default 128 256 512 1024)]
 #include "BenchRow.h"
 
@@ -75,7 +75,7 @@ int main(int argc, char* argv[])
         if (r.Ok)
         {
           memory.Record(m.Name, ph.Voxels(), r.PeakBytes);
-          time.Record(m.Name, ph.Voxels(), r.WallSeconds);
+          time.Record(m.Name, ph.Voxels(), r.CpuSeconds);
         }
       }
     }
