@@ -90,23 +90,15 @@ int main(int argc, char* argv[])
               "libinsighttoolkit5-dev and reconfigure; scripts/benchmark.sh Accuracy does both)\n\n");
 #endif
   PrintHeader();
-  // Prior estimates of the peak (bytes per voxel) until a smaller case of the method was
-  // measured in this run (input included): ours keeps a float copy, Potential and Force (4 floats) per voxel;
-  // ITK's filter the feature image, its advection vectors (3 floats), input, start and output.
-  PerVoxelModel memory, time;
-  const double reserve = 2.0 * GiB; // left to everything else on the machine
+  // Priors of the peak per voxel, input included, until a smaller case of the method was
+  // measured: ours keeps a float copy, Potential and Force (4 floats); ITK's filter the speed
+  // image, its advection vectors (3 floats), the float input, the start and the output.
+  CaseRunner runner(2.0 * GiB, timeLimit);
   for (const Phantom& ph : GoalPhantoms())
   {
     if (!sizes.count(ph.N))
       continue;
-    const double voxels = ph.Voxels();
-    struct Method
-    {
-      const char* Name;
-      double Prior;
-      std::function<std::string(vtkImageData*)> Run;
-    };
-    std::vector<Method> methods = {
+    const std::vector<Method> methods = {
       { "ours (defaults, from the box)", 24,
         [&](vtkImageData* image) { return RunOurs(image, ph, 0); } },
       { "vtkFlyingEdges3D", 8, [&](vtkImageData* image) { return RunFlyingEdges(image, ph); } },
@@ -115,19 +107,7 @@ int main(int argc, char* argv[])
 #endif
     };
     for (const auto& m : methods)
-    {
-      RowLimits limits;
-      limits.EstimateBytes = memory.Estimate(m.Name, voxels, m.Prior);
-      limits.BudgetBytes = MemoryBudget(reserve);
-      limits.EstimateSeconds = time.Estimate(m.Name, voxels, 0.0);
-      limits.TimeLimit = timeLimit;
-      const IsolatedResult r = RunRow(ph, m.Name, limits, m.Run);
-      if (r.Ok)
-      {
-        memory.Record(m.Name, voxels, r.PeakBytes);
-        time.Record(m.Name, voxels, r.CpuSeconds);
-      }
-    }
+      runner.Run(ph, m, false);
   }
   return 0;
 }

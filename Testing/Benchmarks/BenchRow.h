@@ -66,6 +66,50 @@ inline IsolatedResult RunRow(const Phantom& ph, const std::string& method, const
   std::fflush(stdout);
   return r;
 }
+/// A method of a table: its name, a prior peak per voxel (input included) used until a smaller
+/// case of it was measured in the run, and the work the child does on the phantom's image.
+struct Method
+{
+  std::string Name;
+  double PriorBytesPerVoxel;
+  std::function<std::string(vtkImageData*)> Run;
+};
+
+/// Runs the rows of a table: estimates each case from the cases of its method measured so far
+/// (memory and CPU time, linear in the voxels), runs or skips it, and learns from it.
+class CaseRunner
+{
+public:
+  CaseRunner(double reserveBytes, double cpuLimitSeconds)
+    : Reserve(reserveBytes)
+    , CpuLimit(cpuLimitSeconds)
+  {
+  }
+  /// `sizeCells`: append the input size and the memory estimate as two more cells.
+  IsolatedResult Run(const Phantom& ph, const Method& m, bool sizeCells)
+  {
+    RowLimits limits;
+    limits.EstimateBytes = this->Memory.Estimate(m.Name, ph.Voxels(), m.PriorBytesPerVoxel);
+    limits.BudgetBytes = MemoryBudget(this->Reserve);
+    limits.EstimateSeconds = this->Time.Estimate(m.Name, ph.Voxels(), 0.0);
+    limits.TimeLimit = this->CpuLimit;
+    char extra[64] = "";
+    if (sizeCells)
+      std::snprintf(extra, sizeof extra, " %.3f | %.2f |", ph.InputBytes() / GiB,
+        limits.EstimateBytes / GiB);
+    const IsolatedResult r = RunRow(ph, m.Name, limits, m.Run, extra);
+    if (r.Ok)
+    {
+      this->Memory.Record(m.Name, ph.Voxels(), r.PeakBytes);
+      this->Time.Record(m.Name, ph.Voxels(), r.CpuSeconds);
+    }
+    return r;
+  }
+
+private:
+  double Reserve, CpuLimit;
+  PerVoxelModel Memory, Time;
+};
 } // namespace dsbench
 
 #endif

@@ -32,10 +32,10 @@ int main(int argc, char* argv[])
   if (sizes.empty())
     sizes = { 128, 256, 512, 1024 };
   PrintHeader(" input GiB | estimate GiB |");
-  // Priors (bytes per voxel, input included) until a smaller size was measured: ours holds a
-  // float copy, Potential and Force (4 floats) per voxel beside the uint16 input; the
-  // iso-surface the input and a byte of edge cases per voxel.
-  PerVoxelModel memory, time;
+  // Priors of the peak per voxel, input included, until a smaller size was measured: ours
+  // holds a float copy, Potential and Force (4 floats) beside the uint16 input; the iso-surface
+  // the input and a byte of edge cases per voxel.
+  CaseRunner runner(reserve, timeLimit);
   for (int n : sizes)
   {
     for (Shape shape : { Shape::Sphere, Shape::Cube })
@@ -46,14 +46,8 @@ int main(int argc, char* argv[])
       ph.Size = shape == Shape::Sphere ? n / 4.0 : n / 8.0;
       ph.Noise = 0.1;
       ph.CT = true;
-      ph.Name = (shape == Shape::Sphere ? "ball r" : "cube ") + std::to_string(n / (shape ==
-        Shape::Sphere ? 4 : 8)) + " " + std::to_string(n) + "^3";
-      struct Method
-      {
-        std::string Name;
-        double Prior;
-        std::function<std::string(vtkImageData*)> Run;
-      };
+      ph.Name = (shape == Shape::Sphere ? "ball r" : "cube ") +
+        std::to_string(static_cast<int>(ph.Size)) + " " + std::to_string(n) + "^3";
       std::vector<Method> methods = {
         { "ours, 2 threads", 24, [&](vtkImageData* im) { return RunOurs(im, ph, 2); } },
         { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },
@@ -62,22 +56,7 @@ int main(int argc, char* argv[])
         methods.insert(methods.begin() + 1,
           { "ours, 1 thread", 24, [&](vtkImageData* im) { return RunOurs(im, ph, 1); } });
       for (const auto& m : methods)
-      {
-        RowLimits limits;
-        limits.EstimateBytes = memory.Estimate(m.Name, ph.Voxels(), m.Prior);
-        limits.BudgetBytes = MemoryBudget(reserve);
-        limits.EstimateSeconds = time.Estimate(m.Name, ph.Voxels(), 0.0);
-        limits.TimeLimit = timeLimit;
-        char extra[64];
-        std::snprintf(extra, sizeof extra, " %.3f | %.2f |", ph.InputBytes() / GiB,
-          limits.EstimateBytes / GiB);
-        const IsolatedResult r = RunRow(ph, m.Name, limits, m.Run, extra);
-        if (r.Ok)
-        {
-          memory.Record(m.Name, ph.Voxels(), r.PeakBytes);
-          time.Record(m.Name, ph.Voxels(), r.CpuSeconds);
-        }
-      }
+        runner.Run(ph, m, true);
     }
   }
   return 0;
