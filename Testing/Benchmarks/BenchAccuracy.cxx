@@ -65,8 +65,8 @@ std::string RunGac(vtkImageData* image, const Phantom& ph)
   iso->Update();
   const std::string time = clock.Cell();
   char notes[96];
-  std::snprintf(notes, sizeof notes, "%d iterations, RMS change %.3g", result.Iterations,
-    result.RMSChange);
+  std::snprintf(
+    notes, sizeof notes, "%d iterations, RMS change %.3g", result.Iterations, result.RMSChange);
   return TimeAndMeasures(time, iso->GetOutput(), ph, notes);
 }
 #endif
@@ -86,8 +86,9 @@ int main(int argc, char* argv[])
   if (sizes.empty())
     sizes = { 128, 256, 512 };
 #ifndef DS_BENCH_WITH_ITK
-  std::printf("ITK GeodesicActiveContour: skipped, this build did not find ITK (install "
-              "libinsighttoolkit5-dev and reconfigure; scripts/benchmark.sh Accuracy does both)\n\n");
+  std::printf(
+    "ITK GeodesicActiveContour: skipped, this build did not find ITK (install "
+    "libinsighttoolkit5-dev and reconfigure; scripts/benchmark.sh Accuracy does both)\n\n");
 #endif
   PrintHeader();
   // Priors of the peak per voxel, input included, until a smaller case of the method was

@@ -1,10 +1,10 @@
 // One benchmark case in a child process of its own, so that each case's memory high-water mark
 // (getrusage of the child: VmHWM) is its own, and a case that runs over its time budget is
 // stopped instead of holding the whole run. The budget is CPU time (all the child's threads),
-// not wall time, so that a case is run or skipped alike on a quiet and on a shared machine. The child writes one line of results to a pipe.
-// Memory estimates are made before a case starts: a case whose estimate does not fit is never
-// started (a system without swap would otherwise OOM-kill it, or a neighbour), nor one whose
-// time estimate exceeds its time limit.
+// not wall time, so that a case is run or skipped alike on a quiet and on a shared machine. The
+// child writes one line of results to a pipe. Memory estimates are made before a case starts: a
+// case whose estimate does not fit is never started (a system without swap would otherwise OOM-kill
+// it, or a neighbour), nor one whose time estimate exceeds its time limit.
 #ifndef BenchIsolate_h
 #define BenchIsolate_h
 
@@ -37,7 +37,7 @@ struct IsolatedResult
   double PeakBytes = 0;  ///< the child's maximum resident set size
   double WallSeconds = 0;
   double CpuSeconds = 0; ///< user + system time of the child, all threads
-  std::string Status; ///< how the child ended, for a failed case
+  std::string Status;    ///< how the child ended, for a failed case
 };
 
 /// CPU seconds (user + system, all threads) a running process has used so far; 0 if unknown.
@@ -58,8 +58,8 @@ inline double ProcessCpuSeconds(pid_t pid)
 }
 
 /// Runs work() in a forked child; its return value is the result line. The child is killed
-/// when it has used cpuLimitSeconds of CPU (or after ten times that in wall time). The parent must not have started threads (fork
-/// copies only the calling thread): call this from main() only.
+/// when it has used cpuLimitSeconds of CPU (or after ten times that in wall time). The parent must
+/// not have started threads (fork copies only the calling thread): call this from main() only.
 inline IsolatedResult RunIsolated(const std::function<std::string()>& work, double cpuLimitSeconds)
 {
   IsolatedResult r;
@@ -122,8 +122,7 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
   wait4(pid, &status, 0, &usage);
   done = true;
   watchdog.join();
-  r.WallSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.WallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.PeakBytes = 1024.0 * static_cast<double>(usage.ru_maxrss); // Linux: KiB
   r.CpuSeconds = double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
     1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);

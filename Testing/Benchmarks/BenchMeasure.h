@@ -104,7 +104,8 @@ inline SurfaceMeasures Measure(vtkPolyData* surface, const DistanceFunction& dis
     if (piece[i] >= 0)
       m.Pieces += pieceSize[piece[i]]++ == 0 ? 1 : 0;
   const vtkIdType largest = n > 0
-    ? static_cast<vtkIdType>(std::max_element(pieceSize.begin(), pieceSize.end()) - pieceSize.begin())
+    ? static_cast<vtkIdType>(
+        std::max_element(pieceSize.begin(), pieceSize.end()) - pieceSize.begin())
     : -1;
   std::vector<double> angles;
   angles.reserve(tris.size());

@@ -65,8 +65,8 @@ private:
 
 /// The row's cells from the time on: time | measures | notes (the largest piece first, when the
 /// surface has several, then `notes`).
-inline std::string TimeAndMeasures(const std::string& timeCell, vtkPolyData* surface,
-  const Phantom& ph, const std::string& notes)
+inline std::string TimeAndMeasures(
+  const std::string& timeCell, vtkPolyData* surface, const Phantom& ph, const std::string& notes)
 {
   std::string piece;
   const std::string cells = MeasureCells(Measure(surface, Distance(ph)), &piece);
@@ -97,8 +97,8 @@ inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
   if (out->GetNumberOfCells() == 0)
     return "failed: empty output (see the error above)";
   char notes[96];
-  std::snprintf(notes, sizeof notes, "%d levels, %d sweeps", FieldInt(out, "Levels"),
-    FieldInt(out, "Sweeps"));
+  std::snprintf(
+    notes, sizeof notes, "%d levels, %d sweeps", FieldInt(out, "Levels"), FieldInt(out, "Sweeps"));
   return TimeAndMeasures(time, out, ph, notes);
 }
 

@@ -20,15 +20,16 @@ inline void PrintHeader(const std::string& extra = "")
   std::string rule = "|---|---|---|---|---|---|---|---|---|---|---|";
   for (char c : extra)
     rule += c == '|' ? "---|" : "";
-  std::printf("| phantom | method | time s (cpu s) | triangles | pieces | min angle: min / p5 / median "
-              "| < 20 deg | mean d | max d | notes | peak RSS GiB |%s\n%s\n",
+  std::printf(
+    "| phantom | method | time s (cpu s) | triangles | pieces | min angle: min / p5 / median "
+    "| < 20 deg | mean d | max d | notes | peak RSS GiB |%s\n%s\n",
     extra.c_str(), rule.c_str());
 }
 
 struct RowLimits
 {
-  double EstimateBytes = 0; ///< the case's estimated peak
-  double BudgetBytes = 0;   ///< what it may use
+  double EstimateBytes = 0;   ///< the case's estimated peak
+  double BudgetBytes = 0;     ///< what it may use
   double EstimateSeconds = 0; ///< CPU seconds
   double TimeLimit = 600;     ///< CPU seconds, then the child is stopped
 };
@@ -48,8 +49,8 @@ inline IsolatedResult RunRow(const Phantom& ph, const std::string& method, const
       limits.EstimateSeconds, limits.TimeLimit);
   if (*why)
   {
-    std::printf("| %s | %s | %s |||||||| - |%s\n", ph.Name.c_str(), method.c_str(), why,
-      extraCells.c_str());
+    std::printf(
+      "| %s | %s | %s |||||||| - |%s\n", ph.Name.c_str(), method.c_str(), why, extraCells.c_str());
     r.Status = why;
     return r;
   }
@@ -95,8 +96,8 @@ public:
     limits.TimeLimit = this->CpuLimit;
     char extra[64] = "";
     if (sizeCells)
-      std::snprintf(extra, sizeof extra, " %.3f | %.2f |", ph.InputBytes() / GiB,
-        limits.EstimateBytes / GiB);
+      std::snprintf(
+        extra, sizeof extra, " %.3f | %.2f |", ph.InputBytes() / GiB, limits.EstimateBytes / GiB);
     const IsolatedResult r = RunRow(ph, m.Name, limits, m.Run, extra);
     if (r.Ok)
     {

@@ -34,9 +34,9 @@ struct Phantom
   std::string Name;
   int N = 128;
   Shape Form = Shape::Sphere;
-  double Size = 32;     ///< sphere radius or cube half side, voxels
-  double Noise = 0;     ///< noise standard deviation as a fraction of the contrast
-  bool CT = false;      ///< uint16 1000/2000 instead of float 0/1
+  double Size = 32; ///< sphere radius or cube half side, voxels
+  double Noise = 0; ///< noise standard deviation as a fraction of the contrast
+  bool CT = false;  ///< uint16 1000/2000 instead of float 0/1
   double Voxels() const { return double(N) * N * N; }
   double Background() const { return CT ? 1000.0 : 0.0; }
   double Contrast() const { return CT ? 1000.0 : 1.0; }
