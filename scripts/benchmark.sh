@@ -5,7 +5,8 @@
 #   vtkFlyingEdges3D and ITK's geodesic active contour on the accuracy phantoms; about 10
 #   minutes) and Scale (128^3..1024^3 CT-like volumes, time and peak memory; about 5 minutes)
 #   run when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
-#   it is missing; ACCURACY_WITHOUT_ITK=1 skips that (the ITK column then says why it is empty).
+#   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
+#   its column is skipped and why).
 # Arguments for one program: BENCH_ARGS, e.g. BENCH_ARGS="128 256" scripts/benchmark.sh Scale
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

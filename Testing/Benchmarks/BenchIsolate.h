@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -128,8 +129,12 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
     1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   r.Ok = !r.TimedOut && WIFEXITED(status) && WEXITSTATUS(status) == 0 && !r.Line.empty();
   if (r.TimedOut)
-    r.Status = "stopped at the limit of " + std::to_string(int(cpuLimitSeconds)) +
-      " s of CPU (or 10x that of wall time)";
+  {
+    char why[96];
+    std::snprintf(why, sizeof why, "stopped at the limit of %.3g s of CPU (or 10x that of wall time)",
+      cpuLimitSeconds);
+    r.Status = why;
+  }
   else if (WIFSIGNALED(status))
     r.Status = std::string("killed by signal ") + strsignal(WTERMSIG(status));
   else if (!r.Ok)
@@ -178,7 +183,7 @@ private:
 /// The memory a case may use: what is available now minus a reserve left to everything else.
 inline double MemoryBudget(double reserveBytes)
 {
-  return AvailableBytes() - reserveBytes;
+  return std::max(0.0, AvailableBytes() - reserveBytes);
 }
 } // namespace dsbench
 

@@ -45,7 +45,7 @@ inline IsolatedResult RunRow(const Phantom& ph, const std::string& method, const
     std::snprintf(why, sizeof why, "skipped: needs ~%.1f GiB (estimate), %.1f GiB may be used",
       limits.EstimateBytes / GiB, limits.BudgetBytes / GiB);
   else if (limits.EstimateSeconds > limits.TimeLimit)
-    std::snprintf(why, sizeof why, "skipped: needs ~%.0f s of CPU (estimate), limit %.0f s",
+    std::snprintf(why, sizeof why, "skipped: needs ~%.3g s of CPU (estimate), limit %.3g s",
       limits.EstimateSeconds, limits.TimeLimit);
   if (*why)
   {
