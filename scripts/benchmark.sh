@@ -1,22 +1,41 @@
 #!/usr/bin/env bash
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
-# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart ...]   (default: all)
+# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Accuracy|Scale ...]
+#   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Accuracy (our filter,
+#   vtkFlyingEdges3D and ITK's geodesic active contour on the accuracy phantoms; about 10
+#   minutes) and Scale (128^3..1024^3 CT-like volumes, time and peak memory; about 5 minutes)
+#   run when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
+#   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
+#   its column is skipped and why).
+# Arguments for one program: BENCH_ARGS, e.g. BENCH_ARGS="128 256" scripts/benchmark.sh Scale
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
-"$root/scripts/build.sh" >/dev/null
-echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB"
-echo "commit:  $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 names=("$@")
 if [ ${#names[@]} -eq 0 ]; then
   names=(ScaleSpace Solver Hierarchy HugeStart)
 fi
+
+if [[ " ${names[*]} " == *" Accuracy "* && "${ACCURACY_WITHOUT_ITK:-0}" != 1 ]] &&
+  ! dpkg-query -W -f='${Status}' libinsighttoolkit5-dev 2>/dev/null | grep -q "install ok installed"; then
+  "$root/scripts/install-deps.sh" --with-itk
+  # A configured build looked for ITK before it was there: look again.
+  if [ -f "$build/CMakeCache.txt" ]; then
+    cmake "$build" >/dev/null
+  fi
+fi
+
+"$root/scripts/build.sh" >/dev/null
+echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB"
+echo "commit:  $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+echo "load:    $(cut -d' ' -f1-3 /proc/loadavg) (1, 5, 15 min)"
 for n in "${names[@]}"; do
   exe="$build/bin/Bench$n"
   if [ -x "$exe" ]; then
     echo
     echo "== Bench$n"
-    "$exe"
+    # shellcheck disable=SC2086
+    "$exe" ${BENCH_ARGS:-}
   else
     echo "Bench$n: not built" >&2
   fi

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages the project needs to build, test and run its demo.
 # Idempotent and quick when everything is there: apt runs only for missing packages.
+# --with-itk (opt-in, not for CI): also ITK, which only BenchAccuracy's comparison column uses
+# (scripts/benchmark.sh Accuracy passes it); the module never depends on ITK.
 set -euo pipefail
 
 packages=(
@@ -24,6 +26,9 @@ packages=(
   # a second real head no one tuned on: ITK's KmeansTest T1 with its skull-stripped reference
   insighttoolkit5-examples
 )
+if [ "${1:-}" = "--with-itk" ]; then
+  packages+=(libinsighttoolkit5-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

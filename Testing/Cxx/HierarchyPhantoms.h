@@ -43,6 +43,26 @@ inline std::vector<float> Cube(int n, double half)
   return v;
 }
 
+/// Fraction (0..1, 4^3 supersampling) of the voxel at offset (x, y, z) from the centre that lies
+/// inside the sphere of radius r: exact away from the boundary.
+inline double SphereInsideFraction(double x, double y, double z, double r)
+{
+  const double d = std::sqrt(x * x + y * y + z * z);
+  if (d < r - 1.0)
+    return 1.0;
+  if (d >= r + 1.0)
+    return 0.0;
+  int inside = 0;
+  for (int s = 0; s < 64; ++s)
+  {
+    const double sx = x + ((s & 3) + 0.5) / 4 - 0.5;
+    const double sy = y + (((s >> 2) & 3) + 0.5) / 4 - 0.5;
+    const double sz = z + (((s >> 4) & 3) + 0.5) / 4 - 0.5;
+    inside += sx * sx + sy * sy + sz * sz < r * r ? 1 : 0;
+  }
+  return inside / 64.0;
+}
+
 /// Binary sphere of radius r around the centre, anti-aliased by 4^3 supersampling so
 /// the boundary is at radius r to well under a tenth of a voxel.
 inline std::vector<float> Sphere(int n, double r)
@@ -52,25 +72,8 @@ inline std::vector<float> Sphere(int n, double r)
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-      {
-        const double d = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
-        float value = 0.f;
-        if (d < r - 1.0)
-          value = 1.f;
-        else if (d < r + 1.0)
-        {
-          int inside = 0;
-          for (int s = 0; s < 64; ++s)
-          {
-            const double x = i - c + ((s & 3) + 0.5) / 4 - 0.5;
-            const double y = j - c + (((s >> 2) & 3) + 0.5) / 4 - 0.5;
-            const double z = k - c + (((s >> 4) & 3) + 0.5) / 4 - 0.5;
-            inside += x * x + y * y + z * z < r * r ? 1 : 0;
-          }
-          value = inside / 64.f;
-        }
-        v[(static_cast<size_t>(k) * n + j) * n + i] = value;
-      }
+        v[(static_cast<size_t>(k) * n + j) * n + i] =
+          static_cast<float>(SphereInsideFraction(i - c, j - c, k - c, r));
   return v;
 }
 

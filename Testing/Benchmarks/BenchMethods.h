@@ -1,0 +1,123 @@
+// The methods the benchmark tables compare, each run on a phantom image and measured alike
+// (BenchMeasure.h). Each returns the row's cells from "time s" on, or "failed: ..." for a
+// method that failed:
+// Times are wall-clock with the CPU time of the process beside them (Stopwatch).
+// - our filter: vtkDeformableSurfaceFilter, every parameter default, started from the box
+//   enclosing the volume (vtkCubeSource, 12 triangles, half a voxel inside the border: the
+//   paper's cube test); the time is its Update();
+// - vtkFlyingEdges3D at the value halfway between background and object; the time is its
+//   Update().
+#ifndef BenchMethods_h
+#define BenchMethods_h
+
+#include "BenchMeasure.h"
+#include "BenchVolumes.h"
+
+#include "vtkCubeSource.h"
+#include "vtkDataArray.h"
+#include "vtkDeformableSurfaceFilter.h"
+#include "vtkFieldData.h"
+#include "vtkFlyingEdges3D.h"
+#include "vtkNew.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+namespace dsbench
+{
+/// Wall-clock and CPU time (all threads of the process) since construction. On a machine shared
+/// with other jobs the wall time grows with the load; the CPU time much less.
+class Stopwatch
+{
+public:
+  Stopwatch()
+    : Wall0(std::chrono::steady_clock::now())
+    , Cpu0(ProcessCpuSeconds())
+  {
+  }
+  double Wall() const
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Wall0).count();
+  }
+  double Cpu() const { return ProcessCpuSeconds() - this->Cpu0; }
+  /// "wall (cpu c)", the table's time cell.
+  std::string Cell() const
+  {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.3f (cpu %.2f)", this->Wall(), this->Cpu());
+    return buf;
+  }
+
+private:
+  static double ProcessCpuSeconds()
+  {
+    struct rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+      1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  }
+  std::chrono::steady_clock::time_point Wall0;
+  double Cpu0;
+};
+
+/// The row's cells from the time on: time | measures | notes (the largest piece first, when the
+/// surface has several, then `notes`).
+inline std::string TimeAndMeasures(
+  const std::string& timeCell, vtkPolyData* surface, const Phantom& ph, const std::string& notes)
+{
+  std::string piece;
+  const std::string cells = MeasureCells(Measure(surface, Distance(ph)), &piece);
+  return timeCell + " | " + cells + " | " + piece + notes;
+}
+
+inline int FieldInt(vtkPolyData* surface, const char* name)
+{
+  vtkDataArray* a = surface->GetFieldData()->GetArray(name);
+  return a && a->GetNumberOfTuples() > 0 ? static_cast<int>(a->GetTuple1(0)) : -1;
+}
+
+/// Our filter with every default but NumberOfThreads (0 = all cores).
+inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
+{
+  const double n = ph.N;
+  vtkNew<vtkCubeSource> box;
+  box->SetBounds(0.5, n - 1.5, 0.5, n - 1.5, 0.5, n - 1.5);
+  box->Update();
+  vtkNew<vtkDeformableSurfaceFilter> filter;
+  filter->SetInputData(0, image);
+  filter->SetInitialSurfaceData(box->GetOutput());
+  filter->SetNumberOfThreads(threads);
+  const Stopwatch clock;
+  filter->Update();
+  const std::string time = clock.Cell();
+  vtkPolyData* out = filter->GetOutput();
+  if (out->GetNumberOfCells() == 0)
+    return "failed: empty output (see the error above)";
+  char notes[96];
+  std::snprintf(
+    notes, sizeof notes, "%d levels, %d sweeps", FieldInt(out, "Levels"), FieldInt(out, "Sweeps"));
+  return TimeAndMeasures(time, out, ph, notes);
+}
+
+/// vtkFlyingEdges3D at the phantom's mid value, all cores (vtkSMPTools).
+inline std::string RunFlyingEdges(vtkImageData* image, const Phantom& ph)
+{
+  vtkNew<vtkFlyingEdges3D> iso;
+  iso->SetInputData(image);
+  iso->SetValue(0, ph.MidValue());
+  iso->ComputeNormalsOff();
+  iso->ComputeGradientsOff();
+  iso->ComputeScalarsOff();
+  const Stopwatch clock;
+  iso->Update();
+  const std::string time = clock.Cell();
+  char notes[64];
+  std::snprintf(notes, sizeof notes, "iso %g", ph.MidValue());
+  return TimeAndMeasures(time, iso->GetOutput(), ph, notes);
+}
+} // namespace dsbench
+
+#endif

@@ -1,0 +1,63 @@
+// Time, peak memory and accuracy against the volume size: CT-like uint16 phantoms (a noisy ball
+// of radius n/4 and a noisy cube of half side n/8, background 1000, object 2000, noise sigma
+// 100) at 128^3 .. 1024^3, our whole solve (every default, from the box enclosing the volume)
+// on two threads and, for the ball, on one, beside vtkFlyingEdges3D on the same volume in the
+// same run. Every case runs in a child process of its own, so "peak RSS" is that case's
+// high-water mark, phantom included. Before a case starts its peak is estimated from the
+// largest size of the same method measured in this run (or a prior per voxel); a case whose
+// estimate exceeds the memory available minus a reserve is skipped with the estimate printed.
+// Usage: BenchScale [--time-limit CPU seconds (default 600)] [--reserve-gib G (default 2)]
+//                   [sizes... (default 128 256 512 1024)]
+#include "BenchRow.h"
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+int main(int argc, char* argv[])
+{
+  using namespace dsbench;
+  double timeLimit = 600, reserve = 2 * GiB;
+  std::vector<int> sizes;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--time-limit" && i + 1 < argc)
+      timeLimit = std::atof(argv[++i]);
+    else if (a == "--reserve-gib" && i + 1 < argc)
+      reserve = std::atof(argv[++i]) * GiB;
+    else
+      sizes.push_back(std::atoi(a.c_str()));
+  }
+  if (sizes.empty())
+    sizes = { 128, 256, 512, 1024 };
+  PrintHeader(" input GiB | estimate GiB |");
+  // Priors of the peak per voxel, input included, until a smaller size was measured: ours
+  // holds a float copy, Potential and Force (4 floats) beside the uint16 input; the iso-surface
+  // the input and a byte of edge cases per voxel.
+  CaseRunner runner(reserve, timeLimit);
+  for (int n : sizes)
+  {
+    for (Shape shape : { Shape::Sphere, Shape::Cube })
+    {
+      Phantom ph;
+      ph.N = n;
+      ph.Form = shape;
+      ph.Size = shape == Shape::Sphere ? n / 4.0 : n / 8.0;
+      ph.Noise = 0.1;
+      ph.CT = true;
+      ph.Name = (shape == Shape::Sphere ? "ball r" : "cube ") +
+        std::to_string(static_cast<int>(ph.Size)) + " " + std::to_string(n) + "^3";
+      std::vector<Method> methods = {
+        { "ours, 2 threads", 24, [&](vtkImageData* im) { return RunOurs(im, ph, 2); } },
+        { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },
+      };
+      if (shape == Shape::Sphere)
+        methods.insert(methods.begin() + 1,
+          { "ours, 1 thread", 24, [&](vtkImageData* im) { return RunOurs(im, ph, 1); } });
+      for (const auto& m : methods)
+        runner.Run(ph, m, true);
+    }
+  }
+  return 0;
+}
