@@ -20,8 +20,8 @@
 //   vertices), so the boundary curve is refined by itself.
 // - Midpoint (the fallback): 1/2 (a + b) when the stencil is incomplete or irregular:
 //   an interior edge with an end on the boundary, a boundary end with a branching
-//   boundary, or any stencil triangle the caller flags irregular (red-green refinement
-//   flags none: its green halves make closed rings, see dsRedGreen.h).
+//   boundary, or any stencil triangle flagged irregular (a green triangle of red-green
+//   refinement, whose corners are not the coarse-level neighbours the weights assume).
 // Every rule is an affine combination (weights sum to 1), so a plane stays planar.
 #ifndef dsButterfly_h
 #define dsButterfly_h

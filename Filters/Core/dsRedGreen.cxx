@@ -404,6 +404,7 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
   const int nOldPoints = this->OldPoints;
   const int nNew = static_cast<int>(this->NewEdges.size());
   std::vector<Vec3> newPoints(nNew);
+  const std::vector<char> greenFlags = this->Refiner.GreenFlags();
   for (int j = 0; j < nNew; ++j)
   {
     const int a = this->NewEdges[j][0], b = this->NewEdges[j][1];
@@ -413,8 +414,7 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
     ButterflyRule rule = ButterflyRule::Midpoint;
     if (mode == Prolongation::Butterfly && e >= 0)
     {
-      // Green halves take part in the stencils (see the class comment in dsRedGreen.h).
-      newPoints[j] = ButterflyEdgePoint(mesh, e, nullptr, &rule);
+      newPoints[j] = ButterflyEdgePoint(mesh, e, &greenFlags, &rule);
     }
     else
     {

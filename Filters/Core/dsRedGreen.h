@@ -19,21 +19,15 @@
 // An undone green's M is an ordinary N vertex of the red split, and its C / D revert
 // to N unless another green still uses them. A vertex often plays several roles (wherever a
 // red-green border turns; most often C of one green and D of another: docs/METHOD.md §6.4),
-// so the weights do not come from one label per vertex: every
-// triangle carries its corners' labels (ComputeCornerLabels, mesh.CornerLabels), a green half
-// its corners' roles in that green, and the solver weighs each edge by its triangles. The
-// vertex label (M over C over D, the row most of its edges use) is what plain triangles carry
-// and what the output's VertexLabel shows.
+// so the weights do not come from one label per vertex: every green half carries its
+// corners' roles in that green (ComputeCornerLabels, mesh.CornerLabels; N in other
+// triangles), and the solver weighs each edge by the greens it lies in. The vertex label
+// (M over C over D) is the row of its other edges and what the output's VertexLabel shows.
 //
-// New points are placed by the butterfly scheme (dsButterfly.h, docs/METHOD.md §6.5) evaluated
-// on the conforming mesh before the step, green halves included: their rings are closed
-// cycles, so every interior stencil exists. Excluding stencils that touch a green sent 30-70 %
-// of the new points of an adaptive step to the midpoint (59 % on TestButterfly's adaptive
-// sphere, rms radius error 0.0044 against 0.0033 now). Merging each green into its parent
-// instead leaves the parent's midpoint M a T-vertex on the refined side, where a stencil
-// would meet an open edge. Points on edges that do not exist in that mesh (inner edges of
-// triangles split twice in one step) take the midpoint. Prolongation::Linear puts every new
-// point at the edge midpoint.
+// New points are placed by the butterfly scheme (dsButterfly.h) evaluated on the mesh
+// before the step, with green triangles flagged irregular; points on edges that do
+// not exist in that mesh (inner edges of triangles split twice in one step) take the
+// midpoint. Prolongation::Linear puts every new point at the edge midpoint.
 #ifndef dsRedGreen_h
 #define dsRedGreen_h
 
@@ -105,7 +99,7 @@ public:
     midpoint = g.Midpoint;
     return true;
   }
-  /// Per current triangle: 1 for green halves (irregular-triangle flags for ButterflyEdgePoint).
+  /// Per current triangle: 1 for green halves (the flags used for butterfly stencils).
   std::vector<char> GreenFlags() const;
 
   /// Edges of `mesh` that have a midpoint vertex: a triangle using such an edge
@@ -116,8 +110,8 @@ public:
   /// writes to mesh.Labels (see the class comment for the priority M > C > D > N).
   std::vector<unsigned char> ComputeLabels(int numberOfPoints) const;
 
-  /// Per triangle of `mesh` (the current one, Labels set), the label of each corner within
-  /// that triangle: in a green half the corner's role in that green, else mesh.Labels. What
+  /// Per triangle of `mesh` (the current one), the label of each corner within that
+  /// triangle: in a green half the corner's role in that green, else N. What
   /// Refine() writes to mesh.CornerLabels; the solver's weights follow it, so a vertex that
   /// is C of one green and D of another still gives the second green's M weight 0.
   std::vector<std::array<unsigned char, 3>> ComputeCornerLabels(const TriangleMesh& mesh) const;

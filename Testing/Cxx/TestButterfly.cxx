@@ -272,55 +272,6 @@ int TestButterfly(int, char*[])
               << rmsErr[1] << std::endl;
     DS_CHECK_LE(rmsErr[0], 0.25 * rmsErr[1], "butterfly rms radius error (vs 1/4 of linear)");
   }
-
-  // --- Adaptive steps on a sphere: stencils touching green triangles are evaluated too (no
-  // midpoint fallback), and the new points still start closer to the sphere than midpoints.
-  {
-    TriangleMesh m = Icosahedron();
-    RedGreenRefiner rg;
-    std::string err;
-    rg.Initialize(m, &err);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> u(0, 1);
-    double rmsErr[2] = { 0, 0 };
-    int newPoints = 0, adaptivePoints = 0, fallbacks = 0, greens = 0;
-    for (int level = 0; level < 5; ++level)
-    {
-      std::vector<char> marks(m.NumberOfTriangles(), 0);
-      for (auto& mk : marks)
-      {
-        mk = level < 2 || u(rng) < 0.3;
-      }
-      const int before = m.NumberOfPoints();
-      greens += rg.NumberOfGreens();
-      TriangleMesh linear = m;
-      RedGreenRefiner linearRefiner = rg;
-      DS_CHECK(linearRefiner.Refine(linear, marks, Prolongation::Linear).Ok, "linear refine");
-      const RefinementCounts rc = rg.Refine(m, marks, Prolongation::Butterfly);
-      DS_CHECK(rc.Ok, rc.Error);
-      // The first two steps are uniform (no greens yet): count the adaptive ones.
-      newPoints += rc.NewVertices;
-      adaptivePoints += level >= 2 ? rc.NewVertices : 0;
-      fallbacks += level >= 2 ? rc.FallbackVertices : 0;
-      for (int v = before; v < m.NumberOfPoints(); ++v)
-      {
-        rmsErr[0] += std::pow(Norm(m.Points[v]) - 1.0, 2);
-        rmsErr[1] += std::pow(Norm(linear.Points[v]) - 1.0, 2);
-      }
-      for (auto& p : m.Points)
-      {
-        p = (1.0 / Norm(p)) * p;
-      }
-    }
-    rmsErr[0] = std::sqrt(rmsErr[0] / newPoints);
-    rmsErr[1] = std::sqrt(rmsErr[1] / newPoints);
-    std::cout << "  adaptive sphere: " << adaptivePoints << " new points in adaptive steps next to "
-              << greens << " greens, " << fallbacks << " midpoint fallbacks" << std::endl;
-    DS_CHECK_LE(fallbacks, 0.05 * adaptivePoints, "midpoint fallbacks in adaptive steps (<= 5 %)");
-    std::cout << "  adaptive sphere: rms radius error of new points, butterfly " << rmsErr[0]
-              << ", linear " << rmsErr[1] << std::endl;
-    DS_CHECK_LE(rmsErr[0], 0.25 * rmsErr[1], "adaptive butterfly rms radius error (vs 1/4 of linear)");
-  }
   return dstest::Result("TestButterfly");
 }
 

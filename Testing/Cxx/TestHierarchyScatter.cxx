@@ -149,8 +149,8 @@ void RunSeed(unsigned seed)
   DS_CHECK_GE(table.MinAngle, 15.0, "min angle with the green weights (degrees)");
   DS_CHECK_LE(table.Mean, ones.Mean, "mean drift with the green weights (<= all weights 1)");
   // Where borders of three levels meet at one C vertex the table cannot balance it (its 2 : 1
-  // assumes one fine and one coarse side): there the max drift is up to ~1.2 x that of all
-  // weights 1 on some seeds (one label per vertex: 2.5 x, and the sheet folded).
+  // assumes one fine and one coarse side): there the max drift is up to 1.21 x that of all
+  // weights 1 on these seeds (one label per vertex: 4 x, and the sheet folded).
   DS_CHECK_LE(table.Max, 1.25 * ones.Max, "max drift with the green weights (<= 1.25 x all 1)");
 }
 } // namespace
