@@ -65,12 +65,13 @@ inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOthe
 /// greens, and the flat sheet of TestHierarchyScatter folded.) Without CornerLabels (labels
 /// set by hand) the table applies to the vertex labels. Uniform when the weights sum to
 /// zero.
-void RingWeights(const TriangleMesh& m, int v, double* w)
+/// `greens` is scratch space (the number of greens on each edge of v).
+void RingWeights(const TriangleMesh& m, int v, double* w, std::vector<int>& greens)
 {
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const int* ring = m.Neighbors.data();
   const bool perGreen = m.CornerLabels.size() == m.Triangles.size();
-  std::vector<int> greens(end - begin, 0);
+  greens.assign(end - begin, 0);
   std::fill(w + begin, w + end, 0.0);
   for (int i = m.VertexTriangleOffsets[v]; i < m.VertexTriangleOffsets[v + 1] && perGreen; ++i)
   {
@@ -208,9 +209,10 @@ void Solver::BuildColoring()
   if (!this->UniformWeights)
   {
     this->Weights.resize(m.Neighbors.size());
+    std::vector<int> greens;
     for (int v = 0; v < n; ++v)
     {
-      RingWeights(m, v, this->Weights.data());
+      RingWeights(m, v, this->Weights.data(), greens);
     }
   }
   std::vector<int> color;
