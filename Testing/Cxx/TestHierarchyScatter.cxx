@@ -4,8 +4,10 @@
 // and so on). Then 500 sweeps with no external force: a flat sheet has nowhere to go, so
 // every movement is drift of the parameterisation. The weights of each green triangle must
 // hold for that green's own corners (a vertex that is D of one green gives that green's M
-// weight 0 even when it is also C of another), and the sheet must drift no more than with all
-// weights 1.
+// weight 0 even when it is also C of another). On three seeds: the sheet must not fold (no two
+// triangles intersect, min angle >= 15 degrees), its mean drift must stay below that with all
+// weights 1, and its max drift within 1.25 x of it (see RunSeed). With one label per vertex the
+// first seed folded: 39 intersecting pairs, min angle 0.02 degrees, max drift 2.50 against 0.63.
 #include "DSSurfaceInvariants.h"
 #include "TestSolverMeshes.h"
 #include "dsRedGreen.h"
