@@ -40,6 +40,7 @@ bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
   this->Midpoints.clear();
   this->Level = 0;
   mesh.Labels.assign(mesh.Points.size(), LabelN);
+  mesh.CornerLabels.clear();
   mesh.Levels.assign(mesh.Points.size(), 0);
   if (!mesh.BuildTopology(error))
   {
@@ -113,6 +114,29 @@ std::vector<unsigned char> RedGreenRefiner::ComputeLabels(int numberOfPoints) co
     put(g.Parent[(g.SplitCorner + 2) % 3], LabelD);
   }
   return labels;
+}
+
+std::vector<std::array<unsigned char, 3>> RedGreenRefiner::ComputeCornerLabels(
+  const TriangleMesh& mesh) const
+{
+  std::vector<std::array<unsigned char, 3>> corners(
+    mesh.Triangles.size(), { LabelN, LabelN, LabelN });
+  for (size_t t = 0; t < corners.size(); ++t)
+  {
+    const std::array<int, 3>& tri = mesh.Triangles[t];
+    const int g = t < this->TriangleGreen.size() ? this->TriangleGreen[t] : -1;
+    for (int c = 0; c < 3 && g >= 0; ++c)
+    {
+      // The role in this green alone (docs/METHOD.md §6.4): its midpoint M, the ends of its
+      // split edge C, its opposite corner D, whatever the vertex is in other greens.
+      const Green& green = this->Greens[g];
+      const int v = tri[c];
+      corners[t][c] = v == green.Midpoint             ? LabelM
+        : v == green.Parent[(green.SplitCorner + 2) % 3] ? LabelD
+                                                          : LabelC;
+    }
+  }
+  return corners;
 }
 
 /// The working state of one Refine() call: the base mesh (greens merged into their
@@ -508,6 +532,7 @@ RefinementCounts RedGreenRefiner::Refine(
   this->Greens.swap(greens);
   this->TriangleGreen.swap(triangleGreen);
   mesh.Labels = this->ComputeLabels(mesh.NumberOfPoints());
+  mesh.CornerLabels = this->ComputeCornerLabels(mesh);
   std::string error;
   if (!mesh.BuildTopology(&error))
   {

@@ -17,10 +17,12 @@
 // (ComputeLabels): all N, then for each green its midpoint M, the ends of its split edge C,
 // its opposite corner D.
 // An undone green's M is an ordinary N vertex of the red split, and its C / D revert
-// to N unless another green still uses them. A vertex can play several roles in the
-// rare cascading cases docs/METHOD.md §6.4 allows us to ignore; then M wins over C, C over D
-// (M is the hanging node whose row matters most for border stability; C has the
-// larger weights of the two and keeps the coarse corner held by the fine side).
+// to N unless another green still uses them. A vertex often plays several roles (wherever a
+// red-green border turns; most often C of one green and D of another: docs/METHOD.md §6.4),
+// so the weights do not come from one label per vertex: every green half carries its
+// corners' roles in that green (ComputeCornerLabels, mesh.CornerLabels; N in other
+// triangles), and the solver weighs each edge by the greens it lies in. The vertex label
+// (M over C over D) is the row of its other edges and what the output's VertexLabel shows.
 //
 // New points are placed by the butterfly scheme (dsButterfly.h) evaluated on the mesh
 // before the step, with green triangles flagged irregular; points on edges that do
@@ -107,6 +109,12 @@ public:
   /// The vertex labels of docs/METHOD.md §6.4 implied by the current greens: what Refine()
   /// writes to mesh.Labels (see the class comment for the priority M > C > D > N).
   std::vector<unsigned char> ComputeLabels(int numberOfPoints) const;
+
+  /// Per triangle of `mesh` (the current one), the label of each corner within that
+  /// triangle: in a green half the corner's role in that green, else N. What
+  /// Refine() writes to mesh.CornerLabels; the solver's weights follow it, so a vertex that
+  /// is C of one green and D of another still gives the second green's M weight 0.
+  std::vector<std::array<unsigned char, 3>> ComputeCornerLabels(const TriangleMesh& mesh) const;
 
 private:
   class Step; // the working state and phases of one Refine() (dsRedGreen.cxx)

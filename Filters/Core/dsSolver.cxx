@@ -13,61 +13,21 @@ namespace dsurf
 namespace
 {
 /// What the umbrella operators read: the mesh itself (Solver::Umbrella) or the
-/// solver's breadth-first copy (the sweeps). Same arithmetic either way.
+/// solver's breadth-first copy (the sweeps). Same arithmetic either way. Weights holds the
+/// normalised weight of every neighbour slot (docs/METHOD.md §6.4); nullptr when every
+/// weight is 1 (AllN).
 struct MeshView
 {
   const int* NeighborOffsets;
   const int* Neighbors;
-  const unsigned char* Labels;
+  const double* Weights;
   const Vec3* Points;
 };
 
-/// Weight sum of vertex v and the normalised weight it gives neighbour slot i.
-/// Uniform fallback when the label weights of v sum to zero: an M vertex whose only
-/// neighbours are M, which red-green cascades do produce now and then (measured: 19 times
-/// in 300 random multi-level runs; docs/METHOD.md §6.4 lets rare cascading cases be ignored).
-struct RingWeights
-{
-  double InvW = 0; ///< 1 / sum of weights
-  bool Uniform = true;
-};
-
 template <bool AllN>
-inline RingWeights ComputeRingWeights(const MeshView& m, int v)
+inline double SlotWeight(const MeshView& m, int v, int slot)
 {
-  const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
-  RingWeights rw;
-  if (AllN)
-  {
-    rw.InvW = 1.0 / (end - begin);
-    return rw;
-  }
-  double w = 0;
-  const unsigned char lv = m.Labels[v];
-  for (int i = begin; i < end; ++i)
-  {
-    w += UmbrellaWeight(lv, m.Labels[m.Neighbors[i]]);
-  }
-  if (w > 0)
-  {
-    rw.InvW = 1.0 / w;
-    rw.Uniform = false;
-  }
-  else
-  {
-    rw.InvW = 1.0 / (end - begin);
-  }
-  return rw;
-}
-
-template <bool AllN>
-inline double SlotWeight(const MeshView& m, int v, int q, const RingWeights& rw)
-{
-  if (AllN || rw.Uniform)
-  {
-    return rw.InvW;
-  }
-  return UmbrellaWeight(m.Labels[v], m.Labels[q]) * rw.InvW;
+  return AllN ? 1.0 / (m.NeighborOffsets[v + 1] - m.NeighborOffsets[v]) : m.Weights[slot];
 }
 
 /// U(v) and the normalised weight that v gives the vertex `other` (0 if not a neighbour).
@@ -75,12 +35,11 @@ template <bool AllN>
 inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOther)
 {
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
-  const RingWeights rw = ComputeRingWeights<AllN>(m, v);
   double s0 = 0, s1 = 0, s2 = 0;
   for (int i = begin; i < end; ++i)
   {
     const int q = m.Neighbors[i];
-    const double w = SlotWeight<AllN>(m, v, q, rw);
+    const double w = SlotWeight<AllN>(m, v, i);
     const Vec3& x = m.Points[q];
     s0 += w * x[0];
     s1 += w * x[1];
@@ -92,6 +51,80 @@ inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOthe
   }
   const Vec3& p = m.Points[v];
   return { s0 - p[0], s1 - p[1], s2 - p[2] };
+}
+
+/// The normalised weights vertex v gives its ring, into w[NeighborOffsets[v] ..
+/// NeighborOffsets[v+1]): the docs/METHOD.md §6.4 table, applied per green. The paper's table
+/// (Lürig, Kobbelt and Ertl 2000, the adaptive multilevel solver) is stated for one green
+/// pair: the row is the updated vertex's role in it, the column its neighbour's. So an edge
+/// of a green half takes the roles of its ends in that green (averaged when both triangles
+/// on the edge are greens), and a vertex that is C of one green and D of another still gives
+/// the second green's M weight 0. Any other edge joins v to a vertex whose roles belong to
+/// greens without this edge: v's row (its label) with column N. (One label per vertex gave
+/// an M next to another green's M weight 0, where a single refined triangle meets three
+/// greens, and the flat sheet of TestHierarchyScatter folded.) Without CornerLabels (labels
+/// set by hand) the table applies to the vertex labels. Uniform when the weights sum to
+/// zero.
+/// `greens` is scratch space (the number of greens on each edge of v).
+void RingWeights(const TriangleMesh& m, int v, double* w, std::vector<int>& greens)
+{
+  const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
+  const int* ring = m.Neighbors.data();
+  const bool perGreen = m.CornerLabels.size() == m.Triangles.size();
+  greens.assign(end - begin, 0);
+  std::fill(w + begin, w + end, 0.0);
+  for (int i = m.VertexTriangleOffsets[v]; i < m.VertexTriangleOffsets[v + 1] && perGreen; ++i)
+  {
+    const int t = m.VertexTriangles[i];
+    const auto& tri = m.Triangles[t];
+    const int c = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    if (m.CornerLabels[t][c] == LabelN)
+    {
+      continue; // not a green half
+    }
+    for (int k = 1; k <= 2; ++k)
+    {
+      const int slot = static_cast<int>(
+        std::lower_bound(ring + begin, ring + end, tri[(c + k) % 3]) - ring);
+      w[slot] += UmbrellaWeight(m.CornerLabels[t][c], m.CornerLabels[t][(c + k) % 3]);
+      ++greens[slot - begin];
+    }
+  }
+  int finest = 0; // the newest neighbour: v's edges to it are its finest (docs/METHOD.md §6.4)
+  for (int i = begin; i < end; ++i)
+  {
+    finest = std::max(finest, m.Levels[m.Neighbors[i]]);
+  }
+  for (int i = begin; i < end; ++i)
+  {
+    const int q = m.Neighbors[i];
+    const int g = greens[i - begin];
+    if (g > 0)
+    {
+      w[i] /= g;
+    }
+    else if (!perGreen)
+    {
+      w[i] = UmbrellaWeight(m.Labels[v], m.Labels[q]);
+    }
+    else
+    {
+      // C weighs its fine side 2 and its coarse side 1 (its D); an edge of no green on the
+      // coarse side (where a refined region's border turns a corner) is coarse too.
+      const bool coarse = m.Labels[v] == LabelC && m.Levels[q] < finest;
+      w[i] = UmbrellaWeight(m.Labels[v], coarse ? LabelD : LabelN);
+    }
+  }
+  double sum = 0;
+  for (int i = begin; i < end; ++i)
+  {
+    sum += w[i];
+  }
+  const double invW = sum > 0 ? 1.0 / sum : 1.0 / (end - begin);
+  for (int i = begin; i < end; ++i)
+  {
+    w[i] = sum > 0 ? w[i] * invW : invW;
+  }
 }
 
 } // namespace
@@ -172,6 +205,16 @@ void Solver::BuildColoring()
   this->ColoredPoints = n;
   this->UniformWeights =
     std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
+  this->Weights.clear();
+  if (!this->UniformWeights)
+  {
+    this->Weights.resize(m.Neighbors.size());
+    std::vector<int> greens;
+    for (int v = 0; v < n; ++v)
+    {
+      RingWeights(m, v, this->Weights.data(), greens);
+    }
+  }
   std::vector<int> color;
   const int numColors = ColorAtDistanceTwo(m, color);
 
@@ -244,7 +287,7 @@ void Solver::CopyTopologyToLocal()
   this->LocalNeighbors.resize(m.Neighbors.size());
   this->LocalFanOffsets.assign(n + 1, 0);
   this->LocalFan.resize(m.VertexTriangles.size());
-  this->LocalLabels.resize(n);
+  this->LocalWeights.resize(this->Weights.size());
   this->LocalPoints.resize(n);
   for (int l = 0; l < n; ++l)
   {
@@ -252,6 +295,10 @@ void Solver::CopyTopologyToLocal()
     int k = this->LocalNeighborOffsets[l];
     for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
     {
+      if (!this->Weights.empty())
+      {
+        this->LocalWeights[k] = this->Weights[i];
+      }
       this->LocalNeighbors[k++] = this->Local[m.Neighbors[i]];
     }
     this->LocalNeighborOffsets[l + 1] = k;
@@ -305,15 +352,16 @@ Vec3 Solver::Umbrella(int v) const
   {
     return { 0, 0, 0 };
   }
-  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), m.Labels.data(),
+  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), this->Weights.data(),
     m.Points.data() };
-  return UmbrellaOf<false>(view, v, -1, &unused);
+  return this->UniformWeights ? UmbrellaOf<true>(view, v, -1, &unused)
+                              : UmbrellaOf<false>(view, v, -1, &unused);
 }
 
 inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
-    this->LocalLabels.data(), this->LocalPoints.data() };
+    this->LocalWeights.data(), this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau;
 
@@ -325,11 +373,10 @@ inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   {
     constexpr bool AllN = decltype(allN)::value;
     u = UmbrellaOf<AllN>(m, v, -1, &unused);
-    const RingWeights rw = ComputeRingWeights<AllN>(m, v);
     for (int i = begin; i < end; ++i)
     {
       const int q = m.Neighbors[i];
-      const double w = SlotWeight<AllN>(m, v, q, rw);
+      const double w = SlotWeight<AllN>(m, v, i);
       double back = 0; // the normalised weight q gives p
       const Vec3 uq = UmbrellaOf<AllN>(m, q, v, &back);
       u2acc = u2acc + w * uq;
@@ -492,13 +539,12 @@ SweepStatistics Solver::CombineStatistics(const std::vector<ChunkSums>& chunks) 
 
 void Solver::RefreshLocal(int first, int last)
 {
-  // The caller may have moved points (or relabelled them) since the last call.
+  // The caller may have moved points since the last call (labels are read by SetMesh()).
   const TriangleMesh& m = *this->Mesh;
   for (int l = first; l < last; ++l)
   {
     const int v = this->Original[l];
     this->LocalPoints[l] = m.Points[v];
-    this->LocalLabels[l] = m.Labels[v];
   }
 }
 

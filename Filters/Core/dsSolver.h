@@ -1,5 +1,6 @@
 // The single-level deformable-surface solver (docs/METHOD.md §3-5): umbrella operators with
-// the label weights of docs/METHOD.md §6.4, one fixed-point step per vertex, Gauss-Seidel
+// the label weights of docs/METHOD.md §6.4 (per edge, from the labels its triangles give its
+// ends: TriangleMesh::CornerLabels), one fixed-point step per vertex, Gauss-Seidel
 // in place, and the self-intersection rule for the external force (dsSelfIntersectionRule.h).
 // Plain C++, no pipeline types; the hierarchy (refinement, sigma halving) drives it from
 // outside. The parallel sweeps run as steps of a StepScheduler (dsStepScheduler.h).
@@ -59,7 +60,8 @@ public:
   const SolverParameters& GetParameters() const { return this->Parameters; }
 
   /// The mesh to deform in place. It must have BuildTopology() done. Rebuilds the
-  /// colouring: call again after the connectivity changed (refinement).
+  /// colouring and the weights (from Labels / CornerLabels): call again after the
+  /// connectivity or the labels changed (refinement).
   void SetMesh(TriangleMesh* mesh);
   TriangleMesh* GetMesh() const { return this->Mesh; }
 
@@ -130,7 +132,7 @@ private:
   int SerialSweeps(int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
   int ParallelSweeps(
     int numThreads, int maxSweeps, const std::function<bool(const SweepStatistics&)>& afterSweep);
-  /// Copies the mesh's points and labels of local vertices [first, last) into the local copy.
+  /// Copies the mesh's points of local vertices [first, last) into the local copy.
   void RefreshLocal(int first, int last);
   void BuildColoring();
   /// Writes local points and results [first, last) back to the mesh and the outputs.
@@ -176,6 +178,9 @@ private:
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
+  /// Otherwise the normalised weight of every neighbour slot of the mesh (aligned with
+  /// TriangleMesh::Neighbors), from the labels per triangle (docs/METHOD.md §6.4).
+  std::vector<double> Weights;
   /// Vertices of colour k: Vertices[Offsets[k] .. Offsets[k+1]) (CSR), ascending ids.
   struct ColorClasses
   {
@@ -190,7 +195,7 @@ private:
   std::vector<int> LocalNeighborOffsets, LocalNeighbors;
   std::vector<int> LocalFanOffsets;         ///< triangles around each local vertex
   std::vector<std::array<int, 3>> LocalFan; ///< their corners (local ids, mesh order)
-  std::vector<unsigned char> LocalLabels;
+  std::vector<double> LocalWeights; ///< Weights in the local layout (same slot order per vertex)
   std::vector<Vec3> LocalPoints; ///< refreshed from the mesh by every call
   struct VertexResult
   {

@@ -129,6 +129,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   std::vector<Vec3> Points;
   std::vector<std::array<int, 3>> Triangles; ///< consistently oriented (outward for closed input)
   std::vector<unsigned char> Labels;         ///< VertexLabel per point (N when empty)
+  /// Per triangle, the label of each corner within that triangle (docs/METHOD.md §6.4): in a
+  /// green half its role in that green pair (C, M, D), N in other triangles. A vertex
+  /// can play different roles in different greens; the weights follow each green's own.
+  /// Empty (or stale in size): Labels apply everywhere. Kept in corner order by whoever
+  /// reorders a triangle's corners.
+  std::vector<std::array<unsigned char, 3>> CornerLabels;
   std::vector<int> Levels;                   ///< refinement level that created each point
 
   // --- topology, derived by BuildTopology() ---

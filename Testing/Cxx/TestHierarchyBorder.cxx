@@ -4,6 +4,7 @@
 // put (< 1% of their local edge length) and every triangle keeps a min angle >= 20
 // degrees; with all weights = 1 they drift measurably more.
 #include "DSSurfaceInvariants.h"
+#include "TestSolverMeshes.h"
 #include "dsRedGreen.h"
 #include "dsSolver.h"
 
@@ -14,38 +15,6 @@ using namespace dsurf;
 
 namespace
 {
-/// Equilateral triangle grid (n x n points, unit edges), a flat open sheet.
-TriangleMesh EquilateralSheet(int n)
-{
-  TriangleMesh m;
-  const double s = std::sqrt(3.0) / 2.0;
-  for (int j = 0; j < n; ++j)
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      m.Points.push_back({ i + 0.5 * (j % 2), j * s, 0.0 });
-    }
-  }
-  auto id = [n](int i, int j) { return j * n + i; };
-  for (int j = 0; j + 1 < n; ++j)
-  {
-    for (int i = 0; i + 1 < n; ++i)
-    {
-      if (j % 2 == 0)
-      {
-        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i, j + 1) });
-        m.Triangles.push_back({ id(i + 1, j), id(i + 1, j + 1), id(i, j + 1) });
-      }
-      else
-      {
-        m.Triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
-        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
-      }
-    }
-  }
-  return m;
-}
-
 struct Drift
 {
   double MaxRelative = 0; ///< max over border vertices of |moved| / local edge length
@@ -56,7 +25,7 @@ struct Drift
 
 Drift Run(bool useLabelWeights, int sweeps)
 {
-  TriangleMesh m = EquilateralSheet(40);
+  TriangleMesh m = dstest::EquilateralSheet(40);
   RedGreenRefiner rg;
   std::string err;
   DS_CHECK(rg.Initialize(m, &err), err);
@@ -81,17 +50,7 @@ Drift Run(bool useLabelWeights, int sweeps)
   }
   const std::vector<Vec3> start = m.Points;
   const TriangleMesh refined = m;
-
-  Solver solver;
-  SolverParameters sp;
-  sp.UseLabelWeights = useLabelWeights;
-  solver.SetParameters(sp);
-  solver.SetMesh(&m);
-  solver.SetForceField(nullptr, 0.0);
-  for (int s = 0; s < sweeps; ++s)
-  {
-    solver.Sweep();
-  }
+  dstest::SweepWithoutForce(m, useLabelWeights, sweeps);
 
   dstest::CheckSurfaceInvariants(refined, m, "sheet after the sweeps");
   Drift d;

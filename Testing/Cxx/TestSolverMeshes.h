@@ -1,8 +1,10 @@
-// Meshes shared by the solver tests and the solver benchmark: an icosphere and a
-// subdivided cube surface (the paper's 12 288 / 49 152 triangle test meshes).
+// Meshes shared by the solver tests and the solver benchmark: an icosphere, a
+// subdivided cube surface (the paper's 12 288 / 49 152 triangle test meshes) and a flat
+// equilateral sheet.
 #ifndef TestSolverMeshes_h
 #define TestSolverMeshes_h
 
+#include "dsSolver.h"
 #include "dsTriangleMesh.h"
 
 #include "vtkCellArray.h"
@@ -115,6 +117,51 @@ inline dsurf::TriangleMesh MakeCubeSurface(int levels, double s, const Vec3& c)
   m.Triangles = f;
   return m;
 }
+/// Equilateral triangle grid (n x n points, unit edges), a flat open sheet.
+inline dsurf::TriangleMesh EquilateralSheet(int n)
+{
+  dsurf::TriangleMesh m;
+  const double s = std::sqrt(3.0) / 2.0;
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      m.Points.push_back({ i + 0.5 * (j % 2), j * s, 0.0 });
+    }
+  }
+  auto id = [n](int i, int j) { return j * n + i; };
+  for (int j = 0; j + 1 < n; ++j)
+  {
+    for (int i = 0; i + 1 < n; ++i)
+    {
+      if (j % 2 == 0)
+      {
+        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i, j + 1) });
+        m.Triangles.push_back({ id(i + 1, j), id(i + 1, j + 1), id(i, j + 1) });
+      }
+      else
+      {
+        m.Triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      }
+    }
+  }
+  return m;
+}
+
+/// `sweeps` solver sweeps on m with no external force (a flat sheet has nowhere to go: every
+/// movement is drift), with the docs/METHOD.md §6.4 weights or all weights 1.
+inline void SweepWithoutForce(dsurf::TriangleMesh& m, bool useLabelWeights, int sweeps)
+{
+  dsurf::Solver solver;
+  dsurf::SolverParameters sp;
+  sp.UseLabelWeights = useLabelWeights;
+  solver.SetParameters(sp);
+  solver.SetMesh(&m);
+  solver.SetForceField(nullptr, 0.0);
+  solver.Sweeps(sweeps, [](const dsurf::SweepStatistics&) { return true; });
+}
+
 /// The core mesh as a vtkPolyData of triangles (a filter's initial surface).
 inline vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
 {
