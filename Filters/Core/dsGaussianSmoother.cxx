@@ -244,30 +244,32 @@ void FIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* 
   }
 }
 
-// One step of the cascade over a whole row: row = the cascade applied to row, with the
-// states of column i in state[0..K-1][i]. The pair sections write their new value over the
-// older of their two states and swap the two arrays, so nothing is copied; restrict and the
-// coefficients in locals let the loop vectorise.
-void CascadeRowStep(float* row, int nx, const AxisSmoother& s, double* state[K])
+// One step of the cascade over a whole row, in place: f1 holds the real section's state, f2
+// and f3 the pair sections' newest states, f2Old and f3Old their older ones, which receive the
+// new values. Restrict parameters (and the coefficients in locals) let the loop vectorise.
+void CascadeRow(float* __restrict row, int nx, const AxisSmoother& s, double* __restrict f1,
+  const double* __restrict f2, double* __restrict f2Old, const double* __restrict f3,
+  double* __restrict f3Old)
 {
-  double* __restrict f1 = state[0];
-  const double* __restrict f2 = state[1];
-  double* __restrict f2Old = state[2];
-  const double* __restrict f3 = state[3];
-  double* __restrict f3Old = state[4];
-  float* __restrict out = row;
   const double br = s.BR, r = s.R, b2 = s.BC[0], c21 = s.C1[0], c22 = s.C2[0], b3 = s.BC[1],
                c31 = s.C1[1], c32 = s.C2[1];
   for (int i = 0; i < nx; ++i)
   {
-    const double a = br * out[i] + r * f1[i];
+    const double a = br * row[i] + r * f1[i];
     const double b = b2 * a + c21 * f2[i] + c22 * f2Old[i];
     const double c = b3 * b + c31 * f3[i] + c32 * f3Old[i];
     f1[i] = a;
     f2Old[i] = b;
     f3Old[i] = c;
-    out[i] = static_cast<float>(c);
+    row[i] = static_cast<float>(c);
   }
+}
+
+// The cascade over a whole row with the states of column i in state[0..K-1][i]; the pair
+// sections' two state arrays swap, so nothing is copied.
+void CascadeRowStep(float* row, int nx, const AxisSmoother& s, double* state[K])
+{
+  CascadeRow(row, nx, s, state[0], state[1], state[2], state[3], state[4]);
   std::swap(state[1], state[2]);
   std::swap(state[3], state[4]);
 }
