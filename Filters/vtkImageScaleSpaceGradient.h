@@ -15,19 +15,16 @@
  * - f is the array chosen with SetInputArrayToProcess (ParaView: Scalars), any
  *   scalar type, converted to float; default the active point scalars.
  * - G_sigma is separable and isotropic in world units: along axis a it has
- *   sigma / spacing[a] voxels. Each axis uses the 3rd-order recursive Gaussian of
- *   Young & van Vliet (forward + backward pass, constant cost per voxel whatever
- *   sigma is) with q solved so the impulse response variance is exactly sigma^2,
- *   and the Triggs & Sdika (2006) start values for a replicated border, so the
- *   border does not ring. Axes with fewer than 1 voxel of sigma use a sampled
- *   Gaussian (radius 4 sigma, width adjusted so the taps' variance is sigma^2);
- *   sigma below 0.001 voxel means no smoothing. The recursive impulse response
- *   has exactly the variance sigma^2 but is not exactly a Gaussian: a 3-pole
- *   filter has a heavier (exponential) tail, ~0.5 % of its mass beyond 4 sigma,
- *   so matching the variance leaves a narrower core: a Gaussian fitted to it has
- *   0.74 sigma at sigma = 1 voxel, 0.87 at 2, 0.91 at 5 to 10, and it departs from
- *   the Gaussian of the same variance by 10-25 % of the peak (measured in review;
- *   edge positions are unaffected, the basin of attraction is that much narrower).
+ *   sigma / spacing[a] voxels. From 3 voxels on, an axis uses a 5th-order recursive
+ *   Gaussian (the poles of van Vliet, Young & Verbeek 1998 with q solved so the
+ *   impulse response variance is exactly sigma^2; forward + backward pass, constant
+ *   cost per voxel whatever sigma is) with the Triggs & Sdika (2006) start values for
+ *   a replicated border, so the border does not ring. Its impulse response departs
+ *   from the sampled Gaussian by at most 0.11 % of the peak (0.1 % from 5 voxels on),
+ *   and the pull of an edge 2-3 sigma away is within 3.1 % of a true Gaussian's.
+ *   Below 3 voxels the axis uses the sampled Gaussian itself (radius 4 sigma; below
+ *   ~0.8 voxel its width is raised so the taps keep the variance sigma^2). Sigma
+ *   below 0.001 voxel means no smoothing. Measurements: docs/METHOD.md section 6c.
  * - Derivatives are central differences (one-sided on the border) in index
  *   space, taken to world coordinates by Direction * diag(1/Spacing). Spacing,
  *   origin, extent and the direction matrix are honoured: Force is a world vector.
@@ -52,7 +49,8 @@
  * lives in the Force buffer until P is known). The max-normalisation follows
  * the strongest edge: one very strong edge (metal in CT) weakens the others.
  * Bad input (no scalars, a 2-D or empty image, multi-component array, NaN/Inf
- * values, a non-rotation direction matrix) gives an error and an empty output.
+ * values, a non-rotation direction matrix, a sigma of more than 100000 voxels along an
+ * axis) gives an error and an empty output.
  *
  * The computation lives in dsScaleSpace.h (dsurf::ComputeScaleSpaceForce), which
  * vtkDeformableSurfaceFilter also calls, so the two never disagree.

@@ -1,5 +1,6 @@
 #include "dsScaleSpace.h"
 
+#include "dsGaussianSmoother.h"
 #include "dsThreads.h"
 #include "dsTrilinear.h"
 
@@ -108,359 +109,12 @@ double ForceField::SamplePotential(const double x[3]) const
 
 namespace
 {
-//------------------------------------------------------------------------------
-// One axis of the separable Gaussian. Recursive (Young & van Vliet 1995, 3rd order):
-//   forward  w[n] = B x[n] + a1 w[n-1] + a2 w[n-2] + a3 w[n-3]
-//   backward y[n] = B w[n] + a1 y[n+1] + a2 y[n+2] + a3 y[n+3]
-// The coefficients are double on purpose: B ~ 1e-5 at sigma 43, and float
-// coefficients would miss the unit DC gain by percents.
-struct AxisSmoother
-{
-  enum Kind
-  {
-    Identity,
-    FIR,
-    IIR
-  } Type = Identity;
-  std::vector<double> Taps; // FIR: 2R+1 taps, centre at R
-  int Radius = 0;
-  double B = 1, A1 = 0, A2 = 0, A3 = 0;
-  double M[9] = { 0 }; // Triggs-Sdika right-border start, row-major
-};
-
-void YvVCoefficients(double q, double& B, double& a1, double& a2, double& a3)
-{
-  const double q2 = q * q, q3 = q2 * q;
-  const double b0 = 1.57825 + 2.44413 * q + 1.4281 * q2 + 0.422205 * q3;
-  const double b1 = 2.44413 * q + 2.85619 * q2 + 1.26661 * q3;
-  const double b2 = -(1.4281 * q2 + 1.26661 * q3);
-  const double b3 = 0.422205 * q3;
-  a1 = b1 / b0;
-  a2 = b2 / b0;
-  a3 = b3 / b0;
-  B = 1.0 - (a1 + a2 + a3);
-}
-
-// Variance of the forward+backward impulse response: twice that of the causal part,
-// from the generating function G(t) = B / (1 - a1 t - a2 t^2 - a3 t^3) at t = 1.
-double IIRVariance(double q)
-{
-  double B, a1, a2, a3;
-  YvVCoefficients(q, B, a1, a2, a3);
-  const double d1 = -(a1 + 2 * a2 + 3 * a3); // D'(1)
-  const double d2 = -(2 * a2 + 6 * a3);      // D''(1)
-  const double g1 = -d1 / B;
-  const double g2 = 2 * d1 * d1 / (B * B) - d2 / B;
-  return 2.0 * (g2 + g1 - g1 * g1);
-}
-
-// Right-border start (Triggs & Sdika 2006) for an input held constant at u past the
-// end: (y[N-1], y[N], y[N+1]) - u = M (w[N-1], w[N-2], w[N-3]) - u. M is obtained by
-// running the two recursions on the basis states until they have died out, which
-// avoids transcribing the closed form and is exact to rounding.
-void TriggsMatrix(AxisSmoother& s, double sigmaVoxels)
-{
-  const int L = static_cast<int>(std::min(40.0 * sigmaVoxels + 100.0, 4.0e6));
-  std::vector<double> d(L + 6), e(L + 6);
-  for (int c = 0; c < 3; ++c)
-  {
-    std::fill(d.begin(), d.end(), 0.0);
-    std::fill(e.begin(), e.end(), 0.0);
-    // index t: 0 <-> N-3, 1 <-> N-2, 2 <-> N-1
-    d[2 - c] = 1.0;
-    for (int t = 3; t < L + 3; ++t)
-    {
-      d[t] = s.A1 * d[t - 1] + s.A2 * d[t - 2] + s.A3 * d[t - 3];
-    }
-    for (int t = L + 2; t >= 2; --t)
-    {
-      e[t] = s.B * d[t] + s.A1 * e[t + 1] + s.A2 * e[t + 2] + s.A3 * e[t + 3];
-    }
-    s.M[0 * 3 + c] = e[2];
-    s.M[1 * 3 + c] = e[3];
-    s.M[2 * 3 + c] = e[4];
-  }
-}
-
-AxisSmoother MakeSmoother(double sigmaVoxels)
-{
-  AxisSmoother s;
-  if (!(sigmaVoxels > 1e-3))
-  {
-    return s;
-  }
-  if (sigmaVoxels < 1.0)
-  {
-    // The 3-pole recursion cannot be this narrow; a sampled Gaussian is cheap here.
-    s.Type = AxisSmoother::FIR;
-    s.Radius = std::max(1, static_cast<int>(std::ceil(4.0 * sigmaVoxels)));
-    s.Taps.resize(2 * s.Radius + 1);
-    auto build = [&s](double width)
-    {
-      double sum = 0.0, var = 0.0;
-      for (int k = -s.Radius; k <= s.Radius; ++k)
-      {
-        const double w = std::exp(-0.5 * k * k / (width * width));
-        s.Taps[k + s.Radius] = w;
-        sum += w;
-        var += w * k * k;
-      }
-      for (double& w : s.Taps)
-      {
-        w /= sum;
-      }
-      return var / sum;
-    };
-    // Sampling a narrow Gaussian loses variance; widen it so the taps have sigma^2.
-    double lo = 0.5 * sigmaVoxels, hi = 2.0 * sigmaVoxels;
-    if (build(hi) > sigmaVoxels * sigmaVoxels)
-    {
-      for (int it = 0; it < 100; ++it)
-      {
-        const double mid = 0.5 * (lo + hi);
-        (build(mid) < sigmaVoxels * sigmaVoxels ? lo : hi) = mid;
-      }
-      build(0.5 * (lo + hi));
-    }
-    else
-    {
-      build(sigmaVoxels);
-    }
-    return s;
-  }
-  s.Type = AxisSmoother::IIR;
-  // Young-van Vliet's q(sigma) fit misses the variance by a few percent; solve for
-  // the q that gives exactly sigma^2 so gradient magnitudes are at the stated scale.
-  const double target = sigmaVoxels * sigmaVoxels;
-  double lo = 0.05, hi = 2.0 * sigmaVoxels + 10.0;
-  for (int it = 0; it < 200 && hi - lo > 1e-12 * hi; ++it)
-  {
-    const double mid = 0.5 * (lo + hi);
-    (IIRVariance(mid) < target ? lo : hi) = mid;
-  }
-  YvVCoefficients(0.5 * (lo + hi), s.B, s.A1, s.A2, s.A3);
-  TriggsMatrix(s, sigmaVoxels);
-  return s;
-}
-
-//------------------------------------------------------------------------------
-// One contiguous line, in place (in may equal out). w: n doubles of scratch.
-void IIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* w)
-{
-  const double x0 = in[0];
-  const double u = in[n - 1];
-  double w1 = x0, w2 = x0, w3 = x0;
-  for (int i = 0; i < n; ++i)
-  {
-    const double v = s.B * in[i] + s.A1 * w1 + s.A2 * w2 + s.A3 * w3;
-    w[i] = v;
-    w3 = w2;
-    w2 = w1;
-    w1 = v;
-  }
-  const double d0 = w1 - u, d1 = w2 - u, d2 = w3 - u; // w[N-1], w[N-2], w[N-3]
-  double y1 = u + s.M[0] * d0 + s.M[1] * d1 + s.M[2] * d2;
-  double y2 = u + s.M[3] * d0 + s.M[4] * d1 + s.M[5] * d2;
-  double y3 = u + s.M[6] * d0 + s.M[7] * d1 + s.M[8] * d2;
-  out[n - 1] = static_cast<float>(y1);
-  for (int i = n - 2; i >= 0; --i)
-  {
-    const double v = s.B * w[i] + s.A1 * y1 + s.A2 * y2 + s.A3 * y3;
-    out[i] = static_cast<float>(v);
-    y3 = y2;
-    y2 = y1;
-    y1 = v;
-  }
-}
-
-void FIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* pad)
-{
-  const int R = s.Radius;
-  for (int i = -R; i < n + R; ++i)
-  {
-    pad[i + R] = in[std::min(std::max(i, 0), n - 1)];
-  }
-  for (int i = 0; i < n; ++i)
-  {
-    double v = 0.0;
-    for (int k = 0; k <= 2 * R; ++k)
-    {
-      v += s.Taps[k] * pad[i + k];
-    }
-    out[i] = static_cast<float>(v);
-  }
-}
-
-// N rows of nx contiguous floats, row r at base + r*stride, filtered along r in place.
-// The recursion runs over whole rows so memory access stays sequential and the
-// inner loops vectorise. scratch: 4*nx doubles (IIR) or N*nx floats (FIR).
-void IIRRows(
-  float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmoother& s, double* scratch)
-{
-  double* s1 = scratch;
-  double* s2 = scratch + nx;
-  double* s3 = scratch + 2 * nx;
-  double* last = scratch + 3 * nx;
-  const double B = s.B, a1 = s.A1, a2 = s.A2, a3 = s.A3;
-  {
-    const float* r0 = base;
-    const float* rl = base + (N - 1) * stride;
-    for (int i = 0; i < nx; ++i)
-    {
-      s1[i] = s2[i] = s3[i] = r0[i];
-      last[i] = rl[i];
-    }
-  }
-  for (int r = 0; r < N; ++r)
-  {
-    float* row = base + r * stride;
-    for (int i = 0; i < nx; ++i)
-    {
-      const double v = B * row[i] + a1 * s1[i] + a2 * s2[i] + a3 * s3[i];
-      row[i] = static_cast<float>(v);
-      s3[i] = v;
-    }
-    std::swap(s2, s3); // (s1,s2,s3) <- (s3,s1,s2)
-    std::swap(s1, s2);
-  }
-  {
-    const double* M = s.M;
-    float* row = base + (N - 1) * stride;
-    for (int i = 0; i < nx; ++i)
-    {
-      const double u = last[i];
-      const double d0 = s1[i] - u, d1 = s2[i] - u, d2 = s3[i] - u;
-      const double y1 = u + M[0] * d0 + M[1] * d1 + M[2] * d2;
-      const double y2 = u + M[3] * d0 + M[4] * d1 + M[5] * d2;
-      const double y3 = u + M[6] * d0 + M[7] * d1 + M[8] * d2;
-      s1[i] = y1;
-      s2[i] = y2;
-      s3[i] = y3;
-      row[i] = static_cast<float>(y1);
-    }
-  }
-  for (int r = N - 2; r >= 0; --r)
-  {
-    float* row = base + r * stride;
-    for (int i = 0; i < nx; ++i)
-    {
-      const double v = B * row[i] + a1 * s1[i] + a2 * s2[i] + a3 * s3[i];
-      row[i] = static_cast<float>(v);
-      s3[i] = v;
-    }
-    std::swap(s2, s3);
-    std::swap(s1, s2);
-  }
-}
-
-void FIRRows(float* base, int N, std::ptrdiff_t stride, int nx, const AxisSmoother& s, float* copy)
-{
-  for (int r = 0; r < N; ++r)
-  {
-    std::copy(
-      base + r * stride, base + r * stride + nx, copy + static_cast<std::ptrdiff_t>(r) * nx);
-  }
-  const int R = s.Radius;
-  for (int r = 0; r < N; ++r)
-  {
-    float* row = base + r * stride;
-    for (int i = 0; i < nx; ++i)
-    {
-      row[i] = 0.0f;
-    }
-    for (int k = -R; k <= R; ++k)
-    {
-      const float* src =
-        copy + static_cast<std::ptrdiff_t>(std::min(std::max(r + k, 0), N - 1)) * nx;
-      const float w = static_cast<float>(s.Taps[k + R]);
-      for (int i = 0; i < nx; ++i)
-      {
-        row[i] += w * src[i];
-      }
-    }
-  }
-}
-
 // Runs body with vtkSMPTools on the STDThread backend (the machine default is
 // Sequential), limited to n threads.
 template <typename F>
 void WithThreads(int n, F&& body)
 {
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ ResolveThreads(n), "STDThread", false }, body);
-}
-
-// Separable smoothing of src into dst (dst may equal src). Called inside WithThreads.
-void Smooth(const float* src, float* dst, const int dims[3], const double sigmaVoxels[3])
-{
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(nx) * ny;
-  const AxisSmoother sx = MakeSmoother(sigmaVoxels[0]);
-  const AxisSmoother sy = MakeSmoother(sigmaVoxels[1]);
-  const AxisSmoother sz = MakeSmoother(sigmaVoxels[2]);
-
-  // x: one line per (j,k).
-  const long long nLines = static_cast<long long>(ny) * nz;
-  vtkSMPTools::For(0, nLines,
-    [&](long long begin, long long end)
-    {
-      std::vector<double> scratch(nx + 2 * (sx.Radius + 1));
-      for (long long l = begin; l < end; ++l)
-      {
-        const float* in = src + l * nx;
-        float* out = dst + l * nx;
-        switch (sx.Type)
-        {
-          case AxisSmoother::IIR:
-            IIRLine(in, out, nx, sx, scratch.data());
-            break;
-          case AxisSmoother::FIR:
-            FIRLine(in, out, nx, sx, scratch.data());
-            break;
-          default:
-            if (in != out)
-            {
-              std::copy(in, in + nx, out);
-            }
-        }
-      }
-    });
-
-  auto rows =
-    [&](const AxisSmoother& s, long long count, int N, std::ptrdiff_t outer, std::ptrdiff_t stride)
-  {
-    if (s.Type == AxisSmoother::Identity)
-    {
-      return;
-    }
-    vtkSMPTools::For(0, count,
-      [&](long long begin, long long end)
-      {
-        std::vector<double> dscratch;
-        std::vector<float> fscratch;
-        if (s.Type == AxisSmoother::IIR)
-        {
-          dscratch.resize(4 * static_cast<std::size_t>(nx));
-        }
-        else
-        {
-          fscratch.resize(static_cast<std::size_t>(N) * nx);
-        }
-        for (long long c = begin; c < end; ++c)
-        {
-          float* base = dst + c * outer;
-          if (s.Type == AxisSmoother::IIR)
-          {
-            IIRRows(base, N, stride, nx, s, dscratch.data());
-          }
-          else
-          {
-            FIRRows(base, N, stride, nx, s, fscratch.data());
-          }
-        }
-      });
-  };
-  rows(sy, nz, ny, slice, nx); // y: for each k, rows j
-  rows(sz, ny, nz, nx, slice); // z: for each j, rows k
 }
 
 bool Validate(const ImageGeometry& g, double sigma, std::string* error)
@@ -497,6 +151,19 @@ bool Validate(const ImageGeometry& g, double sigma, std::string* error)
   if (!std::isfinite(sigma) || sigma < 0.0)
   {
     return fail("sigma must be finite and >= 0");
+  }
+  // The recursive Gaussian's border start is built over ~40 sigma samples and its sections
+  // lose precision as their poles near 1 (dsGaussianSmoother.cxx): far beyond any image.
+  for (int a = 0; a < 3; ++a)
+  {
+    if (sigma / g.Spacing[a] > 1e5)
+    {
+      char text[160];
+      std::snprintf(text, sizeof text,
+        "sigma (%g) is too large: %g voxels along %c, at most 100000", sigma, sigma / g.Spacing[a],
+        "xyz"[a]);
+      return fail(text);
+    }
   }
   // World <-> index uses the transpose as the inverse of the direction matrix, and the
   // gradient is turned by it: a shear or a scale would silently give wrong forces.
@@ -578,7 +245,7 @@ double NormalizeEdgesLocally(
   float* g, float* scratch, const int dims[3], const double sigmaVoxels[3], double floor)
 {
   const double wide[3] = { 2 * sigmaVoxels[0], 2 * sigmaVoxels[1], 2 * sigmaVoxels[2] };
-  Smooth(g, scratch, dims, wide);
+  SmoothGaussianSeparable(g, scratch, dims, wide);
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   std::vector<double> maxima(dims[2], 0.0);
   ForEachVoxelSlice(dims,
@@ -722,34 +389,6 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
 } // namespace
 
 //------------------------------------------------------------------------------
-double SmootherVariance(double sigmaVoxels)
-{
-  const AxisSmoother s = MakeSmoother(sigmaVoxels);
-  switch (s.Type)
-  {
-    case AxisSmoother::IIR:
-    {
-      // From the coefficients actually in use, not from the target.
-      const double d1 = -(s.A1 + 2 * s.A2 + 3 * s.A3);
-      const double d2 = -(2 * s.A2 + 6 * s.A3);
-      const double g1 = -d1 / s.B;
-      const double g2 = 2 * d1 * d1 / (s.B * s.B) - d2 / s.B;
-      return 2.0 * (g2 + g1 - g1 * g1);
-    }
-    case AxisSmoother::FIR:
-    {
-      double v = 0.0;
-      for (int k = -s.Radius; k <= s.Radius; ++k)
-      {
-        v += s.Taps[k + s.Radius] * k * k;
-      }
-      return v;
-    }
-    default:
-      return 0.0;
-  }
-}
-
 bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, int numberOfThreads,
   std::string* error)
 {
@@ -763,7 +402,8 @@ bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, 
   }
   const double sv[3] = { sigma / geometry.Spacing[0], sigma / geometry.Spacing[1],
     sigma / geometry.Spacing[2] };
-  WithThreads(numberOfThreads, [&]() { Smooth(volume, volume, geometry.Dimensions, sv); });
+  WithThreads(
+    numberOfThreads, [&]() { SmoothGaussianSeparable(volume, volume, geometry.Dimensions, sv); });
   return true;
 }
 
@@ -790,7 +430,7 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
       // The first third of the force buffer holds G_sigma*f until P is known; the rest is
       // scratch for the local edge normalisation.
       float* smooth = force;
-      Smooth(scalars, smooth, dims, sv);
+      SmoothGaussianSeparable(scalars, smooth, dims, sv);
       const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
       float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
       CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);

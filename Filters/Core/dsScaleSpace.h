@@ -3,10 +3,10 @@
 // vtkDeformableSurfaceFilter so the two never disagree.
 //
 // What is computed (also stated in vtkImageScaleSpaceGradient.h):
-//   s  = G_sigma * f          separable recursive Gaussian (Young-van Vliet, 3rd order,
-//                             forward + backward, Triggs-Sdika replicate-border start),
-//                             sigma isotropic in world units: sigma_axis = sigma / spacing;
-//                             axes with sigma_axis < 1 voxel use a sampled Gaussian FIR.
+//   s  = G_sigma * f          separable Gaussian, sigma isotropic in world units:
+//                             sigma_axis = sigma / spacing; a sampled Gaussian below 3 voxels,
+//                             a 5th-order recursive filter (van Vliet-Young-Verbeek) from 3 on;
+//                             replicated border (dsGaussianSmoother.h, docs/METHOD.md §6c).
 //   g  = |grad s|             central differences (one-sided at the border), index
 //                             derivatives taken to world by Direction * diag(1/spacing).
 //   NormalizePotential on:    P = -(w_edge * g / max g + w_image * (s - min s) / (max s - min s))
@@ -120,11 +120,6 @@ DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const float* sca
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothGaussian(float* volume, const ImageGeometry& geometry,
   double sigma, int numberOfThreads, std::string* error);
-
-/// Variance (in voxels^2) of the 1-D impulse response the smoother applies at
-/// sigmaVoxels; equals sigmaVoxels^2 by construction for the recursive branch.
-/// Exposed for tests.
-DEFORMABLESURFACEFILTERS_EXPORT double SmootherVariance(double sigmaVoxels);
 } // namespace dsurf
 
 #endif

@@ -468,7 +468,7 @@ std::vector<Row> ParameterRows()
       [](vtkDeformableSurfaceFilter* f) { f->SetRefinementThreshold(NaN); },
       "RefinementThreshold is not a finite number", "", Output::Empty },
     { "Sigma +Inf (clamped to VTK_DOUBLE_MAX)", ball, start,
-      [](vtkDeformableSurfaceFilter* f) { f->SetSigma(Inf); }, "the force field is not finite", "",
+      [](vtkDeformableSurfaceFilter* f) { f->SetSigma(Inf); }, "voxels along x, at most 100000", "",
       Output::Empty },
     { "EdgeWeight +Inf (clamped to VTK_DOUBLE_MAX)", ball, start,
       [](vtkDeformableSurfaceFilter* f) { f->SetEdgeWeight(Inf); }, "the force field is not finite",
@@ -483,8 +483,9 @@ std::vector<Row> ParameterRows()
   };
 }
 
-/// vtkImageScaleSpaceGradient's parameters: NaN is refused by name, a value near
-/// VTK_DOUBLE_MAX (what +Inf clamps to) overflows the field and is refused too.
+/// vtkImageScaleSpaceGradient's parameters: NaN is refused by name, a sigma near
+/// VTK_DOUBLE_MAX (what +Inf clamps to) as too many voxels, a weight near it overflows the
+/// field and is refused too.
 void GradientParameterRows()
 {
   const std::vector<std::pair<std::string, std::function<void(vtkImageScaleSpaceGradient*)>>>
@@ -500,7 +501,7 @@ void GradientParameterRows()
         [](vtkImageScaleSpaceGradient* g) { g->SetEdgeWeight(NaN); } },
       { "ImageWeight is not a finite number",
         [](vtkImageScaleSpaceGradient* g) { g->SetImageWeight(NaN); } },
-      { "the force field is not finite", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(Inf); } },
+      { "voxels along x, at most 100000", [](vtkImageScaleSpaceGradient* g) { g->SetSigma(Inf); } },
       { "the force field is not finite",
         [](vtkImageScaleSpaceGradient* g) { g->SetEdgeWeight(Inf); } },
       { "the force field is not finite",

@@ -137,7 +137,9 @@ int TestDeformableSurfaceRule(int, char*[])
   const Quality rule = Run(image, start, true, c, halfSide);
   const Quality raw = Run(image, start, false, c, halfSide);
 
-  DS_CHECK_LE(rule.MeanDistance, 1.0, "with the rule: mean distance to the cube (voxels)");
+  // 1.08 measured (0.72 with the 3-pole filter used before, whose core was ~0.87 sigma wide:
+  // a true sigma of 4 rounds the cube's edges and corners more).
+  DS_CHECK_LE(rule.MeanDistance, 1.2, "with the rule: mean distance to the cube (voxels)");
   DS_CHECK_LE(rule.SelfIntersections, 0, "with the rule: self-intersections");
   DS_CHECK_LE(rule.Flipped, 0, "with the rule: flipped triangles");
   DS_CHECK_GE(rule.MinAnglePercentile1, 20.0, "with the rule: 1st-percentile min angle (deg)");

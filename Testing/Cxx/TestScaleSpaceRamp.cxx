@@ -1,11 +1,11 @@
 // Linear ramp f = a x + b y + c z (world coordinates): with EdgeWeight 0,
 // ImageWeight 1 and no normalisation, Force = grad(G_sigma * f), which must equal
-// (a, b, c) in the interior to 1e-4 relative, at a recursive (IIR) and a sampled
-// (FIR) sigma, on an axis-aligned unit grid and on an anisotropic rotated one.
+// (a, b, c) in the interior to 1e-4 relative (2.5e-4 at 6 sigma), at a recursive (IIR) and
+// a sampled (FIR) sigma, on an axis-aligned unit grid and on an anisotropic rotated one.
 // With EdgeWeight 1 the edge term is constant on a ramp, so Force must vanish.
 // "Interior" = at least ~6 sigma from every face: replicated borders bend a ramp,
-// and the recursive Gaussian's exponential tail holds ~1e-3 of its mass beyond
-// 4 sigma (a sampled Gaussian 3e-5), ~7e-5 beyond 6 sigma.
+// and the recursive Gaussian's tail holds ~3.4e-4 of its mass beyond 6 sigma (9e-5
+// beyond 7; a sampled Gaussian cut at 4 sigma holds none).
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 
@@ -50,7 +50,7 @@ double MaxError(vtkImageData* out, const double expected[3], int margin, int& co
 }
 
 void RunCase(const char* name, const int extent[6], const double spacing[3], const double origin[3],
-  const double direction[9], double sigma, int margin)
+  const double direction[9], double sigma, int margin, double limit = 1e-4)
 {
   std::cout << name << " (sigma " << sigma << ", margin " << margin << " voxels)" << std::endl;
   auto image = sstest::MakeImage(extent, spacing, origin, direction,
@@ -67,7 +67,7 @@ void RunCase(const char* name, const int extent[6], const double spacing[3], con
   const double norm = std::sqrt(A * A + B * B + C * C);
   const double err = MaxError(filter->GetOutput(), expected, margin, counted) / norm;
   DS_CHECK(counted > 1000, "enough interior voxels");
-  DS_CHECK_LE(err, 1e-4, std::string(name) + ": max |Force - (a,b,c)| / |(a,b,c)|");
+  DS_CHECK_LE(err, limit, std::string(name) + ": max |Force - (a,b,c)| / |(a,b,c)|");
 
   // Edge term only: |grad(G*f)| is constant on a ramp, so -grad P vanishes inside.
   filter->SetEdgeWeight(1.0);
@@ -75,7 +75,7 @@ void RunCase(const char* name, const int extent[6], const double spacing[3], con
   filter->Update();
   const double zero[3] = { 0, 0, 0 };
   const double err0 = MaxError(filter->GetOutput(), zero, margin, counted);
-  DS_CHECK_LE(err0, 1e-4, std::string(name) + ": edge-only max |Force| (g is constant, so ~0)");
+  DS_CHECK_LE(err0, limit, std::string(name) + ": edge-only max |Force| (g is constant, so ~0)");
 }
 } // namespace
 
@@ -85,10 +85,13 @@ int TestScaleSpaceRamp(int, char*[])
   const double zeroOrigin[3] = { 0, 0, 0 };
   const double unitSpacing[3] = { 1, 1, 1 };
   const int ext64[6] = { 0, 63, 0, 63, 0, 63 };
-  // Recursive Gaussian (sigma >= 1 voxel) and sampled FIR (sigma < 1 voxel).
-  RunCase("axis-aligned, IIR", ext64, unitSpacing, zeroOrigin, identity, 2.0, 14);
+  // Recursive Gaussian (sigma >= 3 voxels) and sampled FIR (sigma < 3 voxels).
+  RunCase("axis-aligned, IIR", ext64, unitSpacing, zeroOrigin, identity, 3.0, 21);
   const int ext96[6] = { 0, 95, 0, 95, 0, 95 };
-  RunCase("axis-aligned, IIR, large sigma", ext96, unitSpacing, zeroOrigin, identity, 6.0, 36);
+  // 6 sigma from the faces the recursive filter's tail shows: measured 1.8e-4 (the 3-pole
+  // filter used before: 8.6e-5), hence 2.5e-4 there.
+  RunCase(
+    "axis-aligned, IIR, large sigma", ext96, unitSpacing, zeroOrigin, identity, 6.0, 36, 2.5e-4);
   RunCase("axis-aligned, FIR", ext64, unitSpacing, zeroOrigin, identity, 0.6, 4);
 
   double R[9];
@@ -96,7 +99,7 @@ int TestScaleSpaceRamp(int, char*[])
   const double spacing[3] = { 0.8, 1.1, 2.0 };
   const double origin[3] = { -12.5, 7.25, 3.0 };
   const int ext[6] = { 3, 66, -5, 58, 0, 39 };
-  RunCase("anisotropic + rotated, IIR/FIR mixed", ext, spacing, origin, R, 1.5, 12);
+  RunCase("anisotropic + rotated, IIR/FIR mixed", ext, spacing, origin, R, 2.5, 19);
   return dstest::Result("TestScaleSpaceRamp");
 }
 
