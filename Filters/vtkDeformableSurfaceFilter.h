@@ -243,7 +243,7 @@ public:
    * A triangle is refined when the mean error estimator (the internal force) of its corners,
    * as the distance at which the image force balances it, exceeds RefinementThreshold voxels
    * (mean spacing): absolute, so a level refines only where the surface still rests away from
-   * the image's edge. Default 0.05. Smaller refines more.
+   * the image's edge. Default 0.07. Smaller refines more.
    */
   vtkSetClampMacro(RefinementThreshold, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(RefinementThreshold, double);
