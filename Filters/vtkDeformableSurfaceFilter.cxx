@@ -34,6 +34,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkStaticPointLocator.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
@@ -415,6 +416,7 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
     fd->AddArray(usedRange);
   }
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
+  AddFieldValue<vtkStringArray>(fd, "StopReason", dsurf::StopReasonName(solver.GetStopReason()));
   AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
 }
 /// One property and its core parameter: copied into the core (toCore) or from it.
@@ -653,6 +655,9 @@ void vtkDeformableSurfaceFilter::Report(const dsurf::MultilevelSolver& solver)
              " from the start to its nearest edges (" + std::to_string(choice.RaysWithEdge) +
              " of " + std::to_string(choice.Rays) + " rays met one)"
                         : std::string()));
+  vtkDebugMacro(<< "The levels ended after level "
+                << (solver.GetLevels().empty() ? -1 : solver.GetLevels().back().Level) << ": "
+                << dsurf::StopReasonName(solver.GetStopReason()) << ".");
   vtkDebugMacro(<< "At most " << solver.GetMaxOutsideVertices()
                 << " vertices lay outside the image during a sweep.");
 }

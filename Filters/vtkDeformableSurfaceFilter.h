@@ -46,7 +46,8 @@
  * of the last sweep), RefinementLevel, VertexLabel and field data Sweeps, Levels,
  * InitialSubdivisions, FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found
  * with a bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
- * level), WarmStart and, with the region force, IntensityRange (the range it used).
+ * level), StopReason (why the levels ended: "sigma floor", "no detail", "MaxLevels", "MaxSweeps"
+ * or "aborted"), WarmStart and, with the region force, IntensityRange (the range it used).
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
@@ -58,16 +59,19 @@
  *
  * Hierarchy (docs/METHOD.md §6, dsMultilevel.h): after a level converges, the error estimator
  * (|internal part of the correction| per vertex) marks every triangle whose corner
- * average exceeds RefinementThreshold times the level's mean (all triangles with
+ * average, as the distance in voxels at which the image force balances it, exceeds
+ * RefinementThreshold (all triangles with
  * UniformRefinement; adaptively, never a triangle whose edges are all shorter than a
  * voxel); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
  * Sigma never goes below half a voxel; the level solved there is the last (finer meshes would
- * follow detail the image does not show). Refinement stops when nothing is marked or before
- * a step would exceed MaxVertices (a warning; the red-green closure can add some more);
- * the remaining levels up to MaxLevels still halve sigma on the same mesh, so the surface
- * always ends on the fine-scale boundary.
+ * follow detail the image does not show), so the number of levels follows the resolution:
+ * halving from extent / 6 takes 7 levels at 128^3, 9 at 512^3. MaxLevels is a cap. Refinement
+ * stops where nothing is marked or before a step would exceed MaxVertices (a warning; the
+ * red-green closure can add some more); the levels still halve sigma on the same mesh, so the
+ * surface always ends on the fine-scale boundary. With HierarchicalSigma off the run ends when
+ * nothing is marked. Field data StopReason (and a debug line) say why the levels ended.
  *
  * Distributed input (pvbatch/pvserver under MPI): the solve is global (every vertex sees the
  * whole force field and its neighbours), so process 0 does it alone. Each process asks for
@@ -86,7 +90,7 @@
  *
  * Caveats: the whole image is requested. Abort stops after the current sweep and
  * outputs the (valid) surface reached so far. A weak boundary next to a strong one
- * needs HierarchicalSigma off and a small Sigma.
+ * needs HierarchicalSigma off, whose default sigma is one voxel (mean spacing).
  */
 #ifndef vtkDeformableSurfaceFilter_h
 #define vtkDeformableSurfaceFilter_h
@@ -154,7 +158,8 @@ public:
   /**
    * The first Gaussian sigma. Sigma > 0: that, in world units. Else SigmaFraction > 0: that
    * fraction of the mean extent of the image (the paper's 1/6 = 0.1667). Both 0 (the
-   * defaults: Sigma 0, SigmaFraction 0): chosen from the start surface (dsInitialSigma.h). A start
+   * defaults: Sigma 0, SigmaFraction 0): one voxel (mean spacing) with HierarchicalSigma off;
+   * else chosen from the start surface (dsInitialSigma.h). A start
    * spanning the image (a box around the whole volume) begins at the paper's extent / 6; any other
    * start is taken to lie near its object, and sigma_0 is the 90th percentile of its distance to
    * the nearest edge along the vertex and face normals, between one voxel and extent / 6 (field
@@ -226,18 +231,19 @@ public:
 
   ///@{
   /**
-   * Number of refinement steps after the first level (default 4; 0 = a single level on
-   * the initial mesh).
+   * Cap on the refinement steps after the first level (default 10, the most; 0 = a single level
+   * on the initial mesh). The levels end before it at sigma's floor (half a voxel) or, with
+   * constant sigma, when nothing is left to refine (field data StopReason).
    */
   vtkSetClampMacro(MaxLevels, int, 0, 10);
   vtkGetMacro(MaxLevels, int);
   ///@}
   ///@{
   /**
-   * A triangle is refined when the mean error estimator of its corners exceeds
-   * RefinementThreshold times the mean estimator of the level (relative, so one default
-   * fits any data and level). Default 1: refine where the surface works harder than on
-   * average. Smaller refines more.
+   * A triangle is refined when the mean error estimator (the internal force) of its corners,
+   * as the distance at which the image force balances it, exceeds RefinementThreshold voxels
+   * (mean spacing): absolute, so a level refines only where the surface still rests away from
+   * the image's edge. Default 0.07. Smaller refines more.
    */
   vtkSetClampMacro(RefinementThreshold, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(RefinementThreshold, double);
@@ -267,7 +273,8 @@ public:
   ///@{
   /**
    * Halve sigma (and the kernel support) at every refinement. Default on. Off keeps
-   * sigma constant: for a weak boundary near a strong one, with a small Sigma.
+   * sigma constant: for a weak boundary near a strong one; without Sigma or SigmaFraction that
+   * sigma is the paper's small one, one voxel (mean spacing).
    */
   vtkSetMacro(HierarchicalSigma, bool);
   vtkGetMacro(HierarchicalSigma, bool);

@@ -9,31 +9,42 @@
 
 namespace dsurf
 {
-std::vector<char> MultilevelSolver::MarkTriangles(const TriangleMesh& mesh,
-  const std::vector<double>& estimator, double relativeThreshold, bool uniform)
+namespace
+{
+/// The voxel size (mean spacing): the finest detail the image shows.
+double MeanSpacing(const ImageGeometry& geometry)
+{
+  return (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
+}
+} // namespace
+
+const char* StopReasonName(StopReason reason)
+{
+  switch (reason)
+  {
+    case StopReason::SigmaFloor:
+      return "sigma floor";
+    case StopReason::NoDetail:
+      return "no detail";
+    case StopReason::MaxLevels:
+      return "MaxLevels";
+    case StopReason::MaxSweeps:
+      return "MaxSweeps";
+    case StopReason::Aborted:
+      return "aborted";
+    default:
+      return "none";
+  }
+}
+
+std::vector<char> MultilevelSolver::MarkTriangles(
+  const TriangleMesh& mesh, const std::vector<double>& estimator, double threshold, bool uniform)
 {
   std::vector<char> marks(mesh.Triangles.size(), uniform ? 1 : 0);
   if (uniform || estimator.size() != mesh.Points.size())
   {
     return marks;
   }
-  // The level's mean over the vertices that move (fixed boundary vertices report 0 and
-  // would drag the mean down).
-  double sum = 0;
-  int count = 0;
-  for (int v = 0; v < mesh.NumberOfPoints(); ++v)
-  {
-    if (!mesh.BoundaryVertex[v])
-    {
-      sum += estimator[v];
-      ++count;
-    }
-  }
-  if (count == 0 || !(sum > 0))
-  {
-    return marks; // nothing moves: nothing to refine
-  }
-  const double threshold = relativeThreshold * sum / count;
   for (size_t t = 0; t < marks.size(); ++t)
   {
     const auto& tri = mesh.Triangles[t];
@@ -55,6 +66,13 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
   else if (P.SigmaFraction > 0)
   {
     sigma = P.SigmaFraction * geometry.MeanExtent();
+  }
+  else if (!P.HierarchicalSigma)
+  {
+    // The constant mode is the paper's small sigma (docs/METHOD.md §6.6): it is chosen for a weak
+    // boundary next to a strong one, which a sigma that never shrinks from extent / 6 or from
+    // the start's distance would blur together.
+    sigma = ConstantSigmaVoxels * MeanSpacing(geometry);
   }
   else if (!ChooseInitialSigma(
              scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
@@ -124,7 +142,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
   TriangleMesh& mesh, RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
-  const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
+  const double voxel = MeanSpacing(geometry);
   std::string msg;
   if (P.RegionWeight > 0)
   {
@@ -180,7 +198,7 @@ bool MultilevelSolver::SolveLevel(
 {
   const MultilevelParameters& P = this->Parameters;
   const int cap = std::max(1, P.MaxSweepsPerLevel);
-  const int maxLevels = std::max(0, P.MaxLevels);
+  const int plannedLevels = std::max(rec.Level, this->PlannedLevels);
   bool stop = false;
   // Sweeps run in batches inside one parallel region (threads start once per batch, not
   // per sweep); convergence is tested after every sweep, progress and abort between
@@ -198,6 +216,7 @@ bool MultilevelSolver::SolveLevel(
     {
       this->Warnings.push_back(
         "stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
+      this->Stop = StopReason::MaxSweeps;
       stop = true;
       break;
     }
@@ -232,15 +251,17 @@ bool MultilevelSolver::SolveLevel(
       this->FinalOutsideVertices = st.OutsideVertices;
       if (this->OnSweep && !this->OnSweep(sr, mesh))
       {
+        this->Stop = StopReason::Aborted;
         stop = true;
         break;
       }
     }
     if (!stop && !rec.Converged && this->Progress &&
       !this->Progress(
-        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (maxLevels + 1)))
+        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1)))
     {
       this->Aborted = true;
+      this->Stop = StopReason::Aborted;
       stop = true;
     }
   }
@@ -248,6 +269,7 @@ bool MultilevelSolver::SolveLevel(
   {
     this->Warnings.push_back(
       "stopped after MaxSweeps (" + std::to_string(P.MaxSweeps) + ") sweeps");
+    this->Stop = StopReason::MaxSweeps;
     stop = true; // no refinement after the budget
   }
   return stop;
@@ -323,6 +345,8 @@ void MultilevelSolver::ClearResults()
   this->FinalOutsideVertices = 0;
   this->InitialSubdivisions = 0;
   this->Aborted = false;
+  this->Stop = StopReason::None;
+  this->PlannedLevels = 0;
   this->SigmaChoice = InitialSigmaChoice();
   this->UsedRange[0] = this->UsedRange[1] = 0;
   this->RegionOutwardOnly = false;
@@ -343,7 +367,7 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
     return false;
   }
   // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
-  state.Voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
+  state.Voxel = MeanSpacing(geometry);
   std::string msg;
   if (!state.Refiner.Initialize(mesh, &msg))
   {
@@ -450,14 +474,22 @@ void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
   }
 }
 
-std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh, double voxel) const
+std::vector<char> MultilevelSolver::MarkForRefinement(
+  const TriangleMesh& mesh, const LevelRecord& rec, double voxel) const
 {
   const MultilevelParameters& P = this->Parameters;
   // Adaptively, triangles whose edges are all shorter than a voxel are not split again: the
   // image has no finer detail for their children to follow. (UniformRefinement splits
   // everything, as asked.)
-  std::vector<char> marks =
-    MarkTriangles(mesh, this->ErrorIndicator, P.RefinementThreshold, P.UniformRefinement);
+  // Detail is present where a large internal force balances an equal external one
+  // (docs/METHOD.md §6.2). The external force is F = h sigma (-grad P) (§6b), which grows as
+  // about h d / sigma with the distance d from the edge it pulls to: at rest the estimator
+  // gamma |internal| (Solver::ErrorIndicator) thus says that the surface rests
+  // d = |internal| sigma / h from where the image alone would put it. The threshold is on d in
+  // voxels, the same at every level and resolution.
+  const double scale = P.Solver.Gamma * rec.MeanEdgeLength / rec.Sigma;
+  std::vector<char> marks = MarkTriangles(
+    mesh, this->ErrorIndicator, P.RefinementThreshold * voxel * scale, P.UniformRefinement);
   for (size_t t = 0; t < marks.size() && !P.UniformRefinement; ++t)
   {
     if (marks[t])
@@ -481,7 +513,7 @@ bool MultilevelSolver::RefineLevel(
   TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
-  const std::vector<char> marks = this->MarkForRefinement(mesh, state.Voxel);
+  const std::vector<char> marks = this->MarkForRefinement(mesh, rec, state.Voxel);
   std::unordered_set<int> splitEdges;
   for (size_t t = 0; t < marks.size(); ++t)
   {
@@ -541,6 +573,14 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
 {
   const MultilevelParameters& P = this->Parameters;
   const int maxLevels = std::max(0, P.MaxLevels);
+  // Progress is reported against the levels a hierarchical run takes to sigma's floor (halving
+  // from sigma_0 to half a voxel), within the cap.
+  this->PlannedLevels = maxLevels;
+  if (P.HierarchicalSigma && state.Sigma > 0.5 * state.Voxel)
+  {
+    const double halvings = std::ceil(std::log2(state.Sigma / (0.5 * state.Voxel)) - 1e-9);
+    this->PlannedLevels = std::min(maxLevels, static_cast<int>(halvings));
+  }
   for (int level = 0; level <= maxLevels; ++level)
   {
     LevelRecord rec;
@@ -558,6 +598,7 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
     this->EndSweeps(state.LevelSolver, mesh, rec, lastLevel);
     if (lastLevel)
     {
+      this->Stop = stop ? this->Stop : (atFloor ? StopReason::SigmaFloor : StopReason::MaxLevels);
       this->Levels.push_back(rec);
       break;
     }
@@ -581,6 +622,7 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
       {
         this->SmoothFolds(mesh, this->Levels.back()); // this level's surface is delivered
       }
+      this->Stop = StopReason::NoDetail;
       break;
     }
     state.Sigma = nextSigma;

@@ -9,13 +9,19 @@
 //      scale-normalised);
 //   2. Gauss-Seidel sweeps until the mean correction of a sweep is below
 //      ConvergenceTolerance * h_l, or MaxSweepsPerLevel sweeps;
-//   3. unless l == MaxLevels: error estimator e(v) = |internal part of the last
-//      correction| (docs/METHOD.md §6.2); a triangle is marked when the mean e of its corners
-//      exceeds RefinementThreshold * (mean e over all moving vertices of the level)
-//      (every triangle when UniformRefinement). The threshold is relative to the level's
-//      own statistics, so one default works whatever the data's units or the level;
-//      1 marks the triangles busier than average. Adaptively, a triangle whose edges are
-//      all shorter than a voxel (mean spacing) is never marked: the image has no finer detail;
+//   3. unless l is the last level: error estimator e(v) = |internal part of the last
+//      correction| (docs/METHOD.md §6.2); a triangle is marked when the mean e of its corners,
+//      as the distance d = e / gamma * sigma_l / h_l at which the image force balances it (F
+//      grows as ~h d / sigma away from an edge), exceeds RefinementThreshold voxels (mean
+//      spacing) (every triangle when UniformRefinement). The threshold is absolute: a level
+//      refines only where the surface still rests that far from the image's edge, so the
+//      triangles follow the detail and the resolution, not a fixed share of every level (the
+//      former relative threshold). The default 0.07 voxel was measured on the phantoms: a
+//      binary sphere of radius 32 voxels in 128^3 ends with ~2 500 triangles at mean |d| 0.06
+//      voxel, the cube of half-side 16 with ~6 300 (its edges and corners), a noisy ball of
+//      radius 128 in 512^3 with ~11 000 at 0.034 (0.05: 23 000 triangles for 0.031).
+//      Adaptively, a triangle whose edges are all shorter than a voxel (mean spacing) is never
+//      marked: the image has no finer detail;
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h; at edge midpoints with ButterflyProlongation off);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
@@ -24,10 +30,11 @@
 // A level with nothing to refine (nothing marked, the marked triangles all below a voxel,
 // or the next step over MaxVertices: a warning, once) still goes on to the next, smaller
 // sigma with the same mesh, so the surface always ends at the fine scale rather than on
-// the blurred edge of a coarse sigma. The run ends after MaxLevels levels past the first,
-// after the level solved at sigma's floor (half a voxel; hierarchical sigma only), when a
-// level would change neither the mesh nor sigma, or when the progress callback asks to abort
-// (the surface is valid at every moment).
+// the blurred edge of a coarse sigma. The run ends (GetStopReason) after the level solved at
+// sigma's floor (half a voxel; hierarchical sigma only), when a level would change neither the
+// mesh nor sigma (constant sigma, nothing marked), at the cap of MaxLevels levels past the
+// first, after MaxSweeps sweeps, or when a callback asks to abort (the surface is valid at
+// every moment).
 //
 // Beyond the paper (docs/METHOD.md §9): sigma_0 can follow the start (dsInitialSigma.h); a
 // region force (dsRegion.h), RegionWeight * h * min(1, sigma_l / sigma_0) * speed * normal,
@@ -55,6 +62,10 @@ namespace dsurf
 /// SubdivideInitialSurface: the start is split until its mean edge length is at most this
 /// many first sigmas (see MultilevelParameters::SubdivideInitialSurface).
 constexpr double InitialEdgeSigmaRatio = 4.0;
+/// Sigma of the constant mode (HierarchicalSigma off) when neither Sigma nor SigmaFraction is
+/// given, in voxels (mean spacing): the paper's small sigma for a weak boundary next to a strong
+/// one (docs/METHOD.md §6.6); its basin of attraction is ~2 voxels.
+constexpr double ConstantSigmaVoxels = 1.0;
 /// A start of more triangles than this, with a mean edge below sigma_0 / 2, begins the
 /// hierarchy on a coarse copy (MultilevelSolver::CoarsenStart).
 constexpr int CoarsenAboveTriangles = 100000;
@@ -69,9 +80,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double ImageWeight = 0.0; ///< w_image of the potential
   double ForceWeight = 1.0; ///< multiplies h * sigma * (-grad P)
   /// sigma_0: Sigma (physical units) when > 0; else SigmaFraction * the mean extent of the
-  /// volume when > 0 (the paper's 1/6); else (0, the default) chosen from the start
-  /// (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the start's
-  /// (90th-percentile) distance to its nearest edges for any other.
+  /// volume when > 0 (the paper's 1/6); else (0, the default) with HierarchicalSigma off the
+  /// paper's small constant sigma, ConstantSigmaVoxels voxels (mean spacing); else chosen from
+  /// the start (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the
+  /// start's (90th-percentile) distance to its nearest edges for any other.
   double Sigma = 0.0;
   double SigmaFraction = 0.0;
   /// How the edge strength is normalised in the potential (dsScaleSpace.h).
@@ -83,8 +95,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
-  int MaxLevels = 4;             ///< refinement steps (levels 0..MaxLevels are solved)
-  int MaxSweepsPerLevel = 2000;  ///< cap per level (the phantom tests need <= ~130)
+  int MaxLevels = 10; ///< cap on the refinement steps (levels 0..MaxLevels at most; see above)
+  int MaxSweepsPerLevel = 2000; ///< cap per level (the phantom tests need <= ~130)
   /// Sweeps per parallel region (Solver::Sweeps): progress, abort and the sweep callback
   /// come after each batch, so the callback sees the mesh as of the end of its batch; 1
   /// hands over every sweep's mesh (slower on several threads: threads start per sweep).
@@ -95,7 +107,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// need be (a warning says so); the surface is valid at every sweep.
   int MaxSweeps = 0;
   double ConvergenceTolerance = 1e-3; ///< stop a level when mean |c| < this * mean edge length
-  double RefinementThreshold = 1.0;   ///< relative to the level's mean estimator (see above)
+  double RefinementThreshold = 0.07;  ///< |internal force| in voxels (see above)
   bool UniformRefinement = false;
   /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
   /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
@@ -112,6 +124,19 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// a broken invariant stops the run with an error.
   bool CheckTopology = false;
 };
+
+/// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
+enum class StopReason
+{
+  None,       ///< no run yet, or it failed
+  SigmaFloor, ///< the level at sigma's floor (half a voxel, hierarchical sigma) was solved
+  NoDetail,   ///< nothing left to refine and sigma cannot shrink (constant sigma)
+  MaxLevels,  ///< the cap on levels was reached first
+  MaxSweeps,  ///< the sweep budget of the whole run was used up
+  Aborted     ///< the progress or the sweep callback asked to stop
+};
+/// "sigma floor", "no detail", "MaxLevels", "MaxSweeps", "aborted" or "none".
+DEFORMABLESURFACEFILTERS_EXPORT const char* StopReasonName(StopReason reason);
 
 /// One row per sweep, for the convergence table.
 struct DEFORMABLESURFACEFILTERS_EXPORT SweepRecord
@@ -169,6 +194,8 @@ public:
   const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
   const std::vector<std::string>& GetWarnings() const { return this->Warnings; }
   bool GetAborted() const { return this->Aborted; }
+  /// Why the last run's levels ended.
+  StopReason GetStopReason() const { return this->Stop; }
   /// Uniform subdivisions applied to the start surface before level 0.
   int GetInitialSubdivisions() const { return this->InitialSubdivisions; }
   /// Per vertex of the final mesh, from the last sweep.
@@ -196,8 +223,8 @@ public:
   const double* GetIntensityRange() const { return this->UsedRange; }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
-  static std::vector<char> MarkTriangles(const TriangleMesh& mesh,
-    const std::vector<double>& estimator, double relativeThreshold, bool uniform);
+  static std::vector<char> MarkTriangles(
+    const TriangleMesh& mesh, const std::vector<double>& estimator, double threshold, bool uniform);
 
 private:
   MultilevelParameters Parameters;
@@ -212,6 +239,8 @@ private:
   int FinalOutsideVertices = 0;
   int InitialSubdivisions = 0;
   bool Aborted = false;
+  StopReason Stop = StopReason::None;
+  int PlannedLevels = 0; ///< levels to sigma's floor within MaxLevels (progress)
   InitialSigmaChoice SigmaChoice;
   double UsedRange[2] = { 0, 0 };
   bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
@@ -234,7 +263,8 @@ private:
   /// Untangle (rec.Folds), with a warning for what remains.
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
   /// Step 3's marks without the triangles already below a voxel (adaptive refinement only).
-  std::vector<char> MarkForRefinement(const TriangleMesh& mesh, double voxel) const;
+  std::vector<char> MarkForRefinement(
+    const TriangleMesh& mesh, const LevelRecord& rec, double voxel) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(

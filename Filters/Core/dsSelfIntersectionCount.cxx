@@ -134,6 +134,57 @@ inline double Tolerance(const Vec3& n, const Vec3& x0, const Vec3& x1, const Vec
   const double scale = std::max({ Norm(x1 - x0), Norm(x2 - x0), Norm(x2 - x1) });
   return 1e-12 * Norm(n) * scale;
 }
+
+/// Planes whose angle has a sine below this are treated as one plane and the pair is decided
+/// in 2-D. Along the planes' common line, d / sin is the error of where the line lies for a
+/// plane-distance error d: at sine 1e-12 (a vertex of a flat patch moved by 1e-12 of an edge
+/// out of the patch's plane, as Gauss-Seidel sweeps do near a crease) the 3-D test put that line
+/// anywhere and found overlaps between neighbours that only share a vertex. Two triangles that
+/// meet and lie within 1e-6 of each other's plane (relative to their size) overlap as their
+/// projections do, up to touching.
+constexpr double CoplanarSine = 1e-6;
+
+inline bool NearlyParallel(const Vec3& nA, const Vec3& nB, const Vec3& dir)
+{
+  return Norm(dir) <= CoplanarSine * Norm(nA) * Norm(nB);
+}
+
+/// Cross product of the 2-D vectors (a, b) after dropping coordinate `drop`.
+inline double Cross2D(const Vec3& a, const Vec3& b, int drop)
+{
+  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+  return a[u] * b[v] - a[v] * b[u];
+}
+
+/// Whether direction d lies strictly inside the wedge (e1, e2) (both non-parallel) in 2-D.
+inline bool InWedge2D(const Vec3& d, const Vec3& e1, const Vec3& e2, int drop)
+{
+  const double turn = Cross2D(e1, e2, drop);
+  return Cross2D(e1, d, drop) * turn > 0 && Cross2D(d, e2, drop) * turn > 0;
+}
+
+/// The wedges at s of two (nearly) coplanar triangles (s, a1, a2) and (s, b1, b2), projected
+/// along the dominant axis of the normal n: they overlap beyond s when a direction lies strictly
+/// inside both (an edge of one inside the other, or, for equal wedges, the bisector).
+bool CoplanarWedgesOverlap(
+  const Vec3& n, const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2)
+{
+  int drop = 0;
+  for (int k = 1; k < 3; ++k)
+  {
+    drop = std::abs(n[k]) > std::abs(n[drop]) ? k : drop;
+  }
+  const Vec3 ea1 = a1 - s, ea2 = a2 - s, eb1 = b1 - s, eb2 = b2 - s;
+  if (Cross2D(ea1, ea2, drop) == 0 || Cross2D(eb1, eb2, drop) == 0)
+  {
+    return false; // degenerate in the projection
+  }
+  const Vec3 bisA = (1.0 / Norm(ea1)) * ea1 + (1.0 / Norm(ea2)) * ea2;
+  const Vec3 bisB = (1.0 / Norm(eb1)) * eb1 + (1.0 / Norm(eb2)) * eb2;
+  return InWedge2D(eb1, ea1, ea2, drop) || InWedge2D(eb2, ea1, ea2, drop) ||
+    InWedge2D(ea1, eb1, eb2, drop) || InWedge2D(ea2, eb1, eb2, drop) ||
+    InWedge2D(bisA, eb1, eb2, drop) || InWedge2D(bisB, ea1, ea2, drop);
+}
 } // namespace
 
 bool TrianglesIntersect(
@@ -155,6 +206,10 @@ bool TrianglesIntersect(
   }
   const Vec3 a[3] = { a0, a1, a2 }, b[3] = { b0, b1, b2 };
   const Vec3 dir = Cross(nA, nB);
+  if (NearlyParallel(nA, nB, dir))
+  {
+    return CoplanarIntersect(Norm(nA) > 0 ? nA : nB, a, b);
+  }
   // Project onto the dominant axis of the intersection line (same order as the line).
   int axis = 0;
   if (std::abs(dir[1]) > std::abs(dir[axis]))
@@ -170,7 +225,7 @@ bool TrianglesIntersect(
   double aLo, aHi, bLo, bHi;
   const bool okA = Interval(pa, da, aLo, aHi);
   const bool okB = Interval(pb, db, bLo, bHi);
-  if (!okA || !okB || Dot(dir, dir) == 0)
+  if (!okA || !okB)
   {
     return CoplanarIntersect(Norm(nA) > 0 ? nA : nB, a, b);
   }
@@ -186,9 +241,13 @@ bool SharedVertexTrianglesOverlap(
   const Vec3 nA = Cross(a1 - s, a2 - s), nB = Cross(b1 - s, b2 - s);
   const Vec3 dir = Cross(nA, nB);
   const double lenA = Norm(nA), lenB = Norm(nB);
-  if (lenA == 0 || lenB == 0 || Norm(dir) <= 1e-12 * lenA * lenB)
+  if (lenA == 0 || lenB == 0)
   {
-    return false; // degenerate or coplanar
+    return false; // degenerate
+  }
+  if (NearlyParallel(nA, nB, dir))
+  {
+    return CoplanarWedgesOverlap(nA, s, a1, a2, b1, b2);
   }
   // Side of the crossing of the far edge (x1,x2) of one triangle with the other's plane.
   auto side = [&](const Vec3& n, const Vec3& x1, const Vec3& x2, double eps)

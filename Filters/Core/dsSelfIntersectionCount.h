@@ -18,12 +18,15 @@ namespace dsurf
 /// True when the closed triangles (a0,a1,a2) and (b0,b1,b2) share a point (Moeller 1997,
 /// with a 2-D edge/containment test for coplanar pairs). Distances to the other plane
 /// within a tiny relative tolerance count as zero, so touching counts as intersecting.
+/// Nearly coplanar pairs (planes within an angle whose sine is 1e-6) are decided in 2-D too:
+/// the 3-D test cannot place the common line of nearly parallel planes.
 DEFORMABLESURFACEFILTERS_EXPORT bool TrianglesIntersect(
   const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2);
 
 /// Triangles (s,a1,a2) and (s,b1,b2) share the vertex s: true when they overlap in more
-/// than s, i.e. one folds through the other (non-coplanar pairs; coplanar ones count as
-/// not overlapping).
+/// than s, i.e. one folds through the other. (Nearly) coplanar pairs overlap when their
+/// wedges at s do, projected onto the plane: a triangle folded flat onto its neighbour counts,
+/// neighbours side by side in a flat patch do not.
 DEFORMABLESURFACEFILTERS_EXPORT bool SharedVertexTrianglesOverlap(
   const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2);
 

@@ -394,6 +394,9 @@ inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   const Vec3 u2 = u2acc - u;
   const Vec3& c1 = u;
   const Vec3 c2 = (-1.0 / alpha) * u2;
+  // docs/METHOD.md §4 as written: c2 is Kobbelt's full Gauss-Seidel step of the thin plate
+  // (alpha is U^2's coefficient of p), and (1 - tau) alpha c2 = -(1 - tau) U^2 turns it back into
+  // the residual, the same units as tau c1; gamma is the step on the sum.
   return tau * c1 + ((1.0 - tau) * alpha) * c2;
 }
 

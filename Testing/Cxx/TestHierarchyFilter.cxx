@@ -6,6 +6,7 @@
 #include "DSSurfaceInvariants.h"
 #include "HierarchyPhantoms.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkDeformableSurfaceFilter.h"
@@ -17,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkSphereSource.h"
 #include "vtkTable.h"
+#include "vtkVariant.h"
 
 int TestHierarchyFilter(int, char*[])
 {
@@ -39,6 +41,9 @@ int TestHierarchyFilter(int, char*[])
     filter->SetInputData(0, image);
     filter->SetInitialSurfaceConnection(box->GetOutputPort());
     filter->SetUniformRefinement(uniform != 0);
+    // Four refinements (the cap; sigma's floor would need six here): uniform refinement to the
+    // floor would split the box 4^6 times.
+    filter->SetMaxLevels(4);
     filter->SetCheckTopology(true);
     const std::string name = uniform ? "uniform" : "adaptive";
     dstest::UpdateAndCheckSurface(filter, name);
@@ -60,6 +65,9 @@ int TestHierarchyFilter(int, char*[])
       name + ": labels (all N when uniform, M/D when adaptive)");
     const int levels = static_cast<int>(out->GetFieldData()->GetArray("Levels")->GetTuple1(0));
     DS_CHECK(levels == 5, name + ": five levels solved");
+    vtkAbstractArray* reason = out->GetFieldData()->GetAbstractArray("StopReason");
+    DS_CHECK(reason && reason->GetVariantValue(0).ToString() == "MaxLevels",
+      name + ": StopReason MaxLevels (the cap came before sigma's floor)");
     // Sigma per sweep halves from level to level.
     vtkDataArray* lv = vtkDataArray::SafeDownCast(table->GetColumnByName("Level"));
     vtkDataArray* sg = vtkDataArray::SafeDownCast(table->GetColumnByName("Sigma"));

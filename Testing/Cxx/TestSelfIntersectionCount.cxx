@@ -1,8 +1,9 @@
 // Unit test of the self-intersection count (dsSelfIntersectionCount): the tri-tri test on
 // hand-made pairs, a clean icosphere, an icosphere with one vertex pushed through the
-// opposite side, a fold at a shared vertex, a random fan at one vertex, and the BVH search and
-// classification against an independent brute-force oracle (orientation signs, below), also on
-// meshes mixing tiny and huge triangles (which once made a uniform grid run out of memory).
+// opposite side, a fold at a shared vertex (also flat, and nearly flat neighbours), a random fan at
+// one vertex, and the BVH search and classification against an independent brute-force oracle
+// (orientation signs, below), also on meshes mixing tiny and huge triangles (which once made a
+// uniform grid run out of memory).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -118,14 +119,19 @@ bool InWedge(const Vec3& d, const Vec3& e1, const Vec3& e2)
 
 /// Triangles (s, a1, a2) and (s, b1, b2) in different planes meet along a segment of the
 /// planes' common line through s; they overlap beyond s iff one direction of that line
-/// enters both wedges at s.
+/// enters both wedges at s. In one plane they overlap iff a direction enters both wedges:
+/// an edge of one inside the other, or (equal wedges) a bisector.
 bool OracleOverlapBeyondVertex(
   const Vec3& s, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2)
 {
   const Vec3 d = Cross(Cross(a1 - s, a2 - s), Cross(b1 - s, b2 - s));
   if (Dot(d, d) == 0)
   {
-    return false; // coplanar pairs count as not overlapping (the library's convention)
+    const Vec3 ea1 = a1 - s, ea2 = a2 - s, eb1 = b1 - s, eb2 = b2 - s;
+    const Vec3 bisA = (1 / Norm(ea1)) * ea1 + (1 / Norm(ea2)) * ea2;
+    const Vec3 bisB = (1 / Norm(eb1)) * eb1 + (1 / Norm(eb2)) * eb2;
+    return InWedge(eb1, ea1, ea2) || InWedge(eb2, ea1, ea2) || InWedge(ea1, eb1, eb2) ||
+      InWedge(ea2, eb1, eb2) || InWedge(bisA, eb1, eb2) || InWedge(bisB, ea1, ea2);
   }
   const Vec3 minusD = -1.0 * d;
   return (InWedge(d, a1 - s, a2 - s) && InWedge(d, b1 - s, b2 - s)) ||
@@ -250,6 +256,17 @@ int TestSelfIntersectionCount(int, char*[])
     DS_CHECK(
       !SharedVertexTrianglesOverlap(s, { 2, -1, 0 }, { 2, 1, 0 }, { -1, 0, -1 }, { -1, 0.2, 1 }),
       "the same triangle on the other side of s");
+    // In one plane: a triangle folded flat onto its neighbour overlaps it.
+    DS_CHECK(
+      SharedVertexTrianglesOverlap(s, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 0.2, 0 }, { 0.2, 1, 0 }),
+      "a triangle folded flat onto its neighbour (coplanar)");
+    // Two triangles side by side on a flat box face whose shared vertex one Gauss-Seidel sweep
+    // moved by 2e-12 voxel (off the face plane x = 0.5 too): the 3-D test placed the common line
+    // of the nearly parallel planes anywhere and called them a fold.
+    const Vec3 moved{ 0.49999999999801792, 18.218749999998018, 10.343749999998018 };
+    DS_CHECK(!SharedVertexTrianglesOverlap(moved, { 0.5, 18.21875, 8.375 }, { 0.5, 16.25, 8.375 },
+               { 0.5, 16.25, 10.34375 }, { 0.5, 18.21875, 12.3125 }),
+      "neighbours on a flat face, shared vertex moved 2e-12 off the plane");
   }
 
   // --- icosphere: clean, then one vertex pushed through the opposite side ---

@@ -7,7 +7,9 @@
 #
 # Measured (Release, this 2-core machine, quiet): picks 1.3 s, 14 936 vertices,
 # one closed surface, 0 self-intersections, vertex -> mask boundary mean 0.75, 95 % 2.90 mm,
-# volume +3.4 %; click 1.6 s, 11 015 vertices, mean 1.38, 95 % 6.6 mm, volume +2.5 %. The
+# volume +3.4 %; click 1.6 s, 11 015 vertices, mean 1.38, 95 % 6.6 mm, volume +2.5 %. With the
+# absolute refinement threshold (shared machine, times not comparable): picks 13 411 vertices,
+# mean 0.68, 95 % 2.5 mm, volume +3.3 %; click 57 565 vertices, mean 1.10, 95 % 5.0 mm. The
 # issue's goals, asserted below: picks mean <= 1.0, 95 % <= 3.0, volume within 5 %; click mean
 # <= 1.5, volume within 8 %.
 import os

@@ -1,0 +1,171 @@
+// The levels follow the resolution (docs/METHOD.md §6, dsMultilevel.h): from the box around the
+// volume, every parameter default, a run refines while the error estimator (in voxels) says
+// detail is present and ends at the level solved at sigma's floor, so a larger volume gets more
+// levels; MaxLevels only caps them. The reason the levels ended is reported. With constant sigma
+// (HierarchicalSigma off) and no Sigma given, sigma is the paper's small one: one voxel.
+#include "DSTestHelpers.h"
+#include "HierarchyPhantoms.h"
+#include "TestSolverMeshes.h"
+#include "dsMultilevel.h"
+#include "dsSelfIntersectionCount.h"
+
+#include <cmath>
+
+using namespace dsurf;
+
+namespace
+{
+struct Run
+{
+  MultilevelSolver Solver;
+  TriangleMesh Mesh;
+  dsphantom::Accuracy Accuracy;
+};
+
+void Solve(Run& run, const std::vector<float>& volume, const ImageGeometry& geometry,
+  const MultilevelParameters& p, int n, double radius)
+{
+  run.Solver.SetParameters(p);
+  std::string err;
+  DS_CHECK(run.Solver.Run(volume.data(), geometry, run.Mesh, &err), err);
+  run.Accuracy = dsphantom::Measure(
+    run.Mesh, [n, radius](const Vec3& x) { return dsphantom::SphereDistance(x, n, radius); });
+  const auto& levels = run.Solver.GetLevels();
+  std::cout << "  " << n << "^3: " << levels.size() << " levels, sigma " << levels.front().Sigma
+            << " -> " << levels.back().Sigma << ", " << StopReasonName(run.Solver.GetStopReason())
+            << ", " << run.Mesh.NumberOfTriangles() << " triangles, mean |d| " << run.Accuracy.Mean
+            << ", max " << run.Accuracy.Max << std::endl;
+}
+
+void HierarchyFollowsResolution()
+{
+  // Sphere of radius n/4 in n^3 from the box: sigma_0 = n / 6 halves to half a voxel, which takes
+  // ceil(log2(n / 3)) halvings: 5 at 64^3, 6 at 128^3 (the former fixed 4 stopped at 1.3 voxels).
+  int previousLevels = 0;
+  for (const int n : { 64, 128 })
+  {
+    Run run;
+    run.Mesh = dsphantom::EnclosingBox(n, 1);
+    Solve(run, dsphantom::Sphere(n, n / 4.0), dsphantom::Geometry(n), MultilevelParameters(), n,
+      n / 4.0);
+    const auto& levels = run.Solver.GetLevels();
+    const int halvings = static_cast<int>(std::ceil(std::log2(n / 3.0)));
+    DS_CHECK(static_cast<int>(levels.size()) == halvings + 1, "levels from sigma_0 to the floor");
+    DS_CHECK(levels.back().Sigma == 0.5, "the last level at sigma's floor, half a voxel");
+    DS_CHECK(run.Solver.GetStopReason() == StopReason::SigmaFloor, "stop reason: sigma floor");
+    DS_CHECK(static_cast<int>(levels.size()) > previousLevels, "a finer volume, more levels");
+    previousLevels = static_cast<int>(levels.size());
+    DS_CHECK_LE(CountSelfIntersections(run.Mesh), 0, "self-intersecting pairs");
+    if (n == 128)
+    {
+      // The accuracy goals for the binary sphere of radius 32 (the former schedule: 0.079 / 0.336
+      // with 4 levels, and ~10 000 triangles with the relative threshold run to the floor).
+      DS_CHECK_LE(run.Accuracy.Mean, 0.07, "sphere r 32: mean |d| (voxels)");
+      DS_CHECK_LE(run.Accuracy.Max, 0.30, "sphere r 32: max |d| (voxels)");
+      DS_CHECK_LE(run.Mesh.NumberOfTriangles(), 6000, "sphere r 32: triangles");
+    }
+  }
+}
+
+void CapAndBudget()
+{
+  const int n = 64;
+  const std::vector<float> volume = dsphantom::Sphere(n, 16);
+  MultilevelParameters p;
+  p.MaxLevels = 2;
+  Run capped;
+  capped.Mesh = dsphantom::EnclosingBox(n, 1);
+  Solve(capped, volume, dsphantom::Geometry(n), p, n, 16);
+  DS_CHECK(capped.Solver.GetLevels().size() == 3, "MaxLevels 2: levels 0..2");
+  DS_CHECK(capped.Solver.GetStopReason() == StopReason::MaxLevels, "stop reason: MaxLevels");
+
+  p = MultilevelParameters();
+  p.MaxSweeps = 30;
+  Run budget;
+  budget.Mesh = dsphantom::EnclosingBox(n, 1);
+  Solve(budget, volume, dsphantom::Geometry(n), p, n, 16);
+  DS_CHECK(budget.Solver.GetTotalSweeps() == 30, "MaxSweeps 30: thirty sweeps");
+  DS_CHECK(budget.Solver.GetStopReason() == StopReason::MaxSweeps, "stop reason: MaxSweeps");
+
+  p = MultilevelParameters();
+  Run aborted;
+  aborted.Mesh = dsphantom::EnclosingBox(n, 1);
+  aborted.Solver.SetProgressCallback([](double) { return false; });
+  Solve(aborted, volume, dsphantom::Geometry(n), p, n, 16);
+  DS_CHECK(aborted.Solver.GetStopReason() == StopReason::Aborted, "stop reason: aborted");
+  DS_CHECK(std::string(StopReasonName(StopReason::NoDetail)) == "no detail", "reason names");
+}
+
+void ConstantSigmaDefault()
+{
+  // A start 2.5 voxels outside the sphere of radius 32, constant sigma, no Sigma: one voxel,
+  // kept on every level; the run ends when nothing is left to refine (or at the cap).
+  const int n = 128;
+  const std::vector<float> volume = dsphantom::Sphere(n, 32);
+  const double c = dsphantom::Center(n);
+  MultilevelParameters p;
+  p.HierarchicalSigma = false;
+  Run run;
+  run.Mesh = dstest::MakeIcosphere(3, 34.5, { c, c, c });
+  Solve(run, volume, dsphantom::Geometry(n), p, n, 32);
+  for (const LevelRecord& level : run.Solver.GetLevels())
+  {
+    DS_CHECK(level.Sigma == 1.0, "constant sigma: one voxel on every level");
+  }
+  const StopReason why = run.Solver.GetStopReason();
+  DS_CHECK(why == StopReason::NoDetail || why == StopReason::MaxLevels,
+    "constant sigma ends when nothing is refined, or at the cap");
+  DS_CHECK_LE(run.Accuracy.Mean, 0.15, "constant sigma 1 voxel: mean |d| (voxels)");
+  DS_CHECK_LE(run.Accuracy.Max, 0.5, "constant sigma 1 voxel: max |d| (voxels)");
+
+  // In world units: the mean spacing (0.5, 0.5, 1) -> 2/3.
+  ImageGeometry g = dsphantom::Geometry(32);
+  g.Spacing[0] = g.Spacing[1] = 0.5;
+  const std::vector<float> small = dsphantom::Sphere(32, 8);
+  p.MaxLevels = 0;
+  Run scaled;
+  scaled.Mesh = dstest::MakeIcosphere(2, 5, { 5, 5, 20 });
+  scaled.Solver.SetParameters(p);
+  std::string err;
+  DS_CHECK(scaled.Solver.Run(small.data(), g, scaled.Mesh, &err), err);
+  DS_CHECK(std::abs(scaled.Solver.GetFinalSigma() - 2.0 / 3.0) < 1e-12,
+    "constant sigma: one mean spacing (2/3)");
+}
+
+void AbsoluteMarks()
+{
+  // The marking threshold is absolute: the same estimator marks the same triangles whatever the
+  // rest of the mesh does (a relative threshold marked the busier half of a uniform one).
+  TriangleMesh m = dstest::MakeIcosphere(1, 1, { 0, 0, 0 });
+  std::string err;
+  DS_CHECK(m.BuildTopology(&err), err);
+  std::vector<double> e(m.NumberOfPoints(), 0.2);
+  const auto count = [&](double threshold)
+  {
+    const std::vector<char> marks = MultilevelSolver::MarkTriangles(m, e, threshold, false);
+    return static_cast<int>(std::count(marks.begin(), marks.end(), 1));
+  };
+  DS_CHECK(count(0.1) == m.NumberOfTriangles(), "an estimator above the threshold everywhere");
+  DS_CHECK(count(0.3) == 0, "an estimator below the threshold everywhere: nothing marked");
+  e[0] = 2.0; // one busy vertex: its fan's mean (2 + 0.2 + 0.2) / 3 = 0.8
+  DS_CHECK(count(0.5) == m.VertexTriangleOffsets[1] - m.VertexTriangleOffsets[0],
+    "one busy vertex: its fan is marked");
+}
+} // namespace
+
+int TestLevelsFollowResolution(int, char*[])
+{
+  std::cout << "hierarchical sigma, defaults:" << std::endl;
+  HierarchyFollowsResolution();
+  std::cout << "caps:" << std::endl;
+  CapAndBudget();
+  std::cout << "constant sigma:" << std::endl;
+  ConstantSigmaDefault();
+  AbsoluteMarks();
+  return dstest::Result("TestLevelsFollowResolution");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestLevelsFollowResolution(argc, argv);
+}
