@@ -165,10 +165,15 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
   {
     // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
     // and the result is a fresh level-0 mesh for the hierarchy.
-    // Edges shorter than two voxels resolve nothing more, whatever sigma is.
+    // Edges shorter than two voxels resolve nothing more, whatever sigma is. A split halves
+    // the edges, so the split whose mean edge is nearest the target (within a factor sqrt 2
+    // either way) is taken: stopping at the first below it would double the edges' count for
+    // a sigma_0 a little smaller (on Colin27 from the picks, sigma_0 3.0 instead of 3.5 mm gave
+    // 4x the start's triangles and a surface 2.5x as dense, pushed into the sulci).
     const double target = std::max(InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
     bool subdivided = false;
-    while (mesh.MeanEdgeLength() > target && 4LL * mesh.NumberOfPoints() <= P.MaxVertices)
+    while (mesh.MeanEdgeLength() > std::sqrt(2.0) * target &&
+      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
     {
       const std::vector<char> all(mesh.Triangles.size(), 1);
       const RefinementCounts rc = refiner.Refine(mesh, all, Prolongation::Linear);

@@ -113,8 +113,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
   bool ButterflyProlongation = true;
   /// Before level 0, subdivide the start surface uniformly (1 -> 4, midpoints, so its
-  /// shape is kept exactly) while its mean edge length exceeds InitialEdgeSigmaRatio *
-  /// sigma_0: a vertex samples the force only where it stands, so a coarse start (a Box
+  /// shape is kept exactly) to the mean edge length nearest InitialEdgeSigmaRatio * sigma_0
+  /// (while it exceeds that by more than sqrt 2): a vertex samples the force only where it stands, so a coarse start (a Box
   /// of 12 triangles around a whole volume) needs edges comparable to the first sigma
   /// to be pulled in evenly; never below two voxels (mean spacing), which resolve nothing
   /// more. The subdivided surface counts as level 0.

@@ -1,4 +1,4 @@
-// A fine box around the 128^3 cube phantom with a small constant sigma (1 voxel): the start is
+// A fine box around the 128^3 cube phantom with a small constant sigma (0.7 voxel): the start is
 // subdivided to ~2-voxel edges (24 578 vertices) and the sweeps must leave no self-intersecting
 // triangle pairs. The thin-plate term moves the vertices at the box's creases, and Gauss-Seidel
 // passes a trace of that motion (1e-12 voxel) across the flat faces within one sweep; the
@@ -22,7 +22,7 @@ MultilevelSolver Solve(double edgeWeight, int sweeps, TriangleMesh& mesh, int& w
 {
   MultilevelParameters p;
   p.HierarchicalSigma = false;
-  p.Sigma = 1.0;
+  p.Sigma = 0.7; // the start split to the mean edge nearest 4 sigma = 2.8: six times
   p.EdgeWeight = edgeWeight;
   p.MaxLevels = 0;
   p.MaxSweeps = sweeps;

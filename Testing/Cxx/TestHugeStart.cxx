@@ -59,6 +59,8 @@ vtkSmartPointer<vtkSphereSource> DenseSphere()
   return start;
 }
 
+const double HugeStartTolerance = 1e-4;
+
 int CoarsenedSphere(vtkImageData* image)
 {
   auto start = DenseSphere();
@@ -71,6 +73,10 @@ int CoarsenedSphere(vtkImageData* image)
   filter->SetInputData(0, image);
   filter->SetInitialSurfaceConnection(start->GetOutputPort());
   filter->SetMaxLevels(10);
+  // Tighter than the default so that a level takes more than one batch of sweeps: the
+  // abort below is asked from a progress event, and a level that converges within its first
+  // batch reports none.
+  filter->SetConvergenceTolerance(HugeStartTolerance);
   const auto facts = dstest::UpdateAndCheckSurface(filter, "coarsened sphere");
   vtkPolyData* out = filter->GetOutput();
   double sum = 0;
@@ -159,6 +165,7 @@ void AbortedSphere(vtkImageData* image, int fullSweeps)
   filter->SetInputData(0, image);
   filter->SetInitialSurfaceConnection(start->GetOutputPort());
   filter->SetMaxLevels(10);
+  filter->SetConvergenceTolerance(HugeStartTolerance);
   AbortLog log;
   log.Algorithm = filter;
   vtkNew<vtkCallbackCommand> cb;

@@ -97,7 +97,9 @@ def main():
         ds_invariants.check_surface(servermanager.Fetch(seed), data, "one click grown")
     except AssertionError as error:
         problems.append(str(error))
-    if not (5000 <= data.GetNumberOfPoints() <= 50000):
+    # The absolute refinement threshold refines the gyri: 54 689 points at the defaults
+    # (README); the bounds catch a surface that did not grow or that kept subdividing.
+    if not (5000 <= data.GetNumberOfPoints() <= 80000):
         problems.append("surface of %d points" % data.GetNumberOfPoints())
     bounds = data.GetBounds()
     if not (bounds[1] - bounds[0] > 120 and bounds[5] - bounds[4] > 100 and bounds[0] < -50):
