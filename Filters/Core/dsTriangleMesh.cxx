@@ -395,8 +395,16 @@ double TriangleMesh::SignedVolume() const
 
 double TriangleMesh::MeanEdgeLength() const
 {
-  return MeanLength(
-    this->Points, this->Edges.size(), [this](std::size_t e) { return this->Edges[e]; });
+  if (this->Edges.empty())
+  {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (const auto& e : this->Edges)
+  {
+    sum += Norm(this->Points[e[1]] - this->Points[e[0]]);
+  }
+  return sum / static_cast<double>(this->Edges.size());
 }
 
 Vec3 TriangleMesh::AreaWeightedNormal(int v) const
@@ -424,5 +432,35 @@ double TriangleMesh::MinAngleDegrees(int t) const
     minAngle = std::min(minAngle, std::acos(c) * 180.0 / 3.14159265358979323846);
   }
   return minAngle;
+}
+
+bool TriangleMesh::SubdivideUniformly(std::string* error)
+{
+  if (this->TriangleEdges.size() != this->Triangles.size() && !this->BuildTopology(error))
+  {
+    return false;
+  }
+  // Edge ids number the midpoints: each edge is split once, whichever triangle meets it first.
+  const int nPts = this->NumberOfPoints();
+  this->Points.reserve(this->Points.size() + this->Edges.size());
+  for (const auto& e : this->Edges)
+  {
+    const Vec3 midpoint = 0.5 * (this->Points[e[0]] + this->Points[e[1]]);
+    this->Points.push_back(midpoint);
+  }
+  std::vector<std::array<int, 3>> finer;
+  finer.reserve(4 * this->Triangles.size());
+  for (std::size_t t = 0; t < this->Triangles.size(); ++t)
+  {
+    const std::array<int, 3>& edges = this->TriangleEdges[t];
+    const int m[3] = { nPts + edges[0], nPts + edges[1], nPts + edges[2] };
+    std::array<int, 3> children[4];
+    SplitInFour(this->Triangles[t], m, children);
+    finer.insert(finer.end(), children, children + 4);
+  }
+  this->Triangles.swap(finer);
+  this->Labels.assign(this->Points.size(), LabelN);
+  this->Levels.assign(this->Points.size(), 0);
+  return this->BuildTopology(error);
 }
 } // namespace dsurf
