@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace dsurf
@@ -43,7 +42,7 @@ inline double Norm(const Vec3& a)
 }
 
 /// Key of the undirected edge (a, b) of point ids below 2^32, for hash maps of edges (the
-/// triangle mesh, the refinement and the seed's pinch counts on input point ids).
+/// refinement and the seed's pinch counts on input point ids).
 inline unsigned long long EdgeKey(long long a, long long b)
 {
   if (a > b)
@@ -178,10 +177,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
 private:
   /// The steps of BuildTopology(); the first two return why the mesh is invalid, or "".
   std::string BuildVertexTriangles(); ///< VertexTriangleOffsets / VertexTriangles
-  std::string BuildEdges();           ///< Edges, TriangleEdges, EdgeTriangles, EdgeLookup
+  std::string BuildEdges();           ///< Edges, TriangleEdges, EdgeTriangles
   void BuildRings();                  ///< NeighborOffsets / Neighbors, BoundaryVertex
-
-  std::unordered_map<unsigned long long, int> EdgeLookup;
+  /// Edge id of (a, b) as a triangle before `before` has it (-1 when none does); needs
+  /// VertexTriangles and those triangles' TriangleEdges.
+  int EdgeBefore(int a, int b, int before) const;
 };
 } // namespace dsurf
 

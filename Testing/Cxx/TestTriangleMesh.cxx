@@ -58,6 +58,13 @@ static void CheckSubdivideUniformly()
       m.Triangles[4 * t + 1][1] == corners[1] && m.Triangles[4 * t + 2][2] == corners[2] &&
       *std::min_element(middle.begin(), middle.end()) >= 6;
   }
+  bool found = true;
+  for (int e = 0; e < 48; ++e)
+  {
+    found = found && m.FindEdge(m.Edges[e][1], m.Edges[e][0]) == e;
+  }
+  DS_CHECK(found && m.FindEdge(0, 1) < 0 && m.FindEdge(-1, 0) < 0 && m.FindEdge(0, 18) < 0,
+    "FindEdge finds each of the 48 edges in either order, no other pair");
   DS_CHECK(midpoints, "point 6 + e is the midpoint of edge e");
   DS_CHECK(children, "triangle t's corner children are 4t .. 4t+2, its middle one 4t+3");
   DS_CHECK(std::count(m.Labels.begin(), m.Labels.end(), dsurf::LabelN) == 18 &&
