@@ -192,7 +192,7 @@ void EmptyIfNotFinite(vtkObject* self, vtkPolyData* surface)
 struct SeedComplex
 {
   vtkSmartPointer<vtkUnstructuredGrid> Grid; // vtkDelaunay3D's output (points, point data)
-  std::vector<dsurf::SeedPoint> Points;
+  std::vector<dsurf::Vec3> Points;
   std::vector<dsurf::SeedTet> Tets; // the VTK_TETRA cells in order: the index is the TetraId
   std::vector<double> Radius;       // circumradius of each tetrahedron
   double FlatVolume = 0.0;          // |volume| at or below which a tetrahedron counts as flat

@@ -163,7 +163,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
   region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
   if (P.SubdivideInitialSurface)
   {
-    // Uniform red refinement with midpoints keeps the start shape; every new vertex is N,
+    // Uniform 1 -> 4 subdivision at the midpoints keeps the start shape; every vertex is N,
     // and the result is a fresh level-0 mesh for the hierarchy.
     // Edges shorter than two voxels resolve nothing more, whatever sigma is. A split halves
     // the edges, so the split whose mean edge is nearest the target (within a factor sqrt 2
@@ -175,11 +175,9 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
     while (mesh.MeanEdgeLength() > std::sqrt(2.0) * target &&
       4LL * mesh.NumberOfPoints() <= P.MaxVertices)
     {
-      const std::vector<char> all(mesh.Triangles.size(), 1);
-      const RefinementCounts rc = refiner.Refine(mesh, all, Prolongation::Linear);
-      if (!rc.Ok)
+      if (!mesh.SubdivideUniformly(&msg))
       {
-        *error = "subdividing the initial surface failed: " + rc.Error;
+        *error = "subdividing the initial surface failed: " + msg;
         return false;
       }
       ++this->InitialSubdivisions;
@@ -187,7 +185,6 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
     }
     if (subdivided)
     {
-      mesh.Levels.assign(mesh.Points.size(), 0);
       if (!refiner.Initialize(mesh, &msg))
       {
         *error = "the subdivided initial surface is not a manifold triangle mesh: " + msg;

@@ -90,7 +90,7 @@ bool IsKept(const std::vector<unsigned char>& status, std::int64_t slot)
 
 /// Positively oriented copies of the tetrahedra (so each face's outward order comes from
 /// kFace), and which of them are flat (|volume| <= degenerateVolume).
-std::vector<SeedTet> OrientPositively(const std::vector<SeedPoint>& points,
+std::vector<SeedTet> OrientPositively(const std::vector<Vec3>& points,
   const std::vector<SeedTet>& inTets, double degenerateVolume, std::vector<char>& flat)
 {
   std::vector<SeedTet> tets = inTets;
@@ -244,7 +244,7 @@ std::vector<std::int64_t> PairFacesAcrossEdges(const BoundaryFaces& faces,
 /// One output point per fan: the corners (f, j) are joined across paired edges, and each
 /// class of corners becomes one point, numbered in order of first use.
 void BuildFanSurface(const BoundaryFaces& faces, const std::vector<std::int64_t>& partner,
-  const std::vector<SeedPoint>& points, SeedSurface& surface)
+  const std::vector<Vec3>& points, SeedSurface& surface)
 {
   const std::int64_t nFaces = faces.Count();
   UnionFind corners(3 * nFaces);
@@ -272,10 +272,9 @@ void BuildFanSurface(const BoundaryFaces& faces, const std::vector<std::int64_t>
       }
     }
   }
-  std::vector<std::int64_t> classPoint(3 * nFaces, -1);
-  surface.Points.clear();
-  surface.SourcePoint.clear();
-  surface.Triangles.assign(static_cast<std::size_t>(nFaces), SeedTriangle());
+  std::vector<int> classPoint(3 * nFaces, -1);
+  surface = SeedSurface();
+  surface.Triangles.assign(static_cast<std::size_t>(nFaces), std::array<int, 3>());
   for (std::int64_t f = 0; f < nFaces; ++f)
   {
     for (int j = 0; j < 3; ++j)
@@ -283,7 +282,7 @@ void BuildFanSurface(const BoundaryFaces& faces, const std::vector<std::int64_t>
       const std::int64_t root = corners.Find(3 * f + j);
       if (classPoint[root] < 0)
       {
-        classPoint[root] = static_cast<std::int64_t>(surface.Points.size());
+        classPoint[root] = surface.NumberOfPoints();
         surface.SourcePoint.push_back(faces.Vertex(f, j));
         surface.Points.push_back(points[faces.Vertex(f, j)]);
       }
@@ -300,7 +299,7 @@ std::int64_t RemovePinchTetrahedra(
 {
   std::unordered_map<unsigned long long, int> edgeUse;
   edgeUse.reserve(static_cast<std::size_t>(3 * faces.Count()));
-  for (const SeedTriangle& tri : surface.Triangles)
+  for (const std::array<int, 3>& tri : surface.Triangles)
   {
     for (int j = 0; j < 3; ++j)
     {
@@ -310,7 +309,7 @@ std::int64_t RemovePinchTetrahedra(
   std::int64_t removed = 0;
   for (std::int64_t f = 0; f < faces.Count(); ++f)
   {
-    const SeedTriangle& tri = surface.Triangles[f];
+    const std::array<int, 3>& tri = surface.Triangles[f];
     for (int j = 0; j < 3; ++j)
     {
       if (edgeUse[EdgeKey(tri[j], tri[(j + 1) % 3])] != 2 && status[faces.Slot[f] / 4] == SeedKept)
@@ -363,14 +362,14 @@ std::unordered_map<std::int64_t, std::int64_t> CountPinches(
 
 /// Moves the copies of a split vertex into their own fans, by 2% of the fan's mean edge
 /// length toward its ring centroid, so that the sheets are no longer geometrically glued.
-void SeparateSplitCopies(const std::vector<SeedPoint>& points,
+void SeparateSplitCopies(const std::vector<Vec3>& points,
   std::unordered_map<std::int64_t, std::int64_t>& copies, SeedSurface& surface)
 {
   const std::size_t nPoints = surface.Points.size();
-  std::vector<SeedPoint> ring(nPoints, SeedPoint{ 0, 0, 0 });
+  std::vector<Vec3> ring(nPoints, Vec3{ 0, 0, 0 });
   std::vector<double> length(nPoints, 0.0);
   std::vector<int> count(nPoints, 0);
-  for (const SeedTriangle& tri : surface.Triangles)
+  for (const std::array<int, 3>& tri : surface.Triangles)
   {
     for (int j = 0; j < 3; ++j)
     {
@@ -381,7 +380,7 @@ void SeparateSplitCopies(const std::vector<SeedPoint>& points,
       }
       for (int o = 1; o < 3; ++o)
       {
-        const SeedPoint& q = points[surface.SourcePoint[tri[(j + o) % 3]]];
+        const Vec3& q = points[surface.SourcePoint[tri[(j + o) % 3]]];
         for (int i = 0; i < 3; ++i)
         {
           ring[p][i] += q[i];
@@ -397,7 +396,7 @@ void SeparateSplitCopies(const std::vector<SeedPoint>& points,
     {
       continue;
     }
-    SeedPoint dir;
+    Vec3 dir;
     for (int i = 0; i < 3; ++i)
     {
       dir[i] = ring[p][i] / count[p] - surface.Points[p][i];
@@ -417,7 +416,7 @@ void SeparateSplitCopies(const std::vector<SeedPoint>& points,
 std::int64_t CountComponents(const SeedSurface& surface)
 {
   UnionFind parts(static_cast<std::int64_t>(surface.Points.size()));
-  for (const SeedTriangle& tri : surface.Triangles)
+  for (const std::array<int, 3>& tri : surface.Triangles)
   {
     parts.Union(tri[0], tri[1]);
     parts.Union(tri[0], tri[2]);
@@ -431,18 +430,16 @@ std::int64_t CountComponents(const SeedSurface& surface)
 }
 } // namespace
 
-double SeedTetSignedVolume(
-  const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
+double SeedTetSignedVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
   return Dot(b - a, Cross(c - a, d - a)) / 6.0;
 }
 
-double SeedTetCircumradius(
-  const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d)
+double SeedTetCircumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
   // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
-  const SeedPoint u = b - a, v = c - a, w = d - a;
-  const SeedPoint vw = Cross(v, w), wu = Cross(w, u), uv = Cross(u, v);
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const Vec3 vw = Cross(v, w), wu = Cross(w, u), uv = Cross(u, v);
   const double det = 2.0 * Dot(u, vw);
   const double scale = std::max({ Dot(u, u), Dot(v, v), Dot(w, w) });
   if (std::abs(det) <= 1e-12 * scale * std::sqrt(scale))
@@ -450,7 +447,7 @@ double SeedTetCircumradius(
     return std::numeric_limits<double>::infinity();
   }
   const double uu = Dot(u, u), vv = Dot(v, v), ww = Dot(w, w);
-  SeedPoint centre;
+  Vec3 centre;
   for (int i = 0; i < 3; ++i)
   {
     centre[i] = (uu * vw[i] + vv * wu[i] + ww * uv[i]) / det;
@@ -487,9 +484,8 @@ std::string SeedBoundaryReport::Summary() const
   return os.str();
 }
 
-SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points,
-  const std::vector<SeedTet>& inTets, std::vector<unsigned char>& status, double degenerateVolume,
-  SeedBoundaryReport& report)
+SeedSurface ExtractSeedBoundary(const std::vector<Vec3>& points, const std::vector<SeedTet>& inTets,
+  std::vector<unsigned char>& status, double degenerateVolume, SeedBoundaryReport& report)
 {
   report = SeedBoundaryReport();
   SeedSurface surface;
@@ -532,56 +528,23 @@ SeedSurface ExtractSeedBoundary(const std::vector<SeedPoint>& points,
   return surface;
 }
 
-double SeedMeanEdgeLength(const SeedSurface& surface)
-{
-  // Over half-edges: interior edges are seen twice (once per side), which leaves the mean
-  // unchanged, and no edge list is needed.
-  return MeanLength(surface.Points, 3 * surface.Triangles.size(),
-    [&surface](std::size_t h)
-    {
-      const SeedTriangle& tri = surface.Triangles[h / 3];
-      const int j = static_cast<int>(h % 3);
-      return std::array<std::int64_t, 2>{ tri[j], tri[(j + 1) % 3] };
-    });
-}
-
 int SubdivideSeedSurface(SeedSurface& surface, double target, std::int64_t maxTriangles)
 {
   int steps = 0;
-  if (!(target > 0.0))
+  if (!(target > 0.0) || !surface.BuildTopology(nullptr))
   {
     return 0;
   }
-  while (SeedMeanEdgeLength(surface) > std::sqrt(2.0) * target &&
+  while (surface.MeanEdgeLength() > std::sqrt(2.0) * target &&
     static_cast<std::int64_t>(surface.Triangles.size()) * 4 <= maxTriangles)
   {
-    std::unordered_map<unsigned long long, std::int64_t> midpoint;
-    midpoint.reserve(surface.Triangles.size() * 2);
-    auto mid = [&](std::int64_t a, std::int64_t b)
-    {
-      const auto inserted =
-        midpoint.emplace(EdgeKey(a, b), static_cast<std::int64_t>(surface.Points.size()));
-      if (inserted.second)
-      {
-        const SeedPoint& pa = surface.Points[a];
-        const SeedPoint& pb = surface.Points[b];
-        surface.Points.push_back(
-          { 0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2]) });
-        surface.SourcePoint.push_back(-1);
-      }
-      return inserted.first->second;
-    };
-    std::vector<SeedTriangle> finer;
-    finer.reserve(surface.Triangles.size() * 4);
-    for (const SeedTriangle& t : surface.Triangles)
-    {
-      const std::int64_t m[3] = { mid(t[0], t[1]), mid(t[1], t[2]), mid(t[2], t[0]) };
-      SeedTriangle children[4];
-      SplitInFour(t, m, children);
-      finer.insert(finer.end(), children, children + 4);
-    }
-    surface.Triangles.swap(finer);
+    const bool built = surface.SubdivideUniformly(nullptr);
+    surface.SourcePoint.resize(surface.Points.size(), -1);
     ++steps;
+    if (!built)
+    {
+      break; // not a manifold (the boundary extraction makes one): no mean edge length
+    }
   }
   return steps;
 }

@@ -1,14 +1,14 @@
 // The plain-C++ core of vtkDelaunaySeedSurface: per-tetrahedron measures, the boundary
 // of a set of kept tetrahedra as a closed 2-manifold outward-oriented triangle surface
 // (with pinch resolution), and uniform midpoint subdivision to a target edge length.
-// No pipeline types: points are xyz triples, cells are index tuples (64-bit: the seed is
-// built from VTK ids; the solver's TriangleMesh uses int). Edge keys, mean edge length and
-// the 1 -> 4 split are shared with TriangleMesh (dsTriangleMesh.h).
+// No pipeline types: points are xyz triples, tetrahedra are 64-bit index tuples (VTK ids).
+// The surface is a TriangleMesh (dsTriangleMesh.h; int point ids), whose mean edge length
+// and 1 -> 4 subdivision it uses.
 #ifndef dsSeedSurface_h
 #define dsSeedSurface_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
-#include "dsTriangleMesh.h"                 // Vec3
+#include "dsTriangleMesh.h"                 // TriangleMesh, Vec3
 
 #include <array>
 #include <cstdint>
@@ -17,9 +17,7 @@
 
 namespace dsurf
 {
-using SeedPoint = Vec3; ///< the point type of TriangleMesh, with its arithmetic
 using SeedTet = std::array<std::int64_t, 4>;
-using SeedTriangle = std::array<std::int64_t, 3>;
 
 /// Why a tetrahedron is not part of the seed solid (the `Removed` cell array).
 enum SeedTetStatus : unsigned char
@@ -34,11 +32,11 @@ enum SeedTetStatus : unsigned char
 
 /// det[b-a, c-a, d-a] / 6: positive when d lies on the side abc's right-hand normal points to.
 DEFORMABLESURFACEFILTERS_EXPORT double SeedTetSignedVolume(
-  const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d);
+  const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 /// Radius of the sphere through the four corners; +infinity for a flat tetrahedron.
 DEFORMABLESURFACEFILTERS_EXPORT double SeedTetCircumradius(
-  const SeedPoint& a, const SeedPoint& b, const SeedPoint& c, const SeedPoint& d);
+  const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
 /// What ExtractSeedBoundary did, for the user's warning and for tests.
 struct DEFORMABLESURFACEFILTERS_EXPORT SeedBoundaryReport
@@ -53,12 +51,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SeedBoundaryReport
   std::string Summary() const;        ///< one human-readable line; empty when nothing happened
 };
 
-/// The output surface: points (copies of input points, split pinch vertices slightly moved
-/// apart), triangles, and for each output point the index of the input point it came from.
-struct DEFORMABLESURFACEFILTERS_EXPORT SeedSurface
+/// The output surface: a TriangleMesh (points are copies of input points, split pinch
+/// vertices slightly moved apart) and, for each point, the index of the input point it came
+/// from (-1 for a subdivision midpoint).
+struct DEFORMABLESURFACEFILTERS_EXPORT SeedSurface : TriangleMesh
 {
-  std::vector<SeedPoint> Points;
-  std::vector<SeedTriangle> Triangles;
   std::vector<std::int64_t> SourcePoint;
 };
 
@@ -79,21 +76,19 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SeedSurface
  *
  * @param status in/out, one entry per tetrahedron.
  */
-DEFORMABLESURFACEFILTERS_EXPORT SeedSurface ExtractSeedBoundary(
-  const std::vector<SeedPoint>& points, const std::vector<SeedTet>& tets,
-  std::vector<unsigned char>& status, double degenerateVolume, SeedBoundaryReport& report);
+DEFORMABLESURFACEFILTERS_EXPORT SeedSurface ExtractSeedBoundary(const std::vector<Vec3>& points,
+  const std::vector<SeedTet>& tets, std::vector<unsigned char>& status, double degenerateVolume,
+  SeedBoundaryReport& report);
 
 /**
- * Repeated 1-to-4 midpoint subdivision of the whole surface while the mean edge length exceeds
- * sqrt(2) * target, so it ends within a factor sqrt(2) of the target. Keeps the surface closed,
- * manifold and oriented (shared edge midpoints). Stops before exceeding maxTriangles.
+ * Repeated 1-to-4 midpoint subdivision of the whole surface (TriangleMesh::SubdivideUniformly)
+ * while its mean edge length exceeds sqrt(2) * target, so it ends within a factor sqrt(2) of
+ * the target. Keeps the surface closed, manifold and oriented; new points get SourcePoint -1.
+ * Stops before exceeding maxTriangles.
  * @return the number of subdivision steps done.
  */
 DEFORMABLESURFACEFILTERS_EXPORT int SubdivideSeedSurface(
   SeedSurface& surface, double targetEdgeLength, std::int64_t maxTriangles = 4000000);
-
-/// Mean length of the undirected edges of a triangle surface.
-DEFORMABLESURFACEFILTERS_EXPORT double SeedMeanEdgeLength(const SeedSurface& surface);
 } // namespace dsurf
 
 #endif

@@ -1,7 +1,6 @@
 #include "dsTriangleMesh.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace dsurf
 {
@@ -84,28 +83,29 @@ std::string TriangleMesh::BuildVertexTriangles()
 
 std::string TriangleMesh::BuildEdges()
 {
-  // Unique edges and the triangles on each side.
+  // Unique edges and the triangles on each side, numbered in order of first use along the
+  // triangles. An edge met again is found through the earlier triangles of its end with the
+  // smaller valence (no hash map: linear in the triangles for bounded valence).
   const int nTri = this->NumberOfTriangles();
   this->Edges.clear();
   this->EdgeTriangles.clear();
   this->TriangleEdges.assign(nTri, { -1, -1, -1 });
-  std::unordered_map<unsigned long long, int> edgeIds;
-  edgeIds.reserve(static_cast<size_t>(nTri) * 2);
   for (int t = 0; t < nTri; ++t)
   {
     const auto& tri = this->Triangles[t];
     for (int k = 0; k < 3; ++k)
     {
       const int a = tri[k], b = tri[(k + 1) % 3];
-      auto ins = edgeIds.emplace(EdgeKey(a, b), static_cast<int>(this->Edges.size()));
-      if (ins.second)
+      int e = this->EdgeBefore(a, b, t);
+      if (e < 0)
       {
+        e = static_cast<int>(this->Edges.size());
         this->Edges.push_back({ std::min(a, b), std::max(a, b) });
         this->EdgeTriangles.push_back({ t, -1 });
       }
       else
       {
-        auto& et = this->EdgeTriangles[ins.first->second];
+        auto& et = this->EdgeTriangles[e];
         if (et[1] != -1)
         {
           return "non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) +
@@ -113,46 +113,78 @@ std::string TriangleMesh::BuildEdges()
         }
         et[1] = t;
       }
-      this->TriangleEdges[t][k] = ins.first->second;
+      this->TriangleEdges[t][k] = e;
     }
   }
-  this->EdgeLookup.swap(edgeIds);
   return std::string();
+}
+
+int TriangleMesh::EdgeBefore(int a, int b, int before) const
+{
+  const int* offsets = this->VertexTriangleOffsets.data();
+  const int v = offsets[a + 1] - offsets[a] <= offsets[b + 1] - offsets[b] ? a : b;
+  for (int i = offsets[v]; i < offsets[v + 1]; ++i)
+  {
+    const int t = this->VertexTriangles[i]; // ascending
+    if (t >= before)
+    {
+      break;
+    }
+    const auto& tri = this->Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int p = tri[k], q = tri[(k + 1) % 3];
+      if ((p == a && q == b) || (p == b && q == a))
+      {
+        return this->TriangleEdges[t][k];
+      }
+    }
+  }
+  return -1;
 }
 
 void TriangleMesh::BuildRings()
 {
   const int nPts = this->NumberOfPoints();
-  // One-rings and boundary flags.
+  // One-rings (CSR, each sorted) and boundary flags.
   this->BoundaryVertex.assign(nPts, 0);
-  std::vector<std::vector<int>> rings(nPts);
+  this->NeighborOffsets.assign(nPts + 1, 0);
   for (size_t e = 0; e < this->Edges.size(); ++e)
   {
     const int a = this->Edges[e][0], b = this->Edges[e][1];
-    rings[a].push_back(b);
-    rings[b].push_back(a);
+    ++this->NeighborOffsets[a + 1];
+    ++this->NeighborOffsets[b + 1];
     if (this->EdgeTriangles[e][1] == -1)
     {
       this->BoundaryVertex[a] = this->BoundaryVertex[b] = 1;
     }
   }
-  this->NeighborOffsets.assign(nPts + 1, 0);
   for (int v = 0; v < nPts; ++v)
   {
-    std::sort(rings[v].begin(), rings[v].end());
-    this->NeighborOffsets[v + 1] = this->NeighborOffsets[v] + static_cast<int>(rings[v].size());
+    this->NeighborOffsets[v + 1] += this->NeighborOffsets[v];
   }
   this->Neighbors.resize(this->NeighborOffsets[nPts]);
+  std::vector<int> fill(this->NeighborOffsets.begin(), this->NeighborOffsets.end() - 1);
+  for (const auto& edge : this->Edges)
+  {
+    this->Neighbors[fill[edge[0]]++] = edge[1];
+    this->Neighbors[fill[edge[1]]++] = edge[0];
+  }
   for (int v = 0; v < nPts; ++v)
   {
-    std::copy(rings[v].begin(), rings[v].end(), this->Neighbors.begin() + this->NeighborOffsets[v]);
+    std::sort(this->Neighbors.begin() + this->NeighborOffsets[v],
+      this->Neighbors.begin() + this->NeighborOffsets[v + 1]);
   }
 }
 
 int TriangleMesh::FindEdge(int a, int b) const
 {
-  auto it = this->EdgeLookup.find(EdgeKey(a, b));
-  return it == this->EdgeLookup.end() ? -1 : it->second;
+  const int n = static_cast<int>(this->VertexTriangleOffsets.size()) - 1;
+  if (a < 0 || b < 0 || a >= n || b >= n || this->TriangleEdges.size() != this->Triangles.size())
+  {
+    return -1;
+  }
+  return this->EdgeBefore(a, b, this->NumberOfTriangles());
 }
 
 bool TriangleMesh::IsClosed() const
@@ -395,8 +427,16 @@ double TriangleMesh::SignedVolume() const
 
 double TriangleMesh::MeanEdgeLength() const
 {
-  return MeanLength(
-    this->Points, this->Edges.size(), [this](std::size_t e) { return this->Edges[e]; });
+  if (this->Edges.empty())
+  {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (const auto& e : this->Edges)
+  {
+    sum += Norm(this->Points[e[1]] - this->Points[e[0]]);
+  }
+  return sum / static_cast<double>(this->Edges.size());
 }
 
 Vec3 TriangleMesh::AreaWeightedNormal(int v) const
@@ -424,5 +464,35 @@ double TriangleMesh::MinAngleDegrees(int t) const
     minAngle = std::min(minAngle, std::acos(c) * 180.0 / 3.14159265358979323846);
   }
   return minAngle;
+}
+
+bool TriangleMesh::SubdivideUniformly(std::string* error)
+{
+  if (this->TriangleEdges.size() != this->Triangles.size() && !this->BuildTopology(error))
+  {
+    return false;
+  }
+  // Edge ids number the midpoints: each edge is split once, whichever triangle meets it first.
+  const int nPts = this->NumberOfPoints();
+  this->Points.reserve(this->Points.size() + this->Edges.size());
+  for (const auto& e : this->Edges)
+  {
+    const Vec3 midpoint = 0.5 * (this->Points[e[0]] + this->Points[e[1]]);
+    this->Points.push_back(midpoint);
+  }
+  std::vector<std::array<int, 3>> finer;
+  finer.reserve(4 * this->Triangles.size());
+  for (std::size_t t = 0; t < this->Triangles.size(); ++t)
+  {
+    const std::array<int, 3>& edges = this->TriangleEdges[t];
+    const int m[3] = { nPts + edges[0], nPts + edges[1], nPts + edges[2] };
+    std::array<int, 3> children[4];
+    SplitInFour(this->Triangles[t], m, children);
+    finer.insert(finer.end(), children, children + 4);
+  }
+  this->Triangles.swap(finer);
+  this->Labels.assign(this->Points.size(), LabelN);
+  this->Levels.assign(this->Points.size(), 0);
+  return this->BuildTopology(error);
 }
 } // namespace dsurf

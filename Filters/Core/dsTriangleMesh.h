@@ -1,6 +1,7 @@
-// The triangle mesh the solver deforms and the refinement subdivides: plain C++,
-// no pipeline types. Points move during a solve; connectivity changes only in
-// refinement, after which BuildTopology() is called again.
+// The one triangle-surface type of the module: the seed builds it (dsSeedSurface.h), the
+// solver deforms it and the refinement subdivides it. Plain C++, no pipeline types. Points
+// move during a solve; connectivity changes only in refinement and subdivision, after which
+// BuildTopology() is called again.
 #ifndef dsTriangleMesh_h
 #define dsTriangleMesh_h
 
@@ -8,9 +9,7 @@
 
 #include <array>
 #include <cmath>
-#include <cstddef>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace dsurf
@@ -43,7 +42,7 @@ inline double Norm(const Vec3& a)
 }
 
 /// Key of the undirected edge (a, b) of point ids below 2^32, for hash maps of edges (the
-/// triangle mesh, the refinement and the seed surface).
+/// refinement and the seed's pinch counts on input point ids).
 inline unsigned long long EdgeKey(long long a, long long b)
 {
   if (a > b)
@@ -55,27 +54,9 @@ inline unsigned long long EdgeKey(long long a, long long b)
   return (static_cast<unsigned long long>(a) << 32) | static_cast<unsigned int>(b);
 }
 
-/// Mean of |p[b] - p[a]| over `count` edges, ends(i) giving the point ids {a, b} of edge i;
-/// 0 without edges. Each surface type chooses its edge set (unique edges, or half-edges).
-template <class Ends>
-inline double MeanLength(const std::vector<Vec3>& p, std::size_t count, const Ends& ends)
-{
-  if (count == 0)
-  {
-    return 0.0;
-  }
-  double sum = 0.0;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const auto e = ends(i);
-    sum += Norm(p[e[1]] - p[e[0]]);
-  }
-  return sum / static_cast<double>(count);
-}
-
 /// The 1 -> 4 split of triangle v whose edge (v[k], v[k+1]) has midpoint m[k]: three corner
 /// children and the middle one, all with the parent's orientation. Used by the red splits of
-/// the refinement and the seed surface's uniform subdivision.
+/// the refinement and by TriangleMesh::SubdivideUniformly.
 template <class Triangle, class Id>
 inline void SplitInFour(const Triangle& v, const Id m[3], Triangle children[4])
 {
@@ -183,19 +164,30 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   }
   /// Closed volume by the divergence theorem (positive when oriented outward).
   double SignedVolume() const;
+  /// Mean length of the unique edges (0 without edges). Needs BuildTopology().
   double MeanEdgeLength() const;
   /// Unnormalised area-weighted normal of vertex v (sum of incident face cross products).
   Vec3 AreaWeightedNormal(int v) const;
   /// Smallest interior angle of triangle t, in degrees.
   double MinAngleDegrees(int t) const;
 
+  /// Splits every triangle 1 -> 4 (SplitInFour) at the midpoints of its edges, so the shape
+  /// is kept exactly; a closed, manifold, oriented mesh stays so, with the same Euler
+  /// characteristic. The midpoint of edge e becomes point NumberOfPoints() + e (edges in
+  /// the order BuildTopology() numbers them: first use along the triangles), triangle t's
+  /// children become triangles 4t .. 4t+3. Every point is then labelled N, level 0 (a fresh
+  /// level-0 mesh). Needs the topology of the current triangles (built here when there is
+  /// none) and rebuilds it after the split; false with BuildTopology()'s message on failure.
+  bool SubdivideUniformly(std::string* error);
+
 private:
   /// The steps of BuildTopology(); the first two return why the mesh is invalid, or "".
   std::string BuildVertexTriangles(); ///< VertexTriangleOffsets / VertexTriangles
-  std::string BuildEdges();           ///< Edges, TriangleEdges, EdgeTriangles, EdgeLookup
+  std::string BuildEdges();           ///< Edges, TriangleEdges, EdgeTriangles
   void BuildRings();                  ///< NeighborOffsets / Neighbors, BoundaryVertex
-
-  std::unordered_map<unsigned long long, int> EdgeLookup;
+  /// Edge id of (a, b) as a triangle before `before` has it (-1 when none does); needs
+  /// VertexTriangles and those triangles' TriangleEdges.
+  int EdgeBefore(int a, int b, int before) const;
 };
 } // namespace dsurf
 

@@ -52,8 +52,8 @@ int main()
 {
   {
     std::cout << "Two tetrahedra sharing vertex 0:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
-      { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 } };
+    std::vector<dsurf::Vec3> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { -1, 0, 0 },
+      { 0, -1, 0 }, { 0, 0, -1 } };
     std::vector<dsurf::SeedTet> t = { { 0, 1, 2, 3 }, { 0, 4, 6, 5 } };
     std::vector<unsigned char> status(2, dsurf::SeedKept);
     dsurf::SeedBoundaryReport report;
@@ -69,7 +69,7 @@ int main()
   }
   {
     std::cout << "Two tetrahedra sharing edge 0-1:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }, { 0.5, 1, 0.5 },
+    std::vector<dsurf::Vec3> p = { { 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }, { 0.5, 1, 0.5 },
       { -1, 0, 0 }, { -0.5, -1, 0.5 } };
     std::vector<dsurf::SeedTet> t = { { 0, 1, 2, 3 }, { 0, 1, 4, 5 } };
     std::vector<unsigned char> status(2, dsurf::SeedKept);
@@ -87,7 +87,7 @@ int main()
     // Eight tetrahedra around the z axis (edge 0-1), alternate ones kept: four solid wedges
     // meet along the edge, eight boundary faces use it.
     std::cout << "Four wedges around one edge:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, -1 }, { 0, 0, 1 } };
+    std::vector<dsurf::Vec3> p = { { 0, 0, -1 }, { 0, 0, 1 } };
     for (int i = 0; i < 8; ++i)
     {
       const double a = 2.0 * 3.14159265358979 * i / 8;
@@ -121,7 +121,7 @@ int main()
   }
   {
     std::cout << "A flat tetrahedron on top of a solid one is peeled off:" << std::endl;
-    std::vector<dsurf::SeedPoint> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, -1 },
+    std::vector<dsurf::Vec3> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, -1 },
       { 1, 1, 0 } };
     std::vector<dsurf::SeedTet> t = { { 0, 1, 2, 3 }, { 0, 1, 2, 4 } };
     std::vector<unsigned char> status(2, dsurf::SeedKept);

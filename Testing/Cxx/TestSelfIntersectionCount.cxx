@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -20,7 +21,8 @@ using namespace dsurf;
 namespace
 {
 // The oracle is independent of the library's classification (Moeller's interval test,
-// SharedVertexTrianglesOverlap): it decides each pair by orientation signs (signed volumes).
+// SharedVertexTrianglesOverlap, and its index loop that finds the shared corners): it finds
+// the shared corners as a set intersection and decides each pair by orientation signs.
 // Two closed triangles meet iff an edge of one meets the other triangle (their intersection is
 // convex, so its boundary lies on an edge). The test data are generic: no exact touching, so
 // the library's tolerance for touching does not matter.
@@ -138,6 +140,24 @@ bool OracleOverlapBeyondVertex(
     (InWedge(minusD, a1 - s, a2 - s) && InWedge(minusD, b1 - s, b2 - s));
 }
 
+/// The point ids two triangles share, as a set intersection of their sorted corners.
+std::vector<int> SharedCorners(std::array<int, 3> a, std::array<int, 3> b)
+{
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  std::vector<int> common;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+  return common;
+}
+
+/// The two corners of triangle t other than point s (the wedge test ignores their order).
+std::array<int, 2> OtherCorners(const std::array<int, 3>& t, int s)
+{
+  std::array<int, 2> other{ -1, -1 };
+  std::copy_if(t.begin(), t.end(), other.begin(), [s](int v) { return v != s; });
+  return other;
+}
+
 /// All intersecting pairs (a < b) by the oracle, testing every pair: pairs sharing an edge
 /// are skipped, pairs sharing one vertex count when they overlap beyond it. With
 /// `skipDisjointBoxes` pairs whose bounding boxes are apart are skipped first (exact, and
@@ -169,25 +189,17 @@ std::vector<std::pair<int, int>> BruteForcePairs(const TriangleMesh& m, bool ski
         continue;
       }
       const auto &A = m.Triangles[a], &B = m.Triangles[b];
-      int shared = 0, sa = -1, sb = -1;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          if (A[i] == B[j])
-          {
-            ++shared;
-            sa = i;
-            sb = j;
-          }
+      const std::vector<int> common = SharedCorners(A, B);
       bool hit = false;
-      if (shared == 0)
+      if (common.empty())
       {
         const Vec3 pa[3] = { P[A[0]], P[A[1]], P[A[2]] }, pb[3] = { P[B[0]], P[B[1]], P[B[2]] };
         hit = OracleTrianglesMeet(pa, pb);
       }
-      else if (shared == 1)
+      else if (common.size() == 1)
       {
-        hit = OracleOverlapBeyondVertex(
-          P[A[sa]], P[A[(sa + 1) % 3]], P[A[(sa + 2) % 3]], P[B[(sb + 1) % 3]], P[B[(sb + 2) % 3]]);
+        const std::array<int, 2> oa = OtherCorners(A, common[0]), ob = OtherCorners(B, common[0]);
+        hit = OracleOverlapBeyondVertex(P[common[0]], P[oa[0]], P[oa[1]], P[ob[0]], P[ob[1]]);
       }
       if (hit)
       {
