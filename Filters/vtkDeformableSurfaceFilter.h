@@ -53,7 +53,7 @@
  *
  * Start surface: with SubdivideInitialSurface (default on) a coarse start is first
  * split 1 -> 4 at edge midpoints to the mean edge length nearest 4 sigma_0 (within a factor
- * sqrt 2; never below two voxels), so a
+ * sqrt 2; the target never below two voxels), so a
  * Box of 12 triangles around the whole volume is pulled in evenly (field data
  * InitialSubdivisions).
  *

@@ -17,6 +17,13 @@ int DecimationFactor(double sigma, const ImageGeometry& geometry)
   {
     samples = std::min(samples, sigma / (SamplesPerSigma * geometry.Spacing[a]));
   }
+  // In double first: an unvalidated sigma (huge, infinite or NaN) must not reach the cast.
+  const double largest =
+    std::max({ geometry.Dimensions[0], geometry.Dimensions[1], geometry.Dimensions[2], 1 });
+  if (!(samples < largest))
+  {
+    samples = largest;
+  }
   int f = std::max(1, static_cast<int>(std::floor(samples)));
   f -= 1 - f % 2; // odd: blocks centred on voxels (BlockMeans)
   // Keep at least two coarse voxels along every axis (a 3-D image for the scale space).
@@ -206,9 +213,23 @@ void ExtractBox(const float* values, const ImageGeometry& geometry, const VoxelB
 bool ComputeForceAtScale(const float* scalars, const ImageGeometry& geometry, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
 {
+  // The last level's field is released first, and a box of more than half the image is not
+  // copied out (the whole image is used): the solve then never holds more than the float
+  // image and one field of the whole image (docs/METHOD.md §9.6).
+  out = ForceField();
+  // Checked on the image itself, so that a sigma too large is named as the user gave it.
+  const std::string problem = ScaleSpaceProblem(geometry, parameters.Sigma);
+  if (!problem.empty())
+  {
+    if (error)
+    {
+      *error = problem;
+    }
+    return false;
+  }
   std::vector<float> cut;
   ImageGeometry cutGeometry = geometry;
-  if (scalars && box.NumberOfVoxels() < geometry.NumberOfVoxels())
+  if (scalars && 2 * box.NumberOfVoxels() <= geometry.NumberOfVoxels())
   {
     ExtractBox(scalars, geometry, box, cut, cutGeometry);
     scalars = cut.data();

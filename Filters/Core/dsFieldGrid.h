@@ -4,7 +4,7 @@
 //   sigma, so a level whose sigma spans many voxels computes it on a grid of f x f x f blocks
 //   of the image, each replaced by its mean, smoothed with the remaining sigma (f^3 times less
 //   memory and time; the first levels of a 512^3 volume, sigma 85, 42, 21 voxels, shrink to
-//   grids of 19^3-74^3);
+//   grids of 25^3-103^3);
 // - after the first level, only the surface's neighbourhood: the surface then lies near its
 //   object and moves a few sigma at most, so the field covers its bounding box grown by
 //   NeighbourhoodSigmas sigma (the reach and the Gaussian's support) and no more.
@@ -36,8 +36,9 @@ DEFORMABLESURFACEFILTERS_EXPORT void BlockMeans(const float* values, const Image
 
 /// The sigma left to smooth the block means with so that box and Gaussian together have the
 /// variance sigma^2 along the axis where the box adds the most, (f^2 - 1) / 12 spacing^2
-/// (the variance of a discrete box of f samples). Box then Gaussian is Gaussian to within
-/// ~1 % of the peak for f <= sigma / 2 voxels: the box holds 2 % of the variance.
+/// (the variance of a discrete box of f samples). With f <= sigma / 4 voxels the box holds
+/// at most 0.5 % of the variance, and box then Gaussian is Gaussian well within the
+/// discretisation error of the coarse grid.
 DEFORMABLESURFACEFILTERS_EXPORT double RemainingSigma(
   double sigma, const ImageGeometry& geometry, int f);
 
@@ -56,6 +57,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT VoxelBox
 /// level: 4 sigma of the Gaussian's support (its tail beyond holds < 1e-4 of the weight), so
 /// the cut does not change the field where the surface is, and 2 sigma the surface may move.
 constexpr double NeighbourhoodSigmas = 6.0;
+/// The same with the local edge normalisation, whose second Gaussian (2 sigma) reaches 8 sigma.
+constexpr double NeighbourhoodSigmasLocal = 10.0;
 
 /// The voxels within `reach` (world units, plus one voxel) of the mesh's bounding box in
 /// index space, clipped to the image.
@@ -66,10 +69,11 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
 DEFORMABLESURFACEFILTERS_EXPORT void ExtractBox(const float* values, const ImageGeometry& geometry,
   const VoxelBox& box, std::vector<float>& out, ImageGeometry& outGeometry);
 
-/// The force field at parameters.Sigma over `box` of the image, on a grid decimated by
-/// DecimationFactor when that is above 1, else on the image's own grid
-/// (ComputeScaleSpaceForce). The edge strength is normalised within the box. out.Sigma is
-/// parameters.Sigma either way.
+/// The force field at parameters.Sigma over `box` of the image (over the whole image when the
+/// box holds more than half of it), on a grid decimated by DecimationFactor when that is above
+/// 1, else on the image's own grid (ComputeScaleSpaceForce). The edge strength is normalised
+/// within the box. out's earlier field is released first. out.Sigma is parameters.Sigma either
+/// way.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const float* scalars,
   const ImageGeometry& geometry, const VoxelBox& box, const ScaleSpaceParameters& parameters,
   ForceField& out, std::string* error);

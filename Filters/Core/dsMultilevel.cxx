@@ -167,9 +167,8 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
     // and the result is a fresh level-0 mesh for the hierarchy.
     // Edges shorter than two voxels resolve nothing more, whatever sigma is. A split halves
     // the edges, so the split whose mean edge is nearest the target (within a factor sqrt 2
-    // either way) is taken: stopping at the first below it would double the edges' count for
-    // a sigma_0 a little smaller (on Colin27 from the picks, sigma_0 3.0 instead of 3.5 mm gave
-    // 4x the start's triangles and a surface 2.5x as dense, pushed into the sulci).
+    // either way) is taken: stopping at the first below it would quadruple the start's
+    // triangles for a sigma_0 a little smaller.
     const double target = std::max(InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
     bool subdivided = false;
     while (mesh.MeanEdgeLength() > std::sqrt(2.0) * target &&
@@ -415,7 +414,10 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
   // (dsFieldGrid.h); rebuilt when sigma changed or the surface needs more than it covers.
   const VoxelBox box = rec.Level == 0
     ? VoxelBox::Whole(geometry)
-    : SurfaceNeighbourhood(mesh, geometry, NeighbourhoodSigmas * sigma);
+    : SurfaceNeighbourhood(mesh, geometry,
+        (P.EdgeNormalization == EdgeNormalization::Local ? NeighbourhoodSigmasLocal
+                                                         : NeighbourhoodSigmas) *
+          sigma);
   if (state.Field.Empty() || std::abs(state.Field.Sigma - sigma) > 1e-12 * sigma ||
     !state.FieldBox.Contains(box))
   {

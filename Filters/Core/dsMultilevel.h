@@ -116,7 +116,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// shape is kept exactly) to the mean edge length nearest InitialEdgeSigmaRatio * sigma_0
   /// (while it exceeds that by more than sqrt 2): a vertex samples the force only where it stands, so a coarse start (a Box
   /// of 12 triangles around a whole volume) needs edges comparable to the first sigma
-  /// to be pulled in evenly; never below two voxels (mean spacing), which resolve nothing
+  /// to be pulled in evenly; the target never below two voxels (mean spacing), which resolve nothing
   /// more. The subdivided surface counts as level 0.
   bool SubdivideInitialSurface = true;
   long long MaxVertices = 2000000;

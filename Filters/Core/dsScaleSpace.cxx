@@ -468,6 +468,16 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
   return true;
 }
 
+std::string ScaleSpaceProblem(const ImageGeometry& geometry, double sigma)
+{
+  std::string error;
+  if (!Validate(geometry, sigma, &error) && error.empty())
+  {
+    error = "invalid image geometry";
+  }
+  return error;
+}
+
 bool ComputeScaleSpaceForce(const float* scalars, const ImageGeometry& geometry,
   const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
 {

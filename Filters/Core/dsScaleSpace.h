@@ -102,6 +102,12 @@ DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
 
 /// Compute P = -(w_edge * g + w_image * f) with g = |grad(G_sigma * f)| (normalised
 /// as documented in vtkImageScaleSpaceGradient.h when NormalizePotential), and
+/// Why the scale space at sigma cannot be computed on this geometry, empty when it can: the
+/// checks ComputeScaleSpaceForce makes before anything else (3-D, spacing, origin, direction,
+/// sigma finite and at most 100 000 voxels along an axis).
+DEFORMABLESURFACEFILTERS_EXPORT std::string ScaleSpaceProblem(
+  const ImageGeometry& geometry, double sigma);
+
 /// Force = -grad P in world coordinates. scalars: one float per voxel, x fastest.
 /// Returns false with a message on bad input (empty, 2-D, non-finite sigma...).
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const float* scalars,

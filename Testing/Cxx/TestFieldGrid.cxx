@@ -110,7 +110,7 @@ void CheckFields()
   const std::vector<float> image = Ball(g, c, 20.0);
   // Points from `band` sigma inside to `band` sigma outside the ball's boundary: where a
   // surface feels the field.
-  auto shells = [&](double sigma, double band)
+  auto shells = [](double sigma, double band, const Vec3& c)
   {
     std::vector<Vec3> points;
     const TriangleMesh unit = dstest::MakeIcosphere(2, 1.0, Vec3{ 0, 0, 0 });
@@ -141,7 +141,7 @@ void CheckFields()
   // each, and trilinear sampling flattens the extrema. Nearer the ball's centre, where
   // |grad s| has its kink at 0, the coarse grid is 11 % off at r = 8 and more within: no
   // surface rests there at this scale.
-  DS_CHECK_LE(ForceDifference(decimated, full, shells(12.0, 0.5)), 0.08,
+  DS_CHECK_LE(ForceDifference(decimated, full, shells(12.0, 0.5, c)), 0.08,
     "decimated vs full field, sigma 12, within sigma / 2 of the edge (of the largest force)");
 
   // Fine sigma over the neighbourhood of a surface near the ball.
@@ -155,8 +155,28 @@ void CheckFields()
             << " voxels" << std::endl;
   DS_CHECK_LE(static_cast<double>(box.NumberOfVoxels()) / g.NumberOfVoxels(), 0.5,
     "the neighbourhood's share of the image");
-  DS_CHECK_LE(ForceDifference(cut, full, shells(2.0, 2.0)), 1e-3,
+  DS_CHECK_LE(ForceDifference(cut, full, shells(2.0, 2.0, c)), 1e-3,
     "neighbourhood vs whole-image field, sigma 2, within 2 sigma of the edge");
+
+  // The local edge normalisation blurs g again at 2 sigma, so its neighbourhood reaches
+  // 10 sigma; a ball in a larger image so that the box is a real cut (at most half).
+  {
+    ImageGeometry big;
+    big.Dimensions[0] = big.Dimensions[1] = big.Dimensions[2] = 128;
+    const Vec3 c2{ 63.5, 63.5, 63.5 };
+    const std::vector<float> ball = Ball(big, c2, 20.0);
+    ScaleSpaceParameters local = p;
+    local.EdgeNormalization = EdgeNormalization::Local;
+    const VoxelBox localBox = SurfaceNeighbourhood(
+      dstest::MakeIcosphere(3, 21.0, c2), big, NeighbourhoodSigmasLocal * local.Sigma);
+    DS_CHECK(2 * localBox.NumberOfVoxels() <= big.NumberOfVoxels(),
+      "local normalisation: the neighbourhood is a cut of the image");
+    ForceField wholeLocal, cutLocal;
+    DS_CHECK(ComputeScaleSpaceForce(ball.data(), big, local, wholeLocal, &error), error);
+    DS_CHECK(ComputeForceAtScale(ball.data(), big, localBox, local, cutLocal, &error), error);
+    DS_CHECK_LE(ForceDifference(cutLocal, wholeLocal, shells(2.0, 2.0, c2)), 1e-3,
+      "local normalisation: neighbourhood vs whole-image field, sigma 2, within 2 sigma");
+  }
 
   // The box holds every vertex plus the reach, and stays inside the image.
   for (int a = 0; a < 3; ++a)
