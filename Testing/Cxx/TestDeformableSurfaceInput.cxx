@@ -243,22 +243,7 @@ int TestDeformableSurfaceInput(int, char*[])
     for (int levels : { 0, 2 })
     {
       const Result r = Deform(image, cap, 300, 0.07, levels);
-      dsurf::TriangleMesh m;
-      for (vtkIdType i = 0; i < r.Surface->GetNumberOfPoints(); ++i)
-      {
-        dsurf::Vec3 x;
-        r.Surface->GetPoint(i, x.data());
-        m.Points.push_back(x);
-      }
-      vtkCellArray* polys = r.Surface->GetPolys();
-      polys->InitTraversal();
-      vtkIdType n;
-      const vtkIdType* ids;
-      while (polys->GetNextCell(n, ids))
-      {
-        m.Triangles.push_back(
-          { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
-      }
+      dsurf::TriangleMesh m = dstest::FromPolyData(r.Surface);
       std::string err;
       DS_CHECK(m.BuildTopology(&err), err);
       // Every output boundary vertex must be an input point, unmoved.

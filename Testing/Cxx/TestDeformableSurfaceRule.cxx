@@ -57,22 +57,7 @@ struct Quality
 
 Quality Measure(vtkPolyData* out, double c, double halfSide)
 {
-  dsurf::TriangleMesh m;
-  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
-  {
-    dsurf::Vec3 x;
-    out->GetPoint(i, x.data());
-    m.Points.push_back(x);
-  }
-  vtkCellArray* polys = out->GetPolys();
-  polys->InitTraversal();
-  vtkIdType n;
-  const vtkIdType* ids;
-  while (polys->GetNextCell(n, ids))
-  {
-    m.Triangles.push_back(
-      { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
-  }
+  dsurf::TriangleMesh m = dstest::FromPolyData(out);
   std::string err;
   m.BuildTopology(&err);
   Quality q;

@@ -162,6 +162,28 @@ inline void SweepWithoutForce(dsurf::TriangleMesh& m, bool useLabelWeights, int 
   solver.Sweeps(sweeps, [](const dsurf::SweepStatistics&) { return true; });
 }
 
+/// The triangles of a polydata as a mesh (ids as they are); no topology built.
+inline dsurf::TriangleMesh FromPolyData(vtkPolyData* polyData)
+{
+  dsurf::TriangleMesh m;
+  for (vtkIdType i = 0; i < polyData->GetNumberOfPoints(); ++i)
+  {
+    dsurf::Vec3 x;
+    polyData->GetPoint(i, x.data());
+    m.Points.push_back(x);
+  }
+  vtkCellArray* polys = polyData->GetPolys();
+  polys->InitTraversal();
+  vtkIdType n;
+  const vtkIdType* ids;
+  while (polys->GetNextCell(n, ids))
+  {
+    m.Triangles.push_back(
+      { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+  }
+  return m;
+}
+
 /// The core mesh as a vtkPolyData of triangles (a filter's initial surface).
 inline vtkSmartPointer<vtkPolyData> ToPolyData(const dsurf::TriangleMesh& m)
 {
