@@ -15,8 +15,8 @@
 //      grows as ~h d / sigma away from an edge), exceeds RefinementThreshold voxels (mean
 //      spacing) (every triangle when UniformRefinement). The threshold is absolute: a level
 //      refines only where the surface still rests that far from the image's edge, so the
-//      triangles follow the detail and the resolution, not a fixed share of every level (the
-//      former relative threshold). The default 0.07 voxel was measured on the phantoms: a
+//      triangles follow the detail and the resolution, not a fixed share of every level (as a
+//      threshold relative to the level's mean would). The default 0.07 voxel was measured on the phantoms: a
 //      binary sphere of radius 32 voxels in 128^3 ends with ~2 500 triangles at mean |d| 0.06
 //      voxel, the cube of half-side 16 with ~6 300 (its edges and corners), a noisy ball of
 //      radius 128 in 512^3 with ~11 000 at 0.034 (0.05: 23 000 triangles for 0.031).

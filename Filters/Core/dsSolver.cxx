@@ -60,9 +60,9 @@ inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOthe
 /// of a green half takes the roles of its ends in that green (averaged when both triangles
 /// on the edge are greens), and a vertex that is C of one green and D of another still gives
 /// the second green's M weight 0. Any other edge joins v to a vertex whose roles belong to
-/// greens without this edge: v's row (its label) with column N. (One label per vertex gave
-/// an M next to another green's M weight 0, where a single refined triangle meets three
-/// greens, and the flat sheet of TestHierarchyScatter folded.) Without CornerLabels (labels
+/// greens without this edge: v's row (its label) with column N. (One label per vertex would
+/// give an M next to another green's M weight 0 where a single refined triangle meets three
+/// greens: the flat sheet of TestHierarchyScatter folds then.) Without CornerLabels (labels
 /// set by hand) the table applies to the vertex labels. Uniform when the weights sum to
 /// zero.
 /// `greens` is scratch space (the number of greens on each edge of v).

@@ -8,6 +8,8 @@
 #ifndef BenchIsolate_h
 #define BenchIsolate_h
 
+#include "dsMemory.h"
+
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -142,17 +144,10 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
   return r;
 }
 
-/// MemAvailable of /proc/meminfo in bytes (0 if unknown).
+/// What the system can give, as the filters estimate it (0 if unknown).
 inline double AvailableBytes()
 {
-  std::ifstream in("/proc/meminfo");
-  std::string key;
-  double kib = 0;
-  std::string unit;
-  while (in >> key >> kib >> unit)
-    if (key == "MemAvailable:")
-      return kib * 1024.0;
-  return 0;
+  return dsurf::AvailableMemoryBytes();
 }
 
 /// A quantity that grows with the voxels (peak memory, time), learned by method from the cases
