@@ -114,7 +114,7 @@ bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry,
     choice.SpansVolume = true;
     return true;
   }
-  const double voxel = (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
+  const double voxel = geometry.MeanSpacing();
   ScaleSpaceParameters probeParameters;
   probeParameters.Sigma = voxel;
   probeParameters.EdgeNormalization = EdgeNormalization::Local;

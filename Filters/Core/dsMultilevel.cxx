@@ -9,15 +9,6 @@
 
 namespace dsurf
 {
-namespace
-{
-/// The voxel size (mean spacing): the finest detail the image shows.
-double MeanSpacing(const ImageGeometry& geometry)
-{
-  return (geometry.Spacing[0] + geometry.Spacing[1] + geometry.Spacing[2]) / 3.0;
-}
-} // namespace
-
 const char* StopReasonName(StopReason reason)
 {
   switch (reason)
@@ -72,7 +63,7 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
     // The constant mode is the paper's small sigma (docs/METHOD.md §6.6): it is chosen for a weak
     // boundary next to a strong one, which a sigma that never shrinks from extent / 6 or from
     // the start's distance would blur together.
-    sigma = ConstantSigmaVoxels * MeanSpacing(geometry);
+    sigma = ConstantSigmaVoxels * geometry.MeanSpacing();
   }
   else if (!ChooseInitialSigma(
              scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
@@ -142,7 +133,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
   TriangleMesh& mesh, RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
-  const double voxel = MeanSpacing(geometry);
+  const double voxel = geometry.MeanSpacing();
   std::string msg;
   if (P.RegionWeight > 0)
   {
@@ -368,7 +359,7 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
     return false;
   }
   // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
-  state.Voxel = MeanSpacing(geometry);
+  state.Voxel = geometry.MeanSpacing();
   std::string msg;
   if (!state.Refiner.Initialize(mesh, &msg))
   {

@@ -109,7 +109,7 @@ double RobustSpan(const float* scalars, const ImageGeometry& g)
 std::vector<float> ValuesOutside(
   const float* scalars, const ImageGeometry& g, const TriangleMesh& mesh, double outwardSign)
 {
-  const double voxel = (g.Spacing[0] + g.Spacing[1] + g.Spacing[2]) / 3.0;
+  const double voxel = g.MeanSpacing();
   std::vector<float> values;
   for (const auto& t : mesh.Triangles)
   {

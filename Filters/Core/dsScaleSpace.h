@@ -43,6 +43,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
   /// mean over the axes of Dimensions[a] * Spacing[a], so a 256^3 unit-spacing
   /// volume has extent 256 and sigma = extent / 6 = 42.7.
   double MeanExtent() const;
+  /// The voxel size, the mean spacing: the finest detail the image shows.
+  double MeanSpacing() const
+  {
+    return (this->Spacing[0] + this->Spacing[1] + this->Spacing[2]) / 3.0;
+  }
   /// World point -> continuous index (i,j,k).
   void WorldToIndex(const double x[3], double ijk[3]) const;
   /// Continuous index -> world point.
