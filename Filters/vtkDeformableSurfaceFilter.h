@@ -62,7 +62,7 @@
  * average, as the distance in voxels at which the image force balances it, exceeds
  * RefinementThreshold (all triangles with
  * UniformRefinement; adaptively, never a triangle whose edges are all shorter than a
- * voxel); the marked triangles are red-green refined (no T-vertices,
+ * voxel, nor, with the region force, than the level's sigma); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
  * Sigma never goes below half a voxel; the level solved there is the last (finer meshes would

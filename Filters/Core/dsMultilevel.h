@@ -21,7 +21,11 @@
 //      voxel, the cube of half-side 16 with ~6 300 (its edges and corners), a noisy ball of
 //      radius 128 in 512^3 with ~11 000 at 0.034 (0.05: 23 000 triangles for 0.031).
 //      Adaptively, a triangle whose edges are all shorter than a voxel (mean spacing) is never
-//      marked: the image has no finer detail;
+//      marked: the image has no finer detail; with the region force on, nor one whose edges are
+//      all shorter than sigma_l (the image at sigma_l shows nothing finer): the region force
+//      carries the surface far, so its edges follow the travel rather than sigma (a clicked
+//      seed grown to the brain has edges ~sigma_0), and at a coarse sigma the absolute estimator
+//      marks nearly every triangle (docs/METHOD.md §9.3);
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h; at edge midpoints with ButterflyProlongation off);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
@@ -262,9 +266,10 @@ private:
   void EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel);
   /// Untangle (rec.Folds), with a warning for what remains.
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
-  /// Step 3's marks without the triangles already below a voxel (adaptive refinement only).
+  /// Step 3's marks without the triangles already below a voxel, or with the region force on
+  /// (region) below the level's sigma (adaptive refinement only).
   std::vector<char> MarkForRefinement(
-    const TriangleMesh& mesh, const LevelRecord& rec, double voxel) const;
+    const TriangleMesh& mesh, const LevelRecord& rec, double voxel, bool region) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(

@@ -97,8 +97,8 @@ def main():
         ds_invariants.check_surface(servermanager.Fetch(seed), data, "one click grown")
     except AssertionError as error:
         problems.append(str(error))
-    # The absolute refinement threshold refines the gyri: ~54 700 points at the defaults
-    # (README); the bounds catch a surface that did not grow or that kept subdividing.
+    # ~28 700 points at the defaults (README; no split below the level's sigma with the region
+    # force); the bounds catch a surface that did not grow or that kept subdividing.
     if not (5000 <= data.GetNumberOfPoints() <= 80000):
         problems.append("surface of %d points" % data.GetNumberOfPoints())
     bounds = data.GetBounds()

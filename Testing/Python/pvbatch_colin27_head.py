@@ -7,9 +7,12 @@
 #
 # Measured (Release, this 2-core machine, quiet): picks 1.1-1.6 s, 10 873 vertices,
 # one closed surface, 0 self-intersections, vertex -> mask boundary mean 0.65, 95 % 2.42 mm,
-# volume +3.1 %; click 3.7-4.6 s, 54 684 vertices, mean 1.04, 95 % 4.9 mm, volume +2.5 %. The
-# issue's goals, asserted below: picks mean <= 1.0, 95 % <= 3.0, volume within 5 %; click mean
-# <= 1.5, volume within 8 %.
+# volume +3.1 %; click 28 725 vertices, mean 0.74, 95 % 2.9 mm, volume +3.5 % (~1.9x the
+# picks' CPU time). The issue's goals, asserted below: picks mean <= 1.0, 95 % <= 3.0, volume
+# within 5 %; click mean <= 1.5, volume within 8 %. The solve time is not asserted (it depends
+# on the machine's load); its main term is: the click's vertices stay below 40 000 (54 684,
+# 3.2x the picks' CPU time, when the grown seed, whose edges follow its growth rather than
+# sigma, was split at every coarse level: docs/METHOD.md §9.3).
 import os
 import sys
 
@@ -54,6 +57,8 @@ for start in ("picks", "click"):
     else:
         check("click: vertex -> mask boundary mean <= 1.5 mm", m["dist_mean"] <= 1.5, m["dist_mean"])
         check("click: |volume / mask volume - 1| <= 8%", abs(volume_error) <= 0.08, volume_error)
+        check("click: vertices <= 40 000 (no split below the level's sigma)",
+              m["vertices"] <= 40000, m["vertices"])
 for start, m in runs:
     print("%s: %.2f s, %d vertices, mean %.2f, 95%% %.2f, max %.1f mm, volume %+.1f%%"
           % (start, m["seconds"], m["vertices"], m["dist_mean"], m["dist_p95"], m["dist_max"],
