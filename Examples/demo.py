@@ -13,12 +13,9 @@ the object. The hierarchy does the work: at sigma = 1/6 of the volume extent the
 only feels the brain as a blob, each refinement halves sigma and lets the finer mesh
 follow finer detail.
 
-Non-default parameters (everything else is the filter's default):
-  MaxLevels 6            the start box is split once (SubdivideInitialSurface) to 48
-                         triangles; the default 4 refinements then end at ~1300 vertices
-                         (~7 mm triangles) on a 170 mm brain. 6 end at sigma = 0.5 mm
-                         (below the 1 mm voxel, where finer levels add nothing) with
-                         ~10 000 vertices, refined where the cortex has detail.
+Every filter parameter is the default: the start box is split once (SubdivideInitialSurface)
+to 48 triangles, and the levels run until sigma reaches its floor, half the 1 mm voxel (from
+sigma_0 = extent/6 = 32 mm: 8 levels), refined where the cortex has detail (~22 000 vertices).
 
 Truth: the boundary of the brain mask (ch2bet > 0), the 0.5 iso-surface of that binary
 volume. The numbers: distance of every surface vertex to it (how well the surface sits on
@@ -42,8 +39,8 @@ TEMPLATES = "/usr/share/mricron/templates"
 BRAIN = os.path.join(TEMPLATES, "ch2bet.nii.gz")
 HEAD = os.path.join(TEMPLATES, "ch2.nii.gz")
 
-# The non-default filter properties of the job and why: see the module docstring.
-SOLVER_SETTINGS = {"MaxLevels": 6}
+# The non-default filter properties of the job: none (see the module docstring).
+SOLVER_SETTINGS = {}
 
 
 def require_data():
