@@ -802,7 +802,7 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
       return true;
     });
   std::string error;
-  if (!solver.Run(volume.Values, volume.Geometry, mesh, &error))
+  if (!solver.Run(volume.Image, mesh, &error))
   {
     vtkErrorMacro("Deformable surface failed: " << error);
     return false;

@@ -45,9 +45,10 @@ std::vector<char> MultilevelSolver::MarkTriangles(
   return marks;
 }
 
-bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geometry,
-  const TriangleMesh& mesh, double& sigma, std::string* error)
+bool MultilevelSolver::FirstSigma(
+  const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double paper = geometry.MeanExtent() / 6.0;
   if (P.Sigma > 0)
@@ -66,7 +67,7 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
     sigma = ConstantSigmaVoxels * geometry.MeanSpacing();
   }
   else if (!ChooseInitialSigma(
-             scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+             image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
     return false;
   }
@@ -82,9 +83,9 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
   return true;
 }
 
-bool MultilevelSolver::RegionRange(
-  const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh)
+bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& mesh)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
   if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(hi - lo))
@@ -103,7 +104,7 @@ bool MultilevelSolver::RegionRange(
   {
     RangeEstimate estimate;
     std::string msg;
-    if (!EstimateIntensityRange(scalars, geometry, mesh, 1.0, estimate, &msg))
+    if (!EstimateIntensityRange(image, mesh, 1.0, estimate, &msg))
     {
       this->Warnings.push_back(
         "the region force is off: no intensity range was given and none could be "
@@ -118,7 +119,7 @@ bool MultilevelSolver::RegionRange(
     // region, and the edge force finds the boundary beyond.
     this->RegionOutwardOnly = !estimate.Contrast;
   }
-  if (CountVoxelsInRange(scalars, geometry, lo, hi) == 0)
+  if (CountVoxelsInRange(image, lo, hi) == 0)
   {
     this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) +
       ", " + std::to_string(hi) + "] matches no voxel of the image");
@@ -129,9 +130,10 @@ bool MultilevelSolver::RegionRange(
   return true;
 }
 
-bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
+bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
+  RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double voxel = geometry.MeanSpacing();
   std::string msg;
@@ -151,7 +153,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
       }
     }
   }
-  region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
+  region = P.RegionWeight > 0 && this->RegionRange(image, mesh);
   if (P.SubdivideInitialSurface)
   {
     // Uniform 1 -> 4 subdivision at the midpoints keeps the start shape; every vertex is N,
@@ -344,11 +346,12 @@ void MultilevelSolver::ClearResults()
   this->RegionOutwardOnly = false;
 }
 
-bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RunState& state, std::string* error)
+bool MultilevelSolver::Start(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
-  if (!scalars || geometry.NumberOfVoxels() <= 0)
+  const ImageGeometry& geometry = image.Geometry;
+  if (!image.Data || geometry.NumberOfVoxels() <= 0)
   {
     *error = "the volume is empty";
     return false;
@@ -366,7 +369,7 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
     return false;
   }
-  if (!this->FirstSigma(scalars, geometry, mesh, state.Sigma, error))
+  if (!this->FirstSigma(image, mesh, state.Sigma, error))
   {
     return false;
   }
@@ -375,7 +378,7 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
   {
     return false;
   }
-  if (!this->PrepareStart(scalars, geometry, mesh, state.Refiner, state.Sigma, state.Region, error))
+  if (!this->PrepareStart(image, mesh, state.Refiner, state.Sigma, state.Region, error))
   {
     return false;
   }
@@ -395,9 +398,10 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
   return true;
 }
 
-bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
+bool MultilevelSolver::SetUpLevel(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
   // Force field at this level's sigma, over the whole image on the first level (a start may
@@ -415,7 +419,7 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
-    if (!ComputeForceAtScale(scalars, geometry, box, state.FieldParameters, state.Field, &msg))
+    if (!ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg))
     {
       *error = "scale-space force: " + msg;
       return false;
@@ -430,7 +434,7 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
     // the edge force takes over the detail, so the region force shrinks with sigma (at full
     // strength it presses the surface into every narrow dark gap of the object).
     const double decay = std::min(1.0, sigma / state.FirstSigma);
-    state.LevelSolver.SetRegionForce(scalars, geometry, this->UsedRange[0], this->UsedRange[1],
+    state.LevelSolver.SetRegionForce(image, this->UsedRange[0], this->UsedRange[1],
       decay * P.RegionWeight * h, this->RegionOutwardOnly);
   }
   rec.Sigma = sigma;
@@ -563,8 +567,8 @@ bool MultilevelSolver::RefineLevel(
   return true;
 }
 
-bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RunState& state, std::string* error)
+bool MultilevelSolver::RunLevels(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   const int maxLevels = std::max(0, P.MaxLevels);
@@ -580,7 +584,7 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
   {
     LevelRecord rec;
     rec.Level = level;
-    if (!this->SetUpLevel(scalars, geometry, mesh, state, rec, error))
+    if (!this->SetUpLevel(image, mesh, state, rec, error))
     {
       return false;
     }
@@ -625,14 +629,12 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
   return true;
 }
 
-bool MultilevelSolver::Run(
-  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::string* error)
 {
   this->ClearResults();
   std::string msg;
   RunState state;
-  if (!this->Start(scalars, geometry, mesh, state, &msg) ||
-    !this->RunLevels(scalars, geometry, mesh, state, &msg))
+  if (!this->Start(image, mesh, state, &msg) || !this->RunLevels(image, mesh, state, &msg))
   {
     if (error)
     {

@@ -14,57 +14,11 @@
 
 namespace dsurf
 {
-//------------------------------------------------------------------------------
-double ImageGeometry::MeanExtent() const
-{
-  double sum = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    sum += this->Dimensions[a] * this->Spacing[a];
-  }
-  return sum / 3.0;
-}
-
-void ImageGeometry::WorldToIndex(const double x[3], double ijk[3]) const
-{
-  const double d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
-  const double* D = this->Direction;
-  // Orthonormal direction: its inverse is its transpose.
-  ijk[0] = (D[0] * d[0] + D[3] * d[1] + D[6] * d[2]) / this->Spacing[0];
-  ijk[1] = (D[1] * d[0] + D[4] * d[1] + D[7] * d[2]) / this->Spacing[1];
-  ijk[2] = (D[2] * d[0] + D[5] * d[1] + D[8] * d[2]) / this->Spacing[2];
-}
-
-void ImageGeometry::IndexToWorld(const double ijk[3], double x[3]) const
-{
-  const double s[3] = { ijk[0] * this->Spacing[0], ijk[1] * this->Spacing[1],
-    ijk[2] * this->Spacing[2] };
-  const double* D = this->Direction;
-  x[0] = this->Origin[0] + D[0] * s[0] + D[1] * s[1] + D[2] * s[2];
-  x[1] = this->Origin[1] + D[3] * s[0] + D[4] * s[1] + D[5] * s[2];
-  x[2] = this->Origin[2] + D[6] * s[0] + D[7] * s[1] + D[8] * s[2];
-}
-
-namespace
-{
-/// The trilinear cell of world point x. A voxel covers half a spacing around its centre, so
-/// the volume reaches half a voxel beyond the outermost centres (the image bounds); there the
-/// border value is used. A start box at the image bounds thus feels the force at every vertex.
-bool LocateCell(const ImageGeometry& g, const double x[3], TrilinearCell& c)
-{
-  double ijk[3];
-  g.WorldToIndex(x, ijk);
-  const int lo[3] = { 0, 0, 0 };
-  const int hi[3] = { g.Dimensions[0] - 1, g.Dimensions[1] - 1, g.Dimensions[2] - 1 };
-  return LocateTrilinearCell(ijk, lo, hi, 0.5, c);
-}
-} // namespace
-
 bool ForceField::SampleForce(const double x[3], double f[3]) const
 {
   f[0] = f[1] = f[2] = 0.0;
   TrilinearCell c;
-  if (this->Force.empty() || !LocateCell(this->Geometry, x, c))
+  if (this->Force.empty() || !LocateImageCell(this->Geometry, x, c))
   {
     return false;
   }
@@ -83,22 +37,7 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
 double SampleVolume(
   const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
 {
-  TrilinearCell c;
-  const bool in = values && LocateCell(geometry, x, c);
-  if (inside)
-  {
-    *inside = in;
-  }
-  if (!in)
-  {
-    return 0.0;
-  }
-  double v = 0.0;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    v += c.Weight(corner) * values[c.Corner(corner)];
-  }
-  return v;
+  return SampleVolume(ImageView::Of(values, geometry), x, inside);
 }
 
 double ForceField::SamplePotential(const double x[3]) const
@@ -285,16 +224,36 @@ void ForEachWorldGradientOfSlice(
   }
 }
 
+/// Values of the image that are not finite as floats (a double beyond the float range
+/// included); an integer image has none.
+long long CountNonFinite(const ImageView& image)
+{
+  long long bad = 0;
+  if (image.Type == ScalarType::Float32 || image.Type == ScalarType::Float64)
+  {
+    const int nx = image.Geometry.Dimensions[0];
+    ForEachRow(image,
+      [&](int, int, const auto* row)
+      {
+        for (int i = 0; i < nx; ++i)
+        {
+          bad += std::isfinite(AsFloat(row[i])) ? 0 : 1;
+        }
+      });
+  }
+  return bad;
+}
+
 /// Why ComputeScaleSpaceForceInto cannot run on these inputs; empty when it can.
-std::string CheckForceInputs(const float* scalars, const ImageGeometry& geometry,
-  const ScaleSpaceParameters& parameters, const float* potential, const float* force)
+std::string CheckForceInputs(const ImageView& image, const ScaleSpaceParameters& parameters,
+  const float* potential, const float* force)
 {
   std::string error;
-  if (!scalars || !potential || !force)
+  if (!image.Data || !potential || !force)
   {
     return "no data";
   }
-  if (!Validate(geometry, parameters.Sigma, &error))
+  if (!Validate(image.Geometry, parameters.Sigma, &error))
   {
     return error.empty() ? std::string("invalid image geometry") : error;
   }
@@ -304,12 +263,7 @@ std::string CheckForceInputs(const float* scalars, const ImageGeometry& geometry
   }
   // One NaN or Inf would spread along every line of the recursive filter and turn the
   // whole field into NaN.
-  const long long n = geometry.NumberOfVoxels();
-  long long bad = 0;
-  for (long long i = 0; i < n; ++i)
-  {
-    bad += std::isfinite(scalars[i]) ? 0 : 1;
-  }
+  const long long bad = CountNonFinite(image);
   if (bad > 0)
   {
     return "the image has " + std::to_string(bad) +
@@ -407,10 +361,10 @@ bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, 
   return true;
 }
 
-bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geometry,
-  const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error)
+bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParameters& parameters,
+  float* potential, float* force, std::string* error)
 {
-  const std::string problem = CheckForceInputs(scalars, geometry, parameters, potential, force);
+  const std::string problem = CheckForceInputs(image, parameters, potential, force);
   if (!problem.empty())
   {
     if (error)
@@ -419,6 +373,7 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
     }
     return false;
   }
+  const ImageGeometry& geometry = image.Geometry;
   const int* dims = geometry.Dimensions;
   const double sv[3] = { parameters.Sigma / geometry.Spacing[0],
     parameters.Sigma / geometry.Spacing[1], parameters.Sigma / geometry.Spacing[2] };
@@ -428,9 +383,18 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
     [&]()
     {
       // The first third of the force buffer holds G_sigma*f until P is known; the rest is
-      // scratch for the local edge normalisation.
+      // scratch for the local edge normalisation. An image of another type (or a box of a
+      // larger one) is converted there first and smoothed in place, with the same result.
       float* smooth = force;
-      SmoothGaussianSeparable(scalars, smooth, dims, sv);
+      if (image.IsContiguousFloat())
+      {
+        SmoothGaussianSeparable(static_cast<const float*>(image.Data), smooth, dims, sv);
+      }
+      else
+      {
+        CopyToFloat(image, smooth);
+        SmoothGaussianSeparable(smooth, smooth, dims, sv);
+      }
       const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
       float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
       CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
@@ -478,31 +442,36 @@ std::string ScaleSpaceProblem(const ImageGeometry& geometry, double sigma)
   return error;
 }
 
-bool ComputeScaleSpaceForce(const float* scalars, const ImageGeometry& geometry,
-  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+bool ComputeScaleSpaceForce(const ImageView& image, const ScaleSpaceParameters& parameters,
+  ForceField& out, std::string* error)
 {
   out.Potential.clear();
   out.Force.clear();
-  out.Geometry = geometry;
+  out.Geometry = image.Geometry;
   out.Sigma = parameters.Sigma;
-  if (!scalars || !Validate(geometry, parameters.Sigma, error))
+  if (!image.Data || !Validate(image.Geometry, parameters.Sigma, error))
   {
-    if (!scalars && error)
+    if (!image.Data && error)
     {
       *error = "no data";
     }
     return false;
   }
-  const std::size_t n = static_cast<std::size_t>(geometry.NumberOfVoxels());
+  const std::size_t n = static_cast<std::size_t>(image.Geometry.NumberOfVoxels());
   out.Potential.resize(n);
   out.Force.resize(3 * n);
-  if (!ComputeScaleSpaceForceInto(
-        scalars, geometry, parameters, out.Potential.data(), out.Force.data(), error))
+  if (!ComputeScaleSpaceForceInto(image, parameters, out.Potential.data(), out.Force.data(), error))
   {
     out.Potential.clear();
     out.Force.clear();
     return false;
   }
   return true;
+}
+
+bool ComputeScaleSpaceForce(const float* scalars, const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+{
+  return ComputeScaleSpaceForce(ImageView::Of(scalars, geometry), parameters, out, error);
 }
 } // namespace dsurf

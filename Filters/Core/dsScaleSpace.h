@@ -19,41 +19,13 @@
 #define dsScaleSpace_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsImageView.h"
 
 #include <string>
 #include <vector>
 
 namespace dsurf
 {
-/// Where the voxels are: world = Origin + Direction * (Spacing .* ijk).
-/// Direction is row-major 3x3 and must be orthonormal (VTK's vtkImageData direction
-/// matrix; ComputeScaleSpaceForce rejects anything else).
-struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
-{
-  int Dimensions[3] = { 0, 0, 0 };
-  double Spacing[3] = { 1, 1, 1 };
-  double Origin[3] = { 0, 0, 0 };
-  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-
-  long long NumberOfVoxels() const
-  {
-    return static_cast<long long>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
-  }
-  /// Mean physical extent (the paper's "average extent of the volume"):
-  /// mean over the axes of Dimensions[a] * Spacing[a], so a 256^3 unit-spacing
-  /// volume has extent 256 and sigma = extent / 6 = 42.7.
-  double MeanExtent() const;
-  /// The voxel size, the mean spacing: the finest detail the image shows.
-  double MeanSpacing() const
-  {
-    return (this->Spacing[0] + this->Spacing[1] + this->Spacing[2]) / 3.0;
-  }
-  /// World point -> continuous index (i,j,k).
-  void WorldToIndex(const double x[3], double ijk[3]) const;
-  /// Continuous index -> world point.
-  void IndexToWorld(const double ijk[3], double x[3]) const;
-};
-
 /// How the edge strength g = |grad(G_sigma * f)| is made unit-free before it enters P.
 enum class EdgeNormalization
 {
@@ -99,9 +71,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 /// what a solve, or the Scale-Space Gradient filter's output, allocates per voxel of the image.
 constexpr double ForceFieldBytesPerVoxel = 4 * sizeof(float);
 
-/// Trilinear sample of a one-value-per-voxel volume at world point x, with the same reach as
+/// Trilinear sample of a one-float-per-voxel volume at world point x, with the same reach as
 /// ForceField::SampleForce (half a voxel past the outermost centres); 0 and *inside = false
-/// outside.
+/// outside (SampleVolume of dsImageView.h for a volume of any type).
 DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
   const float* values, const ImageGeometry& geometry, const double x[3], bool* inside);
 
@@ -113,19 +85,23 @@ DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
 DEFORMABLESURFACEFILTERS_EXPORT std::string ScaleSpaceProblem(
   const ImageGeometry& geometry, double sigma);
 
-/// Force = -grad P in world coordinates. scalars: one float per voxel, x fastest.
-/// Returns false with a message on bad input (empty, 2-D, non-finite sigma...).
+/// Force = -grad P in world coordinates, over the voxels of `image` (any value type; out's
+/// geometry is the view's). Returns false with a message on bad input (empty, 2-D, non-finite
+/// sigma...).
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const ImageView& image,
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error);
+/// The same for a float volume, one value per voxel of `geometry`, x fastest.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const float* scalars,
   const ImageGeometry& geometry, const ScaleSpaceParameters& parameters, ForceField& out,
   std::string* error);
 
 /// Same computation into caller-owned buffers (no copy for the VTK filter):
 /// potential holds NumberOfVoxels floats, force 3 * NumberOfVoxels. The force buffer
-/// doubles as the smoothing scratch, so peak memory is input + 4 volumes.
-/// scalars must not alias either buffer.
-DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const float* scalars,
-  const ImageGeometry& geometry, const ScaleSpaceParameters& parameters, float* potential,
-  float* force, std::string* error);
+/// doubles as the smoothing scratch (and holds the image converted to float when it is not a
+/// contiguous float array), so peak memory is the input + 4 floats per voxel.
+/// The image must not alias either buffer.
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const ImageView& image,
+  const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error);
 
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.

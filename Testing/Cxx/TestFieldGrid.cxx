@@ -45,7 +45,7 @@ void CheckBlockMeansOfRamp()
   {
     std::vector<float> coarse;
     ImageGeometry cg;
-    BlockMeans(values.data(), g, f, coarse, cg, 2);
+    BlockMeans(ImageView::Of(values.data(), g), f, coarse, cg, 2);
     double worst = 0;
     // Interior blocks are complete and centred: exact up to float rounding. The end blocks
     // also take in the voxels left over, so only the interior is compared.
@@ -132,7 +132,9 @@ void CheckFields()
   ForceField full, decimated;
   std::string error;
   DS_CHECK(ComputeScaleSpaceForce(image.data(), g, p, full, &error), error);
-  DS_CHECK(ComputeForceAtScale(image.data(), g, VoxelBox::Whole(g), p, decimated, &error), error);
+  DS_CHECK(
+    ComputeForceAtScale(ImageView::Of(image.data(), g), VoxelBox::Whole(g), p, decimated, &error),
+    error);
   DS_CHECK(decimated.Geometry.Dimensions[0] == 32 && decimated.Sigma == 12.0,
     "the decimated field: 32^3 voxels, at sigma 12");
   // Within sigma / 2 of the edge, measured 6 % against the image's own grid (3 % on the
@@ -150,7 +152,7 @@ void CheckFields()
   const VoxelBox box = SurfaceNeighbourhood(surface, g, NeighbourhoodSigmas * p.Sigma);
   ForceField cut;
   DS_CHECK(ComputeScaleSpaceForce(image.data(), g, p, full, &error), error);
-  DS_CHECK(ComputeForceAtScale(image.data(), g, box, p, cut, &error), error);
+  DS_CHECK(ComputeForceAtScale(ImageView::Of(image.data(), g), box, p, cut, &error), error);
   std::cout << "  neighbourhood: " << box.NumberOfVoxels() << " of " << g.NumberOfVoxels()
             << " voxels" << std::endl;
   DS_CHECK_LE(static_cast<double>(box.NumberOfVoxels()) / g.NumberOfVoxels(), 0.5,
@@ -173,7 +175,9 @@ void CheckFields()
       "local normalisation: the neighbourhood is a cut of the image");
     ForceField wholeLocal, cutLocal;
     DS_CHECK(ComputeScaleSpaceForce(ball.data(), big, local, wholeLocal, &error), error);
-    DS_CHECK(ComputeForceAtScale(ball.data(), big, localBox, local, cutLocal, &error), error);
+    DS_CHECK(
+      ComputeForceAtScale(ImageView::Of(ball.data(), big), localBox, local, cutLocal, &error),
+      error);
     DS_CHECK_LE(ForceDifference(cutLocal, wholeLocal, shells(2.0, 2.0, c2)), 1e-3,
       "local normalisation: neighbourhood vs whole-image field, sigma 2, within 2 sigma");
   }
