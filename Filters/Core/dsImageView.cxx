@@ -114,6 +114,40 @@ void CopyToFloat(const ImageView& image, float* out)
     });
 }
 
+bool IsConstant(const ImageView& image, double& value)
+{
+  const int* n = image.Geometry.Dimensions;
+  bool constant = true, first = true;
+  value = 0.0;
+  VisitValues(image,
+    [&](const auto* values)
+    {
+      auto reference = values[0];
+      for (int k = 0; k < n[2] && constant; ++k)
+      {
+        for (int j = 0; j < n[1] && constant; ++j)
+        {
+          const auto* row = values + image.RowOffset(j, k);
+          for (int i = 0; i < n[0] && constant; ++i)
+          {
+            if (row[i] != row[i])
+            {
+              continue; // NaN is skipped, as in the range of the values
+            }
+            if (first)
+            {
+              reference = row[i];
+              first = false;
+            }
+            constant = row[i] == reference;
+          }
+        }
+      }
+      value = static_cast<double>(reference);
+    });
+  return constant && !first; // no number at all is not a constant image
+}
+
 double SampleVolume(const ImageView& image, const double x[3], bool* inside)
 {
   TrilinearCell c;

@@ -180,6 +180,11 @@ void ForEachRow(const ImageView& image, Row&& row)
     });
 }
 
+/// Whether the image has a number (NaN skipped) and every one equals the first, which `value`
+/// receives: an image without a boundary to find. Stops at the first other value, so
+/// it costs next to nothing on a real image.
+DEFORMABLESURFACEFILTERS_EXPORT bool IsConstant(const ImageView& image, double& value);
+
 /// The trilinear cell of world point x in an image of `geometry` whose values lie `increments`
 /// apart (nullptr: contiguous). A voxel covers half a spacing around its centre, so the volume
 /// reaches half a voxel beyond the outermost centres (the image bounds); there the border value

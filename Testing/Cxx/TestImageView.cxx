@@ -2,7 +2,8 @@
 // exactly what its float copy gives (the same conversion, made as each value is read) in
 // every reader -- the scale-space field, a box of the image, block means, trilinear samples,
 // the region force's range, a whole solve -- and the filter gives the same surface for
-// uint16, double, float and a non-contiguous (structure-of-arrays) uint16 array.
+// uint16, double, float and a non-contiguous (structure-of-arrays) uint16 array. IsConstant,
+// the constant-image check, stops at the first other value.
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -64,6 +65,24 @@ double LargestDifference(const std::vector<float>& a, const std::vector<float>& 
     worst = std::max(worst, std::abs(static_cast<double>(a[i]) - b[i]));
   }
   return worst;
+}
+
+/// IsConstant: a constant image (NaN skipped) and its value; one other value anywhere is not.
+void CheckConstant()
+{
+  ImageGeometry g;
+  g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = 8;
+  std::vector<float> v(512, 3.5f);
+  v[0] = NAN;
+  double value = 0;
+  DS_CHECK(IsConstant(ImageView::Of(v.data(), g), value) && value == 3.5,
+    "a constant image (one NaN skipped) and its value");
+  v[511] = 3.25f;
+  DS_CHECK(!IsConstant(ImageView::Of(v.data(), g), value), "the last voxel differs: not constant");
+  std::fill(v.begin(), v.end(), NAN);
+  DS_CHECK(!IsConstant(ImageView::Of(v.data(), g), value), "no number at all: not constant");
+  const std::vector<std::uint16_t> u(512, 7);
+  DS_CHECK(IsConstant(ImageView::Of(u.data(), g), value) && value == 7, "a constant uint16 image");
 }
 
 void CheckReaders(const ImageView& typed, const ImageView& asFloat)
@@ -174,6 +193,7 @@ int TestImageView(int, char*[])
   const std::vector<float> copy(values.begin(), values.end());
   ImageGeometry g;
   g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = N;
+  CheckConstant();
   CheckReaders(ImageView::Of(values.data(), g), ImageView::Of(copy.data(), g));
   CheckFilter(values);
   return dstest::Result("TestImageView");
