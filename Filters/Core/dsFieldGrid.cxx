@@ -1,5 +1,7 @@
 #include "dsFieldGrid.h"
 
+#include "dsFieldBricks.h"
+
 #include "dsThreads.h"
 
 #include "vtkSMPTools.h"
@@ -160,8 +162,37 @@ VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geo
   return box;
 }
 
+namespace
+{
+/// The field at parameters.Sigma over `cut` only in the bricks within reach of `surface`.
+bool ComputeBrickedForce(const ImageView& cut, const ScaleSpaceParameters& parameters,
+  const TriangleMesh& surface, ForceField& out, std::string* error)
+{
+  auto bricks = std::make_shared<FieldBricks>();
+  if (!bricks->Initialize(cut, parameters, BrickReachSigmas * parameters.Sigma, error))
+  {
+    return false;
+  }
+  bricks->Cover(surface);
+  if (!bricks->Finite())
+  {
+    if (error)
+    {
+      *error = "the force field is not finite: sigma (" + std::to_string(parameters.Sigma) +
+        ") or the weights are too large";
+    }
+    return false;
+  }
+  out.Geometry = cut.Geometry;
+  out.Sigma = parameters.Sigma;
+  out.Bricks = std::move(bricks);
+  return true;
+}
+} // namespace
+
 bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
-  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
+  const TriangleMesh* surface)
 {
   // The last level's field is released first, and a box of more than half the image is not
   // cut out (the whole image is used): the solve then never holds more than one field of the
@@ -181,9 +212,14 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
   const ImageView cut =
     2 * box.NumberOfVoxels() <= image.Geometry.NumberOfVoxels() ? image.Box(box) : image;
   const int f = DecimationFactor(parameters.Sigma, cut.Geometry);
+  const bool local =
+    parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
   if (f <= 1)
   {
-    return ComputeScaleSpaceForce(cut, parameters, out, error);
+    const bool ok = surface && !local ? ComputeBrickedForce(cut, parameters, *surface, out, error)
+                                      : ComputeScaleSpaceForce(cut, parameters, out, error);
+    out.Image = image.Geometry;
+    return ok;
   }
   std::vector<float> coarse;
   ImageGeometry coarseGeometry;
@@ -195,6 +231,7 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
     return false;
   }
   out.Sigma = parameters.Sigma;
+  out.Image = image.Geometry;
   return true;
 }
 } // namespace dsurf

@@ -57,10 +57,14 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
 /// The force field at parameters.Sigma over `box` of the image (over the whole image when the
 /// box holds more than half of it), on a grid decimated by DecimationFactor when that is above
 /// 1, else on the image's own grid (ComputeScaleSpaceForce). The edge strength is normalised
-/// within the box. out's earlier field is released first. out.Sigma is parameters.Sigma either
-/// way.
+/// within the box. With a `surface`, a field on the image's own grid with the global edge
+/// normalisation is kept only in the bricks within BrickReachSigmas sigma of its vertices
+/// (dsFieldBricks.h; more are computed as the surface moves: FieldBricks::Cover). out's earlier
+/// field is released first. out.Sigma is parameters.Sigma either way, out.Image the image's
+/// geometry.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const ImageView& image,
-  const VoxelBox& box, const ScaleSpaceParameters& parameters, ForceField& out, std::string* error);
+  const VoxelBox& box, const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
+  const TriangleMesh* surface = nullptr);
 } // namespace dsurf
 
 #endif

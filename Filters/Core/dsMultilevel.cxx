@@ -1,5 +1,6 @@
 #include "dsMultilevel.h"
 
+#include "dsFieldBricks.h"
 #include "dsRegion.h"
 #include "dsUntangle.h"
 
@@ -188,7 +189,7 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
 }
 
 bool MultilevelSolver::SolveLevel(
-  Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
+  Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
   const MultilevelParameters& P = this->Parameters;
   const int cap = std::max(1, P.MaxSweepsPerLevel);
@@ -213,6 +214,10 @@ bool MultilevelSolver::SolveLevel(
       this->Stop = StopReason::MaxSweeps;
       stop = true;
       break;
+    }
+    if (field.Bricks)
+    {
+      field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
     }
     batchStats.clear();
     solver.Sweeps(std::min({ batchSize, cap - s, budget }),
@@ -259,6 +264,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
     }
   }
+  rec.FieldMisses = field.Bricks ? field.Bricks->Misses() : 0;
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
     this->Warnings.push_back(
@@ -419,7 +425,10 @@ bool MultilevelSolver::SetUpLevel(
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
-    if (!ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg))
+    // After the first level, a field on the image's own grid only where the surface is
+    // (dsFieldBricks.h).
+    if (!ComputeForceAtScale(
+          image, box, state.FieldParameters, state.Field, &msg, rec.Level == 0 ? nullptr : &mesh))
     {
       *error = "scale-space force: " + msg;
       return false;
@@ -588,7 +597,8 @@ bool MultilevelSolver::RunLevels(
     {
       return false;
     }
-    const bool stop = this->SolveLevel(state.LevelSolver, mesh, rec, state.SweepCounter);
+    const bool stop =
+      this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
     // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).

@@ -163,6 +163,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int MarkedTriangles = 0;     ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
+  /// Force samples that fell in a brick of the field not computed yet (no force there; the
+  /// bricks follow the surface between batches of sweeps, so this stays 0 unless a vertex
+  /// moves more than BrickReachSigmas sigma within one batch).
+  long long FieldMisses = 0;
 };
 
 class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
@@ -286,7 +290,10 @@ private:
     double sigma, bool& region, std::string* error);
   /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
   /// convergence test, the records, progress and abort, MaxSweeps. True = stop the run.
-  bool SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter);
+  /// A field in bricks (dsFieldBricks.h) gets the bricks the surface comes within reach of
+  /// before each batch.
+  bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
+    int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says
   /// why, except for a start spanning the image or an open start without a given range).
   bool RegionRange(const ImageView& image, const TriangleMesh& mesh);

@@ -21,6 +21,7 @@
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "dsImageView.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   int NumberOfThreads = 0;      ///< 0 = all the machine has (vtkSMPTools STDThread)
 };
 
+class FieldBricks;
+
 /// P and -grad P on the voxel grid.
 struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 {
@@ -57,11 +60,17 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
   double Sigma = 0.0;           ///< physical sigma the field was computed at
   std::vector<float> Potential; ///< P per voxel (x fastest)
   std::vector<float> Force;     ///< -grad P per voxel, 3 components, world coordinates
+  /// When set, the field exists only in bricks around the surface (dsFieldBricks.h; Geometry
+  /// is their box): Potential and Force are empty and every sample comes from the bricks.
+  std::shared_ptr<FieldBricks> Bricks;
+  /// The image the field's grid is a box of (Dimensions 0: the grid is the whole image).
+  ImageGeometry Image;
 
-  bool Empty() const { return this->Potential.empty(); }
+  bool Empty() const { return this->Potential.empty() && !this->Bricks; }
   /// Trilinear sample of the force at world point x. Returns false (and f = 0)
-  /// when x lies outside the volume: more than half a voxel beyond the outermost voxel
-  /// centres (within that half voxel the border value is used).
+  /// when x lies outside the image: more than half a voxel beyond its outermost voxel
+  /// centres (within that half voxel the border value is used). Inside the image but outside
+  /// the field's grid (or in a brick not computed), f = 0 and true.
   bool SampleForce(const double x[3], double f[3]) const;
   /// Trilinear sample of the potential (0 outside).
   double SamplePotential(const double x[3]) const;
@@ -102,6 +111,27 @@ DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const float* scalars
 /// The image must not alias either buffer.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const ImageView& image,
   const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error);
+
+/// How the edge strength g and the smoothed image s make the potential:
+/// P = -(Edge g + Image s + Offset) (the normalisation of the header comment folded in).
+struct DEFORMABLESURFACEFILTERS_EXPORT PotentialGains
+{
+  double Edge = 0, Image = 0, Offset = 0;
+};
+
+/// ComputeScaleSpaceForceInto in two stages, for a field computed only in pieces of the image
+/// (dsFieldBricks.h). First G_sigma * f over the whole `image` into `smooth` (NumberOfVoxels
+/// floats) and the gains, normalised over the whole image as ComputeScaleSpaceForceInto does;
+/// the same checks, false with a message. The local edge normalisation (a second Gaussian of
+/// g over the image) is not staged: parameters must not ask for it.
+DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
+  const ScaleSpaceParameters& parameters, float* smooth, PotentialGains& gains, std::string* error);
+/// Then P and -grad P at the voxels of `box` (x fastest) of the image of `geometry` whose
+/// G_sigma * f is `smooth`: bit for bit what ComputeScaleSpaceForceInto gives there. potential
+/// holds box.NumberOfVoxels() floats, force three times as many. Runs serially.
+DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
+  const ImageGeometry& geometry, const VoxelBox& box, const PotentialGains& gains, float* potential,
+  float* force);
 
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.

@@ -34,6 +34,19 @@ struct TrilinearCell
   }
 };
 
+/// Adds the trilinear sample in `cell` of a field of three values per sample (x, y, z) to f.
+inline void AddTrilinearVector(const float* values, const TrilinearCell& cell, double f[3])
+{
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double w = cell.Weight(corner);
+    const float* v = values + 3 * cell.Corner(corner);
+    f[0] += w * v[0];
+    f[1] += w * v[1];
+    f[2] += w * v[2];
+  }
+}
+
 /// The cell of continuous index ijk in a grid whose samples are lo[a] .. hi[a] along axis a
 /// (x fastest; linear ids count from lo). An index up to `tolerance` beyond the first or last
 /// sample is clamped onto it (the border value); further out, or an empty axis: false.

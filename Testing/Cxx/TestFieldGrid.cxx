@@ -69,22 +69,6 @@ void CheckBlockMeansOfRamp()
   }
 }
 
-/// A ball of radius r (soft edge, width ~1 voxel) in an n^3 volume, unit spacing.
-std::vector<float> Ball(const ImageGeometry& g, const Vec3& c, double r)
-{
-  std::vector<float> v(static_cast<std::size_t>(g.NumberOfVoxels()));
-  for (int k = 0; k < g.Dimensions[2]; ++k)
-    for (int j = 0; j < g.Dimensions[1]; ++j)
-      for (int i = 0; i < g.Dimensions[0]; ++i)
-      {
-        const double d =
-          std::sqrt((i - c[0]) * (i - c[0]) + (j - c[1]) * (j - c[1]) + (k - c[2]) * (k - c[2]));
-        v[(static_cast<std::size_t>(k) * g.Dimensions[1] + j) * g.Dimensions[0] + i] =
-          static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (d - r))));
-      }
-  return v;
-}
-
 /// The largest |F_a(x) - F_b(x)| over the points, relative to the largest |F_b(x)|.
 double ForceDifference(const ForceField& a, const ForceField& b, const std::vector<Vec3>& points)
 {
@@ -107,7 +91,7 @@ void CheckFields()
   ImageGeometry g;
   g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = 96;
   const Vec3 c{ 47.5, 47.5, 47.5 };
-  const std::vector<float> image = Ball(g, c, 20.0);
+  const std::vector<float> image = sstest::SoftBall(g, c.data(), 20.0);
   // Points from `band` sigma inside to `band` sigma outside the ball's boundary: where a
   // surface feels the field.
   auto shells = [](double sigma, double band, const Vec3& c)
@@ -166,7 +150,7 @@ void CheckFields()
     ImageGeometry big;
     big.Dimensions[0] = big.Dimensions[1] = big.Dimensions[2] = 128;
     const Vec3 c2{ 63.5, 63.5, 63.5 };
-    const std::vector<float> ball = Ball(big, c2, 20.0);
+    const std::vector<float> ball = sstest::SoftBall(big, c2.data(), 20.0);
     ScaleSpaceParameters local = p;
     local.EdgeNormalization = EdgeNormalization::Local;
     const VoxelBox localBox = SurfaceNeighbourhood(
