@@ -203,6 +203,7 @@ bool MultilevelSolver::SolveLevel(
   const int batchSize = std::max(
     1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
   std::vector<SweepStatistics> batchStats;
+  const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
     // MaxSweeps: the run stops exactly there (the batch is cut short to reach it).
@@ -264,7 +265,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
     }
   }
-  rec.FieldMisses = field.Bricks ? field.Bricks->Misses() : 0;
+  rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
     this->Warnings.push_back(
