@@ -5,10 +5,10 @@
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkPointData.h"
+#include "vtkType.h"
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +86,7 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, double workBytes
     error = "The input image is empty";
     return false;
   }
-  ImageGeometry& g = volume.Geometry;
+  ImageGeometry g;
   image->GetDimensions(g.Dimensions);
   if (g.Dimensions[0] < 2 || g.Dimensions[1] < 2 || g.Dimensions[2] < 2)
   {
@@ -123,9 +123,11 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, double workBytes
   std::copy(image->GetDirectionMatrix()->GetData(), image->GetDirectionMatrix()->GetData() + 9,
     g.Direction);
 
-  vtkFloatArray* asFloat = vtkFloatArray::FastDownCast(scalars);
+  // In place when the array holds its values as one contiguous array of numbers (every
+  // vtkAOSDataArrayTemplate: vtkFloatArray, vtkUnsignedShortArray, ...), else a float copy.
+  const bool inPlace = scalars->HasStandardMemoryLayout() && scalars->GetDataType() != VTK_BIT;
   const double voxels = static_cast<double>(image->GetNumberOfPoints());
-  error = MemoryShortfall(voxels * (workBytesPerVoxel + (asFloat ? 0.0 : sizeof(float))),
+  error = MemoryShortfall(voxels * (workBytesPerVoxel + (inPlace ? 0.0 : sizeof(float))),
     "This image of " + std::to_string(g.Dimensions[0]) + "x" + std::to_string(g.Dimensions[1]) +
       "x" + std::to_string(g.Dimensions[2]) + " voxels");
   if (!error.empty())
@@ -135,17 +137,22 @@ bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, double workBytes
 
   volume.Array = scalars;
   volume.Storage.clear();
-  if (asFloat)
+  volume.Image = ImageView();
+  if (inPlace)
   {
-    volume.Values = asFloat->GetPointer(0);
+    switch (scalars->GetDataType())
+    {
+      vtkTemplateMacro(
+        volume.Image = ImageView::Of(static_cast<const VTK_TT*>(scalars->GetVoidPointer(0)), g));
+    }
   }
-  else
+  if (!volume.Image.Data)
   {
     if (!vtkArrayDispatch::Dispatch::Execute(scalars, ToFloat{}, volume.Storage))
     {
       ToFloat{}(scalars, volume.Storage);
     }
-    volume.Values = volume.Storage.data();
+    volume.Image = ImageView::Of(volume.Storage.data(), g);
   }
   return true;
 }

@@ -1,6 +1,6 @@
 // The one bridge from VTK image data into the plain-C++ core (Filters/Core): the checks,
-// geometry and float scalars that the three filters need. It uses VTK data types, so it lives
-// beside the VTK classes, not in the core.
+// geometry and the values (in their own type) that the three filters need. It uses VTK data types,
+// so it lives beside the VTK classes, not in the core.
 #ifndef dsVTKImage_h
 #define dsVTKImage_h
 
@@ -16,11 +16,12 @@ class vtkImageData;
 
 namespace dsurf
 {
-/// A volume as the core sees it: geometry and one float per voxel (x fastest).
+/// A volume as the core sees it: geometry and the values in their own type (dsImageView.h).
 struct ImageVolume
 {
-  ImageGeometry Geometry;
-  const float* Values = nullptr; ///< the input's own memory for float arrays, else Storage
+  /// The input's own memory, unless its array keeps its values in another layout (not one
+  /// contiguous array of numbers, e.g. vtkSOADataArrayTemplate or a bit array): then Storage.
+  ImageView Image;
   std::vector<float> Storage;
   vtkDataArray* Array = nullptr; ///< the array the values come from
   std::string Note;              ///< how the array was chosen when it was a fallback
@@ -36,10 +37,10 @@ vtkDataArray* ChooseImageScalars(vtkImageData* image, vtkDataArray* selected, st
 /// Check that `image` is a 3-D image (>= 2 voxels per axis) and `scalars` one of its
 /// one-component point arrays (ChooseImageScalars when `scalars` is nullptr); fill the geometry
 /// (index 0 = the first voxel of the extent; spacing, origin and direction honoured) and the values
-/// (float input is used in place, any other type converted). workBytesPerVoxel: what the
-/// caller will allocate per voxel beyond the image; with the float copy it must fit in the
-/// memory available, checked before anything is allocated. Returns false with a user-facing
-/// message.
+/// (read in place in their own type; converted to float only when the array does not hold them
+/// as one contiguous array). workBytesPerVoxel: what the caller will allocate per voxel beyond
+/// the image; with a conversion it must fit in the memory available, checked before anything is
+/// allocated. Returns false with a user-facing message.
 bool GetImageVolume(vtkImageData* image, vtkDataArray* scalars, double workBytesPerVoxel,
   ImageVolume& volume, std::string& error);
 

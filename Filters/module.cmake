@@ -9,7 +9,7 @@ list(TRANSFORM _ds_classes REPLACE "\\.cxx$" "")
 # The algorithm core: plain C++, no pipeline types (vtkSMPTools and vtkIdType are used), unit-testable.
 file(GLOB _ds_core_sources CONFIGURE_DEPENDS "${_ds_filters_dir}/Core/*.cxx")
 file(GLOB _ds_core_headers CONFIGURE_DEPENDS "${_ds_filters_dir}/Core/*.h")
-# The wrappers' bridge from VTK data to the core (dsVTKImage: image checks, geometry, floats).
+# The wrappers' bridge from VTK data to the core (dsVTKImage: image checks, geometry, the values in their own type).
 file(GLOB _ds_bridge_sources CONFIGURE_DEPENDS "${_ds_filters_dir}/ds*.cxx")
 file(GLOB _ds_bridge_headers CONFIGURE_DEPENDS "${_ds_filters_dir}/ds*.h")
 list(APPEND _ds_core_sources ${_ds_bridge_sources})

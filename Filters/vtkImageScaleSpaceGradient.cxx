@@ -81,7 +81,7 @@ int vtkImageScaleSpaceGradient::RequestData(
   {
     vtkDebugMacro(<< volume.Note << ".");
   }
-  const dsurf::ImageGeometry& geometry = volume.Geometry;
+  const dsurf::ImageGeometry& geometry = volume.Image.Geometry;
 
   const std::string nonFinite =
     dsurf::FirstNonFinite({ { "Sigma", this->Sigma }, { "SigmaFraction", this->SigmaFraction },
@@ -114,8 +114,8 @@ int vtkImageScaleSpaceGradient::RequestData(
   parameters.ImageWeight = this->ImageWeight;
   parameters.NormalizePotential = this->NormalizePotential;
   parameters.NumberOfThreads = this->NumberOfThreads;
-  if (!dsurf::ComputeScaleSpaceForceInto(volume.Values, geometry, parameters,
-        potential->GetPointer(0), force->GetPointer(0), &error))
+  if (!dsurf::ComputeScaleSpaceForceInto(
+        volume.Image, parameters, potential->GetPointer(0), force->GetPointer(0), &error))
   {
     vtkErrorMacro("Scale-space gradient failed: " << error);
     return 1;

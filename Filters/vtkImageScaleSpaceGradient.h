@@ -13,7 +13,8 @@
  *
  * How:
  * - f is the array chosen with SetInputArrayToProcess (ParaView: Scalars), any
- *   scalar type, converted to float; default the active point scalars.
+ *   scalar type, read in place and converted to float as it is read; default the
+ *   active point scalars.
  * - G_sigma is separable and isotropic in world units: along axis a it has
  *   sigma / spacing[a] voxels. From 3 voxels on, an axis uses a 5th-order recursive
  *   Gaussian (the poles of van Vliet, Young & Verbeek 1998 with q solved so the
@@ -44,9 +45,9 @@
  * Caveats: the whole extent is requested and processed (no streaming). The
  * direction matrix must be a rotation (orthonormal): a shear or scale is rejected
  * with an error, as are non-finite voxel values (one NaN would spread through the
- * recursive filter). Peak memory is the input, its float copy
- * (unless already float) and 4 float volumes (P and Force; the smoothed image
- * lives in the Force buffer until P is known). The max-normalisation follows
+ * recursive filter). Peak memory is the input and 4 float volumes (P and Force;
+ * the image converted to float, then smoothed, lives in the Force buffer until P
+ * is known). The max-normalisation follows
  * the strongest edge: one very strong edge (metal in CT) weakens the others.
  * Bad input (no scalars, a 2-D or empty image, multi-component array, NaN/Inf
  * values, a non-rotation direction matrix, a sigma of more than 100000 voxels along an

@@ -1,5 +1,7 @@
 #include "dsFieldGrid.h"
 
+#include "dsFieldBricks.h"
+
 #include "dsThreads.h"
 
 #include "vtkSMPTools.h"
@@ -37,9 +39,10 @@ int DecimationFactor(double sigma, const ImageGeometry& geometry)
   return f;
 }
 
-void BlockMeans(const float* values, const ImageGeometry& geometry, int f,
-  std::vector<float>& coarse, ImageGeometry& coarseGeometry, int numberOfThreads)
+void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
+  ImageGeometry& coarseGeometry, int numberOfThreads)
 {
+  const ImageGeometry& geometry = image.Geometry;
   // Blocks of f = 2h + 1 voxels centred on voxels: coarse voxel I sits on voxel
   // first + I f, with as many voxels left over at each end of the axis (one more at the far
   // end when their number is odd), so the coarse grid is the image's, only sparser. The
@@ -73,45 +76,48 @@ void BlockMeans(const float* values, const ImageGeometry& geometry, int f,
     block(0, I, b, e);
     std::fill(column.begin() + b, column.begin() + e, I);
   }
-  const std::ptrdiff_t nx = n[0], slice = static_cast<std::ptrdiff_t>(n[0]) * n[1];
   vtkSMPTools::LocalScope(
     vtkSMPTools::Config{ ResolveThreads(numberOfThreads), "STDThread", false },
     [&]
     {
-      vtkSMPTools::For(0, m[2],
-        [&](int kBegin, int kEnd)
+      VisitValues(image,
+        [&](const auto* values)
         {
-          std::vector<double> sum(m[0]);
-          std::vector<int> count(m[0]);
-          for (int K = kBegin; K < kEnd; ++K)
-          {
-            int k0, k1;
-            block(2, K, k0, k1);
-            for (int J = 0; J < m[1]; ++J)
+          vtkSMPTools::For(0, m[2],
+            [&](int kBegin, int kEnd)
             {
-              int j0, j1;
-              block(1, J, j0, j1);
-              std::fill(sum.begin(), sum.end(), 0.0);
-              std::fill(count.begin(), count.end(), 0);
-              for (int k = k0; k < k1; ++k)
+              std::vector<double> sum(m[0]);
+              std::vector<int> count(m[0]);
+              for (int K = kBegin; K < kEnd; ++K)
               {
-                for (int j = j0; j < j1; ++j)
+                int k0, k1;
+                block(2, K, k0, k1);
+                for (int J = 0; J < m[1]; ++J)
                 {
-                  const float* line = values + k * slice + j * nx;
-                  for (int i = 0; i < n[0]; ++i)
+                  int j0, j1;
+                  block(1, J, j0, j1);
+                  std::fill(sum.begin(), sum.end(), 0.0);
+                  std::fill(count.begin(), count.end(), 0);
+                  for (int k = k0; k < k1; ++k)
                   {
-                    sum[column[i]] += line[i];
-                    ++count[column[i]];
+                    for (int j = j0; j < j1; ++j)
+                    {
+                      const auto* line = values + image.RowOffset(j, k);
+                      for (int i = 0; i < n[0]; ++i)
+                      {
+                        sum[column[i]] += AsFloat(line[i]);
+                        ++count[column[i]];
+                      }
+                    }
+                  }
+                  float* out = coarse.data() + (static_cast<std::size_t>(K) * m[1] + J) * m[0];
+                  for (int I = 0; I < m[0]; ++I)
+                  {
+                    out[I] = static_cast<float>(sum[I] / count[I]);
                   }
                 }
               }
-              float* out = coarse.data() + (static_cast<std::size_t>(K) * m[1] + J) * m[0];
-              for (int I = 0; I < m[0]; ++I)
-              {
-                out[I] = static_cast<float>(sum[I] / count[I]);
-              }
-            }
-          }
+            });
         });
     });
 }
@@ -122,35 +128,6 @@ double RemainingSigma(double sigma, const ImageGeometry& geometry, int f)
     std::max({ geometry.Spacing[0], geometry.Spacing[1], geometry.Spacing[2] });
   const double boxVariance = (static_cast<double>(f) * f - 1.0) / 12.0 * spacing * spacing;
   return std::sqrt(std::max(0.0, sigma * sigma - boxVariance));
-}
-
-VoxelBox VoxelBox::Whole(const ImageGeometry& geometry)
-{
-  VoxelBox box;
-  std::copy(geometry.Dimensions, geometry.Dimensions + 3, box.End);
-  return box;
-}
-
-bool VoxelBox::Contains(const VoxelBox& other) const
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    if (other.Begin[a] < this->Begin[a] || other.End[a] > this->End[a])
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-long long VoxelBox::NumberOfVoxels() const
-{
-  long long n = 1;
-  for (int a = 0; a < 3; ++a)
-  {
-    n *= std::max(0, this->End[a] - this->Begin[a]);
-  }
-  return n;
 }
 
 VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geometry, double reach)
@@ -185,40 +162,45 @@ VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geo
   return box;
 }
 
-void ExtractBox(const float* values, const ImageGeometry& geometry, const VoxelBox& box,
-  std::vector<float>& out, ImageGeometry& outGeometry)
+namespace
 {
-  outGeometry = geometry;
-  double first[3];
-  for (int a = 0; a < 3; ++a)
+/// The field at parameters.Sigma over `cut` only in the bricks within reach of `surface`.
+bool ComputeBrickedForce(const ImageView& cut, const ScaleSpaceParameters& parameters,
+  const TriangleMesh& surface, ForceField& out, std::string* error)
+{
+  auto bricks = std::make_shared<FieldBricks>();
+  if (!bricks->Initialize(cut, parameters, BrickReachSigmas * parameters.Sigma, error))
   {
-    outGeometry.Dimensions[a] = box.End[a] - box.Begin[a];
-    first[a] = box.Begin[a];
+    return false;
   }
-  geometry.IndexToWorld(first, outGeometry.Origin);
-  out.resize(static_cast<std::size_t>(box.NumberOfVoxels()));
-  const std::ptrdiff_t nx = geometry.Dimensions[0],
-                       slice = static_cast<std::ptrdiff_t>(nx) * geometry.Dimensions[1];
-  float* o = out.data();
-  for (int k = box.Begin[2]; k < box.End[2]; ++k)
+  bricks->Cover(surface);
+  if (!bricks->Finite())
   {
-    for (int j = box.Begin[1]; j < box.End[1]; ++j)
+    if (error)
     {
-      const float* line = values + k * slice + j * nx;
-      o = std::copy(line + box.Begin[0], line + box.End[0], o);
+      *error = "the force field is not finite: sigma (" + std::to_string(parameters.Sigma) +
+        ") or the weights are too large";
     }
+    return false;
   }
+  out.Geometry = cut.Geometry;
+  out.Sigma = parameters.Sigma;
+  out.Bricks = std::move(bricks);
+  return true;
 }
+} // namespace
 
-bool ComputeForceAtScale(const float* scalars, const ImageGeometry& geometry, const VoxelBox& box,
-  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
+  const TriangleMesh* surface)
 {
   // The last level's field is released first, and a box of more than half the image is not
-  // copied out (the whole image is used): the solve then never holds more than the float
-  // image and one field of the whole image (docs/METHOD.md §9.6).
+  // cut out (the whole image is used): the solve then never holds more than one field of the
+  // whole image (docs/METHOD.md §9.6).
   out = ForceField();
   // Checked on the image itself, so that a sigma too large is named as the user gave it.
-  const std::string problem = ScaleSpaceProblem(geometry, parameters.Sigma);
+  const std::string problem =
+    image.Data ? ScaleSpaceProblem(image.Geometry, parameters.Sigma) : "no data";
   if (!problem.empty())
   {
     if (error)
@@ -227,29 +209,29 @@ bool ComputeForceAtScale(const float* scalars, const ImageGeometry& geometry, co
     }
     return false;
   }
-  std::vector<float> cut;
-  ImageGeometry cutGeometry = geometry;
-  if (scalars && 2 * box.NumberOfVoxels() <= geometry.NumberOfVoxels())
-  {
-    ExtractBox(scalars, geometry, box, cut, cutGeometry);
-    scalars = cut.data();
-  }
-  const int f = DecimationFactor(parameters.Sigma, cutGeometry);
+  const ImageView cut =
+    2 * box.NumberOfVoxels() <= image.Geometry.NumberOfVoxels() ? image.Box(box) : image;
+  const int f = DecimationFactor(parameters.Sigma, cut.Geometry);
+  const bool local =
+    parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
   if (f <= 1)
   {
-    return ComputeScaleSpaceForce(scalars, cutGeometry, parameters, out, error);
+    const bool ok = surface && !local ? ComputeBrickedForce(cut, parameters, *surface, out, error)
+                                      : ComputeScaleSpaceForce(cut, parameters, out, error);
+    out.Image = image.Geometry;
+    return ok;
   }
   std::vector<float> coarse;
   ImageGeometry coarseGeometry;
-  BlockMeans(scalars, cutGeometry, f, coarse, coarseGeometry, parameters.NumberOfThreads);
-  std::vector<float>().swap(cut);
+  BlockMeans(cut, f, coarse, coarseGeometry, parameters.NumberOfThreads);
   ScaleSpaceParameters remaining = parameters;
-  remaining.Sigma = RemainingSigma(parameters.Sigma, cutGeometry, f);
+  remaining.Sigma = RemainingSigma(parameters.Sigma, cut.Geometry, f);
   if (!ComputeScaleSpaceForce(coarse.data(), coarseGeometry, remaining, out, error))
   {
     return false;
   }
   out.Sigma = parameters.Sigma;
+  out.Image = image.Geometry;
   return true;
 }
 } // namespace dsurf

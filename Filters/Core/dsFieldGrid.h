@@ -27,12 +27,12 @@ constexpr double SamplesPerSigma = 4.0;
 /// The block size for a field at `sigma` (world units) on `geometry`.
 DEFORMABLESURFACEFILTERS_EXPORT int DecimationFactor(double sigma, const ImageGeometry& geometry);
 
-/// The mean of each f^3 block of `values` (x fastest; f odd, each block centred on a voxel,
-/// the blocks at the ends of an axis also taking in the few voxels left over there) into
-/// `coarse`, whose geometry places each coarse voxel on its block's centre voxel, with
-/// spacing f times the image's.
-DEFORMABLESURFACEFILTERS_EXPORT void BlockMeans(const float* values, const ImageGeometry& geometry,
-  int f, std::vector<float>& coarse, ImageGeometry& coarseGeometry, int numberOfThreads);
+/// The mean of each f^3 block of `image` (f odd, each block centred on a voxel, the blocks at
+/// the ends of an axis also taking in the few voxels left over there; the values read in their
+/// own type) into `coarse`, whose geometry places each coarse voxel on its block's centre
+/// voxel, with spacing f times the image's.
+DEFORMABLESURFACEFILTERS_EXPORT void BlockMeans(const ImageView& image, int f,
+  std::vector<float>& coarse, ImageGeometry& coarseGeometry, int numberOfThreads);
 
 /// The sigma left to smooth the block means with so that box and Gaussian together have the
 /// variance sigma^2 along the axis where the box adds the most, (f^2 - 1) / 12 spacing^2
@@ -41,17 +41,6 @@ DEFORMABLESURFACEFILTERS_EXPORT void BlockMeans(const float* values, const Image
 /// discretisation error of the coarse grid.
 DEFORMABLESURFACEFILTERS_EXPORT double RemainingSigma(
   double sigma, const ImageGeometry& geometry, int f);
-
-/// A box of voxels, [Begin, End) along each axis.
-struct DEFORMABLESURFACEFILTERS_EXPORT VoxelBox
-{
-  int Begin[3] = { 0, 0, 0 };
-  int End[3] = { 0, 0, 0 };
-  /// The whole image.
-  static VoxelBox Whole(const ImageGeometry& geometry);
-  bool Contains(const VoxelBox& other) const;
-  long long NumberOfVoxels() const;
-};
 
 /// How far, in sigmas, the field reaches past the surface's bounding box after the first
 /// level: 4 sigma of the Gaussian's support (its tail beyond holds < 1e-4 of the weight), so
@@ -65,18 +54,17 @@ constexpr double NeighbourhoodSigmasLocal = 10.0;
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
   const TriangleMesh& mesh, const ImageGeometry& geometry, double reach);
 
-/// The voxels of `box` as an image of their own (values and geometry).
-DEFORMABLESURFACEFILTERS_EXPORT void ExtractBox(const float* values, const ImageGeometry& geometry,
-  const VoxelBox& box, std::vector<float>& out, ImageGeometry& outGeometry);
-
 /// The force field at parameters.Sigma over `box` of the image (over the whole image when the
 /// box holds more than half of it), on a grid decimated by DecimationFactor when that is above
 /// 1, else on the image's own grid (ComputeScaleSpaceForce). The edge strength is normalised
-/// within the box. out's earlier field is released first. out.Sigma is parameters.Sigma either
-/// way.
-DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const float* scalars,
-  const ImageGeometry& geometry, const VoxelBox& box, const ScaleSpaceParameters& parameters,
-  ForceField& out, std::string* error);
+/// within the box. With a `surface`, a field on the image's own grid with the global edge
+/// normalisation is kept only in the bricks within BrickReachSigmas sigma of its vertices
+/// (dsFieldBricks.h; more are computed as the surface moves: FieldBricks::Cover). out's earlier
+/// field is released first. out.Sigma is parameters.Sigma either way, out.Image the image's
+/// geometry.
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const ImageView& image,
+  const VoxelBox& box, const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
+  const TriangleMesh* surface = nullptr);
 } // namespace dsurf
 
 #endif

@@ -103,10 +103,10 @@ double DistanceToEdge(
 }
 } // namespace
 
-bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry,
-  const TriangleMesh& mesh, double paperSigma, int numberOfThreads, InitialSigmaChoice& choice,
-  std::string* error)
+bool ChooseInitialSigma(const ImageView& image, const TriangleMesh& mesh, double paperSigma,
+  int numberOfThreads, InitialSigmaChoice& choice, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   choice = InitialSigmaChoice();
   choice.Sigma = paperSigma;
   if (StartSpansImage(geometry, mesh))
@@ -120,7 +120,7 @@ bool ChooseInitialSigma(const float* scalars, const ImageGeometry& geometry,
   probeParameters.EdgeNormalization = EdgeNormalization::Local;
   probeParameters.NumberOfThreads = numberOfThreads;
   ForceField probe;
-  if (!ComputeScaleSpaceForce(scalars, geometry, probeParameters, probe, error))
+  if (!ComputeScaleSpaceForce(image, probeParameters, probe, error))
   {
     return false;
   }

@@ -44,9 +44,9 @@ DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(
 /// Chooses sigma_0 for `mesh` (topology built) as described above; paperSigma is the paper's
 /// extent / 6 (or the fraction the caller uses). False with a message when the probe field
 /// cannot be computed.
-DEFORMABLESURFACEFILTERS_EXPORT bool ChooseInitialSigma(const float* scalars,
-  const ImageGeometry& geometry, const TriangleMesh& mesh, double paperSigma, int numberOfThreads,
-  InitialSigmaChoice& choice, std::string* error);
+DEFORMABLESURFACEFILTERS_EXPORT bool ChooseInitialSigma(const ImageView& image,
+  const TriangleMesh& mesh, double paperSigma, int numberOfThreads, InitialSigmaChoice& choice,
+  std::string* error);
 } // namespace dsurf
 
 #endif

@@ -1,5 +1,6 @@
 #include "dsMultilevel.h"
 
+#include "dsFieldBricks.h"
 #include "dsRegion.h"
 #include "dsUntangle.h"
 
@@ -45,9 +46,10 @@ std::vector<char> MultilevelSolver::MarkTriangles(
   return marks;
 }
 
-bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geometry,
-  const TriangleMesh& mesh, double& sigma, std::string* error)
+bool MultilevelSolver::FirstSigma(
+  const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double paper = geometry.MeanExtent() / 6.0;
   if (P.Sigma > 0)
@@ -66,7 +68,7 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
     sigma = ConstantSigmaVoxels * geometry.MeanSpacing();
   }
   else if (!ChooseInitialSigma(
-             scalars, geometry, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+             image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
     return false;
   }
@@ -82,9 +84,9 @@ bool MultilevelSolver::FirstSigma(const float* scalars, const ImageGeometry& geo
   return true;
 }
 
-bool MultilevelSolver::RegionRange(
-  const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh)
+bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& mesh)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
   if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(hi - lo))
@@ -103,7 +105,7 @@ bool MultilevelSolver::RegionRange(
   {
     RangeEstimate estimate;
     std::string msg;
-    if (!EstimateIntensityRange(scalars, geometry, mesh, 1.0, estimate, &msg))
+    if (!EstimateIntensityRange(image, mesh, 1.0, estimate, &msg))
     {
       this->Warnings.push_back(
         "the region force is off: no intensity range was given and none could be "
@@ -118,7 +120,7 @@ bool MultilevelSolver::RegionRange(
     // region, and the edge force finds the boundary beyond.
     this->RegionOutwardOnly = !estimate.Contrast;
   }
-  if (CountVoxelsInRange(scalars, geometry, lo, hi) == 0)
+  if (CountVoxelsInRange(image, lo, hi) == 0)
   {
     this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) +
       ", " + std::to_string(hi) + "] matches no voxel of the image");
@@ -129,9 +131,10 @@ bool MultilevelSolver::RegionRange(
   return true;
 }
 
-bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
+bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
+  RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double voxel = geometry.MeanSpacing();
   std::string msg;
@@ -151,7 +154,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
       }
     }
   }
-  region = P.RegionWeight > 0 && this->RegionRange(scalars, geometry, mesh);
+  region = P.RegionWeight > 0 && this->RegionRange(image, mesh);
   if (P.SubdivideInitialSurface)
   {
     // Uniform 1 -> 4 subdivision at the midpoints keeps the start shape; every vertex is N,
@@ -186,7 +189,7 @@ bool MultilevelSolver::PrepareStart(const float* scalars, const ImageGeometry& g
 }
 
 bool MultilevelSolver::SolveLevel(
-  Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
+  Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
   const MultilevelParameters& P = this->Parameters;
   const int cap = std::max(1, P.MaxSweepsPerLevel);
@@ -200,6 +203,7 @@ bool MultilevelSolver::SolveLevel(
   const int batchSize = std::max(
     1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
   std::vector<SweepStatistics> batchStats;
+  const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
     // MaxSweeps: the run stops exactly there (the batch is cut short to reach it).
@@ -211,6 +215,10 @@ bool MultilevelSolver::SolveLevel(
       this->Stop = StopReason::MaxSweeps;
       stop = true;
       break;
+    }
+    if (field.Bricks)
+    {
+      field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
     }
     batchStats.clear();
     solver.Sweeps(std::min({ batchSize, cap - s, budget }),
@@ -257,6 +265,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
     }
   }
+  rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
     this->Warnings.push_back(
@@ -344,11 +353,12 @@ void MultilevelSolver::ClearResults()
   this->RegionOutwardOnly = false;
 }
 
-bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RunState& state, std::string* error)
+bool MultilevelSolver::Start(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
-  if (!scalars || geometry.NumberOfVoxels() <= 0)
+  const ImageGeometry& geometry = image.Geometry;
+  if (!image.Data || geometry.NumberOfVoxels() <= 0)
   {
     *error = "the volume is empty";
     return false;
@@ -366,7 +376,7 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
     return false;
   }
-  if (!this->FirstSigma(scalars, geometry, mesh, state.Sigma, error))
+  if (!this->FirstSigma(image, mesh, state.Sigma, error))
   {
     return false;
   }
@@ -375,7 +385,7 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
   {
     return false;
   }
-  if (!this->PrepareStart(scalars, geometry, mesh, state.Refiner, state.Sigma, state.Region, error))
+  if (!this->PrepareStart(image, mesh, state.Refiner, state.Sigma, state.Region, error))
   {
     return false;
   }
@@ -395,9 +405,10 @@ bool MultilevelSolver::Start(const float* scalars, const ImageGeometry& geometry
   return true;
 }
 
-bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
+bool MultilevelSolver::SetUpLevel(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
 {
+  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
   // Force field at this level's sigma, over the whole image on the first level (a start may
@@ -415,7 +426,10 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
-    if (!ComputeForceAtScale(scalars, geometry, box, state.FieldParameters, state.Field, &msg))
+    // After the first level, a field on the image's own grid only where the surface is
+    // (dsFieldBricks.h).
+    if (!ComputeForceAtScale(
+          image, box, state.FieldParameters, state.Field, &msg, rec.Level == 0 ? nullptr : &mesh))
     {
       *error = "scale-space force: " + msg;
       return false;
@@ -430,7 +444,7 @@ bool MultilevelSolver::SetUpLevel(const float* scalars, const ImageGeometry& geo
     // the edge force takes over the detail, so the region force shrinks with sigma (at full
     // strength it presses the surface into every narrow dark gap of the object).
     const double decay = std::min(1.0, sigma / state.FirstSigma);
-    state.LevelSolver.SetRegionForce(scalars, geometry, this->UsedRange[0], this->UsedRange[1],
+    state.LevelSolver.SetRegionForce(image, this->UsedRange[0], this->UsedRange[1],
       decay * P.RegionWeight * h, this->RegionOutwardOnly);
   }
   rec.Sigma = sigma;
@@ -571,8 +585,8 @@ bool MultilevelSolver::RefineLevel(
   return true;
 }
 
-bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geometry,
-  TriangleMesh& mesh, RunState& state, std::string* error)
+bool MultilevelSolver::RunLevels(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
   const int maxLevels = std::max(0, P.MaxLevels);
@@ -588,11 +602,12 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
   {
     LevelRecord rec;
     rec.Level = level;
-    if (!this->SetUpLevel(scalars, geometry, mesh, state, rec, error))
+    if (!this->SetUpLevel(image, mesh, state, rec, error))
     {
       return false;
     }
-    const bool stop = this->SolveLevel(state.LevelSolver, mesh, rec, state.SweepCounter);
+    const bool stop =
+      this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
     // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).
@@ -633,14 +648,12 @@ bool MultilevelSolver::RunLevels(const float* scalars, const ImageGeometry& geom
   return true;
 }
 
-bool MultilevelSolver::Run(
-  const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::string* error)
 {
   this->ClearResults();
   std::string msg;
   RunState state;
-  if (!this->Start(scalars, geometry, mesh, state, &msg) ||
-    !this->RunLevels(scalars, geometry, mesh, state, &msg))
+  if (!this->Start(image, mesh, state, &msg) || !this->RunLevels(image, mesh, state, &msg))
   {
     if (error)
     {

@@ -16,16 +16,16 @@
 //      spacing) (every triangle when UniformRefinement). The threshold is absolute: a level
 //      refines only where the surface still rests that far from the image's edge, so the
 //      triangles follow the detail and the resolution, not a fixed share of every level (as a
-//      threshold relative to the level's mean would). The default 0.07 voxel was measured on the phantoms: a
-//      binary sphere of radius 32 voxels in 128^3 ends with ~2 500 triangles at mean |d| 0.06
-//      voxel, the cube of half-side 16 with ~6 300 (its edges and corners), a noisy ball of
-//      radius 128 in 512^3 with ~11 000 at 0.034 (0.05: 23 000 triangles for 0.031).
-//      Adaptively, a triangle whose edges are all shorter than a voxel (mean spacing) is never
-//      marked: the image has no finer detail; with the region force on, nor one whose edges are
-//      all shorter than sigma_l (the image at sigma_l shows nothing finer): the region force
-//      carries the surface far, so its edges follow the travel rather than sigma (a clicked
-//      seed grown to the brain has edges ~sigma_0), and at a coarse sigma the absolute estimator
-//      marks nearly every triangle (docs/METHOD.md §9.3);
+//      threshold relative to the level's mean would). The default 0.07 voxel was measured on the
+//      phantoms: a binary sphere of radius 32 voxels in 128^3 ends with ~2 500 triangles at mean
+//      |d| 0.06 voxel, the cube of half-side 16 with ~6 300 (its edges and corners), a noisy ball
+//      of radius 128 in 512^3 with ~11 000 at 0.034 (0.05: 23 000 triangles for 0.031). Adaptively,
+//      a triangle whose edges are all shorter than a voxel (mean spacing) is never marked: the
+//      image has no finer detail; with the region force on, nor one whose edges are all shorter
+//      than sigma_l (the image at sigma_l shows nothing finer): the region force carries the
+//      surface far, so its edges follow the travel rather than sigma (a clicked seed grown to the
+//      brain has edges ~sigma_0), and at a coarse sigma the absolute estimator marks nearly every
+//      triangle (docs/METHOD.md §9.3);
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h; at edge midpoints with ButterflyProlongation off);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
@@ -118,10 +118,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   bool ButterflyProlongation = true;
   /// Before level 0, subdivide the start surface uniformly (1 -> 4, midpoints, so its
   /// shape is kept exactly) to the mean edge length nearest InitialEdgeSigmaRatio * sigma_0
-  /// (while it exceeds that by more than sqrt 2): a vertex samples the force only where it stands, so a coarse start (a Box
-  /// of 12 triangles around a whole volume) needs edges comparable to the first sigma
-  /// to be pulled in evenly; the target never below two voxels (mean spacing), which resolve nothing
-  /// more. The subdivided surface counts as level 0.
+  /// (while it exceeds that by more than sqrt 2): a vertex samples the force only where it stands,
+  /// so a coarse start (a Box of 12 triangles around a whole volume) needs edges comparable to the
+  /// first sigma to be pulled in evenly; the target never below two voxels (mean spacing), which
+  /// resolve nothing more. The subdivided surface counts as level 0.
   bool SubdivideInitialSurface = true;
   long long MaxVertices = 2000000;
   /// Check the topology invariants after every refinement (always on in Debug builds);
@@ -167,6 +167,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int MarkedTriangles = 0;     ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
+  /// Force samples that fell in a brick of the field not computed yet (no force there; the
+  /// bricks follow the surface between batches of sweeps, so this stays 0 unless a vertex
+  /// moves more than BrickReachSigmas sigma within one batch).
+  long long FieldMisses = 0;
 };
 
 class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
@@ -188,11 +192,16 @@ public:
   void SetCoarsenCallback(CoarsenCallback cb) { this->Coarsen = std::move(cb); }
 
   /// Deform `mesh` (any closed or open manifold triangle mesh, Points/Triangles set)
-  /// toward the boundaries of the volume `scalars` (one float per voxel, x fastest).
+  /// toward the boundaries of the volume `image` (read in place, in its own type).
   /// Returns false with a message on bad input or a broken invariant; the mesh is then
   /// left as it was at the last valid state.
+  bool Run(const ImageView& image, TriangleMesh& mesh, std::string* error);
+  /// The same for a float volume, one value per voxel of `geometry`, x fastest.
   bool Run(
-    const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error);
+    const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh, std::string* error)
+  {
+    return this->Run(ImageView::Of(scalars, geometry), mesh, error);
+  }
 
   const std::vector<SweepRecord>& GetSweeps() const { return this->Sweeps; }
   const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
@@ -252,15 +261,13 @@ private:
   // Run's steps, in order.
   void ClearResults();
   /// Input checks, sigma_0, PrepareStart, and the solver and force-field settings.
-  bool Start(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
-    RunState& state, std::string* error);
+  bool Start(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
   /// Levels 0..MaxLevels: set up, SolveLevel, EndSweeps, RefineLevel, the next sigma.
-  bool RunLevels(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
-    RunState& state, std::string* error);
+  bool RunLevels(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
   /// The level's force field (rebuilt when sigma changed), edge and region force scales, and
   /// rec's sigma, sizes and mean edge length.
-  bool SetUpLevel(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
-    RunState& state, LevelRecord& rec, std::string* error);
+  bool SetUpLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec,
+    std::string* error);
   /// After the sweeps: folds smoothed open (on the last level, and on one whose mesh resolves
   /// its sigma), the per-vertex arrays of the level kept.
   void EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel);
@@ -280,18 +287,21 @@ private:
   /// keeps the start's topology (closed or not, Euler characteristic, orientation).
   bool CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error);
   /// sigma_0 by the rule of Sigma / SigmaFraction / the start.
-  bool FirstSigma(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh,
-    double& sigma, std::string* error);
+  bool FirstSigma(
+    const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error);
   /// Before level 0: closed pieces turned outward and the region force's range (with
   /// RegionWeight > 0; region = whether it is on), then the start subdivided to ~4 sigma_0.
-  bool PrepareStart(const float* scalars, const ImageGeometry& geometry, TriangleMesh& mesh,
-    RedGreenRefiner& refiner, double sigma, bool& region, std::string* error);
+  bool PrepareStart(const ImageView& image, TriangleMesh& mesh, RedGreenRefiner& refiner,
+    double sigma, bool& region, std::string* error);
   /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
   /// convergence test, the records, progress and abort, MaxSweeps. True = stop the run.
-  bool SolveLevel(Solver& solver, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter);
+  /// A field in bricks (dsFieldBricks.h) gets the bricks the surface comes within reach of
+  /// before each batch.
+  bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
+    int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says
   /// why, except for a start spanning the image or an open start without a given range).
-  bool RegionRange(const float* scalars, const ImageGeometry& geometry, const TriangleMesh& mesh);
+  bool RegionRange(const ImageView& image, const TriangleMesh& mesh);
 };
 } // namespace dsurf
 

@@ -28,9 +28,9 @@ double Quantile(std::vector<float>& v, double q)
 /// crossings of the row's line with the triangles are sorted and the centres between the
 /// 1st and 2nd, 3rd and 4th... crossing are inside (parity). Works in continuous index space,
 /// so spacing and direction are honoured.
-std::vector<float> ValuesInside(
-  const float* scalars, const ImageGeometry& g, const TriangleMesh& mesh)
+std::vector<float> ValuesInside(const ImageView& image, const TriangleMesh& mesh)
 {
+  const ImageGeometry& g = image.Geometry;
   const int nx = g.Dimensions[0], ny = g.Dimensions[1], nz = g.Dimensions[2];
   std::vector<Vec3> ijk(mesh.Points.size());
   for (std::size_t i = 0; i < ijk.size(); ++i)
@@ -72,9 +72,8 @@ std::vector<float> ValuesInside(
     }
   }
   std::vector<float> values;
-  for (int k = 0; k < nz; ++k)
-  {
-    for (int j = 0; j < ny; ++j)
+  ForEachRow(image,
+    [&](int j, int k, const auto* row)
     {
       std::vector<double>& xs = crossings[j + static_cast<std::size_t>(ny) * k];
       std::sort(xs.begin(), xs.end());
@@ -82,24 +81,31 @@ std::vector<float> ValuesInside(
       {
         const int i0 = std::max(0, ClampedIndex(std::ceil(xs[p]), nx));
         const int i1 = std::min(nx - 1, ClampedIndex(std::floor(xs[p + 1]), nx));
-        const float* row = scalars + (static_cast<std::size_t>(k) * ny + j) * nx;
-        values.insert(values.end(), row + std::max(i0, 0), row + std::max(i0, i1 + 1));
+        for (int i = i0; i <= i1; ++i)
+        {
+          values.push_back(AsFloat(row[i]));
+        }
       }
-    }
-  }
+    });
   return values;
 }
 
-/// The image's 1st-99th percentile span, from every 7th voxel.
-double RobustSpan(const float* scalars, const ImageGeometry& g)
+/// The image's 1st-99th percentile span, from every 7th voxel (x fastest).
+double RobustSpan(const ImageView& image)
 {
   std::vector<float> sample;
-  const long long n = g.NumberOfVoxels();
+  const long long n = image.Geometry.NumberOfVoxels();
+  const int nx = image.Geometry.Dimensions[0], ny = image.Geometry.Dimensions[1];
   sample.reserve(static_cast<std::size_t>(n / 7 + 1));
-  for (long long i = 0; i < n; i += 7)
-  {
-    sample.push_back(scalars[i]);
-  }
+  ForEachRow(image,
+    [&](int j, int k, const auto* row)
+    {
+      const long long first = (static_cast<long long>(k) * ny + j) * nx; // id of (0, j, k)
+      for (long long i = (7 - first % 7) % 7; i < nx; i += 7)
+      {
+        sample.push_back(AsFloat(row[i]));
+      }
+    });
   const double lo = Quantile(sample, 0.01), hi = Quantile(sample, 0.99);
   return hi - lo;
 }
@@ -107,8 +113,9 @@ double RobustSpan(const float* scalars, const ImageGeometry& g)
 /// The image 1, 2 and 3 voxels outside the surface along the face normals, at about one
 /// sample point per voxel of area (at least the triangle's centre).
 std::vector<float> ValuesOutside(
-  const float* scalars, const ImageGeometry& g, const TriangleMesh& mesh, double outwardSign)
+  const ImageView& image, const TriangleMesh& mesh, double outwardSign)
 {
+  const ImageGeometry& g = image.Geometry;
   const double voxel = g.MeanSpacing();
   std::vector<float> values;
   for (const auto& t : mesh.Triangles)
@@ -133,7 +140,7 @@ std::vector<float> ValuesOutside(
         {
           const Vec3 p = x + (k * voxel) * n;
           bool inside = false;
-          const double value = SampleVolume(scalars, g, p.data(), &inside);
+          const double value = SampleVolume(image, p.data(), &inside);
           if (inside)
           {
             values.push_back(static_cast<float>(value));
@@ -308,11 +315,11 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
   estimate.Range[1] = bright ? top : mid;
 }
 
-bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
-  const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error)
+bool EstimateIntensityRange(const ImageView& image, const TriangleMesh& mesh, double outwardSign,
+  RangeEstimate& estimate, std::string* error)
 {
   estimate = RangeEstimate();
-  std::vector<float> values = ValuesInside(scalars, geometry, mesh);
+  std::vector<float> values = ValuesInside(image, mesh);
   if (values.size() < 16)
   {
     estimate.FromVertices = true;
@@ -320,7 +327,7 @@ bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
     for (const Vec3& p : mesh.Points)
     {
       bool inside = false;
-      const double v = SampleVolume(scalars, geometry, p.data(), &inside);
+      const double v = SampleVolume(image, p.data(), &inside);
       if (inside)
       {
         values.push_back(static_cast<float>(v));
@@ -344,7 +351,7 @@ bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
     v = static_cast<float>(std::abs(v - estimate.Median));
   }
   const double mad = Quantile(values, 0.5);
-  const double floor = 0.05 * RobustSpan(scalars, geometry);
+  const double floor = 0.05 * RobustSpan(image);
   estimate.Spread = std::max(1.4826 * mad, floor);
   if (!(estimate.Spread > 0))
   {
@@ -354,7 +361,7 @@ bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
   estimate.Range[0] = m - 3.0 * s;
   estimate.Range[1] = m + 3.0 * s;
 
-  std::vector<float> outside = ValuesOutside(scalars, geometry, mesh, outwardSign);
+  std::vector<float> outside = ValuesOutside(image, mesh, outwardSign);
   estimate.OutsideSamples = static_cast<long long>(outside.size());
   if (outside.size() >= 16)
   {
@@ -363,15 +370,19 @@ bool EstimateIntensityRange(const float* scalars, const ImageGeometry& geometry,
   return true;
 }
 
-long long CountVoxelsInRange(
-  const float* scalars, const ImageGeometry& geometry, double lo, double hi)
+long long CountVoxelsInRange(const ImageView& image, double lo, double hi)
 {
   long long count = 0;
-  const long long n = geometry.NumberOfVoxels();
-  for (long long i = 0; i < n; ++i)
-  {
-    count += (scalars[i] >= lo && scalars[i] <= hi) ? 1 : 0;
-  }
+  const int nx = image.Geometry.Dimensions[0];
+  ForEachRow(image,
+    [&](int, int, const auto* row)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        const float v = AsFloat(row[i]);
+        count += (v >= lo && v <= hi) ? 1 : 0;
+      }
+    });
   return count;
 }
 } // namespace dsurf

@@ -61,13 +61,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 /// or the levels lie within 2 s of each other, the start lies inside one region (a click), and
 /// the range is m -+ 3 s: the whole of that region's class.
 /// Returns false (with a message) when there is nothing to sample.
-DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const float* scalars,
-  const ImageGeometry& geometry, const TriangleMesh& mesh, double outwardSign,
-  RangeEstimate& estimate, std::string* error);
+DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const ImageView& image,
+  const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error);
 
 /// Voxels whose value lies in [lo, hi].
 DEFORMABLESURFACEFILTERS_EXPORT long long CountVoxelsInRange(
-  const float* scalars, const ImageGeometry& geometry, double lo, double hi);
+  const ImageView& image, double lo, double hi);
 } // namespace dsurf
 
 #endif

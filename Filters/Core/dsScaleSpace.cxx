@@ -1,5 +1,7 @@
 #include "dsScaleSpace.h"
 
+#include "dsFieldBricks.h"
+
 #include "dsGaussianSmoother.h"
 #include "dsThreads.h"
 #include "dsTrilinear.h"
@@ -14,95 +16,41 @@
 
 namespace dsurf
 {
-//------------------------------------------------------------------------------
-double ImageGeometry::MeanExtent() const
-{
-  double sum = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    sum += this->Dimensions[a] * this->Spacing[a];
-  }
-  return sum / 3.0;
-}
-
-void ImageGeometry::WorldToIndex(const double x[3], double ijk[3]) const
-{
-  const double d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
-  const double* D = this->Direction;
-  // Orthonormal direction: its inverse is its transpose.
-  ijk[0] = (D[0] * d[0] + D[3] * d[1] + D[6] * d[2]) / this->Spacing[0];
-  ijk[1] = (D[1] * d[0] + D[4] * d[1] + D[7] * d[2]) / this->Spacing[1];
-  ijk[2] = (D[2] * d[0] + D[5] * d[1] + D[8] * d[2]) / this->Spacing[2];
-}
-
-void ImageGeometry::IndexToWorld(const double ijk[3], double x[3]) const
-{
-  const double s[3] = { ijk[0] * this->Spacing[0], ijk[1] * this->Spacing[1],
-    ijk[2] * this->Spacing[2] };
-  const double* D = this->Direction;
-  x[0] = this->Origin[0] + D[0] * s[0] + D[1] * s[1] + D[2] * s[2];
-  x[1] = this->Origin[1] + D[3] * s[0] + D[4] * s[1] + D[5] * s[2];
-  x[2] = this->Origin[2] + D[6] * s[0] + D[7] * s[1] + D[8] * s[2];
-}
-
-namespace
-{
-/// The trilinear cell of world point x. A voxel covers half a spacing around its centre, so
-/// the volume reaches half a voxel beyond the outermost centres (the image bounds); there the
-/// border value is used. A start box at the image bounds thus feels the force at every vertex.
-bool LocateCell(const ImageGeometry& g, const double x[3], TrilinearCell& c)
-{
-  double ijk[3];
-  g.WorldToIndex(x, ijk);
-  const int lo[3] = { 0, 0, 0 };
-  const int hi[3] = { g.Dimensions[0] - 1, g.Dimensions[1] - 1, g.Dimensions[2] - 1 };
-  return LocateTrilinearCell(ijk, lo, hi, 0.5, c);
-}
-} // namespace
-
 bool ForceField::SampleForce(const double x[3], double f[3]) const
 {
   f[0] = f[1] = f[2] = 0.0;
   TrilinearCell c;
-  if (this->Force.empty() || !LocateCell(this->Geometry, x, c))
+  if (this->Bricks)
   {
-    return false;
+    if (this->Bricks->SampleForce(x, f))
+    {
+      return true;
+    }
   }
-  const float* F = this->Force.data();
-  for (int corner = 0; corner < 8; ++corner)
+  else if (!this->Force.empty() && LocateImageCell(this->Geometry, x, c))
   {
-    const double w = c.Weight(corner);
-    const float* v = F + 3 * c.Corner(corner);
-    f[0] += w * v[0];
-    f[1] += w * v[1];
-    f[2] += w * v[2];
+    AddTrilinearVector(this->Force.data(), c, f);
+    return true;
   }
-  return true;
+  // Beyond the field's grid: outside the image only when beyond the image itself (a surface
+  // leaving a level's box has not left the image).
+  return !this->Force.empty() || this->Bricks
+    ? this->Image.Dimensions[0] > 0 && LocateImageCell(this->Image, x, c)
+    : false;
 }
 
 double SampleVolume(
   const float* values, const ImageGeometry& geometry, const double x[3], bool* inside)
 {
-  TrilinearCell c;
-  const bool in = values && LocateCell(geometry, x, c);
-  if (inside)
-  {
-    *inside = in;
-  }
-  if (!in)
-  {
-    return 0.0;
-  }
-  double v = 0.0;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    v += c.Weight(corner) * values[c.Corner(corner)];
-  }
-  return v;
+  return SampleVolume(ImageView::Of(values, geometry), x, inside);
 }
 
 double ForceField::SamplePotential(const double x[3]) const
 {
+  if (this->Bricks)
+  {
+    return this->Bricks->SamplePotential(x);
+  }
   return this->Potential.empty() ? 0.0
                                  : SampleVolume(this->Potential.data(), this->Geometry, x, nullptr);
 }
@@ -263,38 +211,68 @@ double NormalizeEdgesLocally(
   return *std::max_element(maxima.begin(), maxima.end());
 }
 
+/// The world gradient of `values` at the voxel v points at, grid position p of a grid of n
+/// voxels whose neighbours lie step[a] values away along axis a: central differences in index
+/// space, one-sided at the grid's border, turned to world.
+inline void WorldGradientAt(const float* v, const int p[3], const int n[3],
+  const std::ptrdiff_t step[3], const GradientToWorld& toWorld, double gw[3])
+{
+  const double gi[3] = { Diff(v, p[0], n[0], step[0]), Diff(v, p[1], n[1], step[1]),
+    Diff(v, p[2], n[2], step[2]) };
+  toWorld.Apply(gi, gw);
+}
+
 /// Calls visit(v, gw) for every voxel v of slice k with gw the world gradient of `values`
-/// there (central differences in index space, one-sided at the border, turned to world).
+/// there (WorldGradientAt).
 template <typename Visit>
 void ForEachWorldGradientOfSlice(
   const float* values, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
 {
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const std::ptrdiff_t sx = 1, sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
+  const int nx = dims[0], ny = dims[1];
+  const std::ptrdiff_t step[3] = { 1, nx, static_cast<std::ptrdiff_t>(nx) * ny };
   for (int j = 0; j < ny; ++j)
   {
-    const std::ptrdiff_t row = k * sz + j * sy;
+    const std::ptrdiff_t row = k * step[2] + j * step[1];
     for (int i = 0; i < nx; ++i)
     {
-      const float* v = values + row + i;
-      const double gi[3] = { Diff(v, i, nx, sx), Diff(v, j, ny, sy), Diff(v, k, nz, sz) };
+      const int p[3] = { i, j, k };
       double gw[3];
-      toWorld.Apply(gi, gw);
+      WorldGradientAt(values + row + i, p, dims, step, toWorld, gw);
       visit(row + i, gw);
     }
   }
 }
 
+/// Values of the image that are not finite as floats (a double beyond the float range
+/// included); an integer image has none.
+long long CountNonFinite(const ImageView& image)
+{
+  long long bad = 0;
+  if (image.Type == ScalarType::Float32 || image.Type == ScalarType::Float64)
+  {
+    const int nx = image.Geometry.Dimensions[0];
+    ForEachRow(image,
+      [&](int, int, const auto* row)
+      {
+        for (int i = 0; i < nx; ++i)
+        {
+          bad += std::isfinite(AsFloat(row[i])) ? 0 : 1;
+        }
+      });
+  }
+  return bad;
+}
+
 /// Why ComputeScaleSpaceForceInto cannot run on these inputs; empty when it can.
-std::string CheckForceInputs(const float* scalars, const ImageGeometry& geometry,
-  const ScaleSpaceParameters& parameters, const float* potential, const float* force)
+std::string CheckForceInputs(const ImageView& image, const ScaleSpaceParameters& parameters,
+  const float* potential, const float* force)
 {
   std::string error;
-  if (!scalars || !potential || !force)
+  if (!image.Data || !potential || !force)
   {
     return "no data";
   }
-  if (!Validate(geometry, parameters.Sigma, &error))
+  if (!Validate(image.Geometry, parameters.Sigma, &error))
   {
     return error.empty() ? std::string("invalid image geometry") : error;
   }
@@ -304,12 +282,7 @@ std::string CheckForceInputs(const float* scalars, const ImageGeometry& geometry
   }
   // One NaN or Inf would spread along every line of the recursive filter and turn the
   // whole field into NaN.
-  const long long n = geometry.NumberOfVoxels();
-  long long bad = 0;
-  for (long long i = 0; i < n; ++i)
-  {
-    bad += std::isfinite(scalars[i]) ? 0 : 1;
-  }
+  const long long bad = CountNonFinite(image);
   if (bad > 0)
   {
     return "the image has " + std::to_string(bad) +
@@ -324,7 +297,7 @@ struct EdgeStatistics
   double GradientMax = 0, SmoothMin = 0, SmoothMax = 0;
 };
 
-/// g = |grad smooth| into `edges`, with the extrema the normalisation needs.
+/// g = |grad smooth| into `edges` (unless nullptr), with the extrema the normalisation needs.
 EdgeStatistics EdgeMagnitude(
   const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
 {
@@ -339,7 +312,10 @@ EdgeStatistics EdgeMagnitude(
         [&](std::ptrdiff_t v, const double gw[3])
         {
           const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
-          edges[v] = static_cast<float>(g);
+          if (edges)
+          {
+            edges[v] = static_cast<float>(g);
+          }
           gm = std::max(gm, g);
           lo = std::min(lo, static_cast<double>(smooth[v]));
           hi = std::max(hi, static_cast<double>(smooth[v]));
@@ -355,13 +331,35 @@ EdgeStatistics EdgeMagnitude(
   return s;
 }
 
-/// P = -(ge g + gs s + offset) in place of g in `potential` (docs/METHOD.md §2, with the
-/// optional normalisation of both terms); `scratch` holds one volume for the local one.
+/// The gains of P = -(Edge g + Image s + Offset) (docs/METHOD.md §2, with the optional
+/// normalisation of both terms), g divided by gNorm when normalised.
+PotentialGains GainsOf(
+  const EdgeStatistics& stats, double gNorm, const ScaleSpaceParameters& parameters)
+{
+  PotentialGains gains;
+  gains.Edge = parameters.EdgeWeight;
+  gains.Image = parameters.ImageWeight;
+  if (parameters.NormalizePotential)
+  {
+    gains.Edge = gNorm > 0.0 ? parameters.EdgeWeight / gNorm : 0.0;
+    gains.Image = stats.SmoothMax > stats.SmoothMin
+      ? parameters.ImageWeight / (stats.SmoothMax - stats.SmoothMin)
+      : 0.0;
+    gains.Offset = -gains.Image * stats.SmoothMin;
+  }
+  return gains;
+}
+
+/// P of one voxel from its edge strength g (as stored, a float) and smoothed value s.
+inline float PotentialOf(float g, float s, const PotentialGains& gains)
+{
+  return static_cast<float>(-(gains.Edge * g + gains.Image * s + gains.Offset));
+}
+
+/// P in place of g in `potential`; `scratch` holds one volume for the local normalisation.
 void CombinePotential(float* potential, const float* smooth, float* scratch, const int dims[3],
   const double sigmaVoxels[3], const EdgeStatistics& stats, const ScaleSpaceParameters& parameters)
 {
-  const double we = parameters.EdgeWeight, wi = parameters.ImageWeight;
-  double ge = we, gs = wi, offset = 0.0;
   double gNorm = stats.GradientMax;
   if (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local &&
     stats.GradientMax > 0.0)
@@ -369,12 +367,7 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
     gNorm = NormalizeEdgesLocally(
       potential, scratch, dims, sigmaVoxels, parameters.LocalEdgeFloor * stats.GradientMax);
   }
-  if (parameters.NormalizePotential)
-  {
-    ge = gNorm > 0.0 ? we / gNorm : 0.0;
-    gs = stats.SmoothMax > stats.SmoothMin ? wi / (stats.SmoothMax - stats.SmoothMin) : 0.0;
-    offset = -gs * stats.SmoothMin;
-  }
+  const PotentialGains gains = GainsOf(stats, gNorm, parameters);
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   ForEachVoxelSlice(dims,
     [&](int k)
@@ -382,9 +375,35 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
       const std::ptrdiff_t b = k * sz, e = b + sz;
       for (std::ptrdiff_t v = b; v < e; ++v)
       {
-        potential[v] = static_cast<float>(-(ge * potential[v] + gs * smooth[v] + offset));
+        potential[v] = PotentialOf(potential[v], smooth[v], gains);
       }
     });
+}
+
+/// G_sigma * f of `image` into `smooth`: an image of another type (or a box of a larger one)
+/// is converted there first and smoothed in place, with the same result. In the caller's SMP
+/// scope.
+void SmoothImage(const ImageView& image, const double sigmaVoxels[3], float* smooth)
+{
+  const int* dims = image.Geometry.Dimensions;
+  if (image.IsContiguousFloat())
+  {
+    SmoothGaussianSeparable(static_cast<const float*>(image.Data), smooth, dims, sigmaVoxels);
+  }
+  else
+  {
+    CopyToFloat(image, smooth);
+    SmoothGaussianSeparable(smooth, smooth, dims, sigmaVoxels);
+  }
+}
+
+/// sigma in voxels along each axis.
+void SigmaVoxels(double sigma, const ImageGeometry& geometry, double sv[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    sv[a] = sigma / geometry.Spacing[a];
+  }
 }
 } // namespace
 
@@ -407,10 +426,10 @@ bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, 
   return true;
 }
 
-bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geometry,
-  const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error)
+bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParameters& parameters,
+  float* potential, float* force, std::string* error)
 {
-  const std::string problem = CheckForceInputs(scalars, geometry, parameters, potential, force);
+  const std::string problem = CheckForceInputs(image, parameters, potential, force);
   if (!problem.empty())
   {
     if (error)
@@ -419,9 +438,10 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
     }
     return false;
   }
+  const ImageGeometry& geometry = image.Geometry;
   const int* dims = geometry.Dimensions;
-  const double sv[3] = { parameters.Sigma / geometry.Spacing[0],
-    parameters.Sigma / geometry.Spacing[1], parameters.Sigma / geometry.Spacing[2] };
+  double sv[3];
+  SigmaVoxels(parameters.Sigma, geometry, sv);
   const GradientToWorld toWorld(geometry);
 
   WithThreads(parameters.NumberOfThreads,
@@ -430,7 +450,7 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
       // The first third of the force buffer holds G_sigma*f until P is known; the rest is
       // scratch for the local edge normalisation.
       float* smooth = force;
-      SmoothGaussianSeparable(scalars, smooth, dims, sv);
+      SmoothImage(image, sv, smooth);
       const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
       float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
       CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
@@ -468,6 +488,96 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
   return true;
 }
 
+bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& parameters,
+  float* smooth, PotentialGains& gains, std::string* error)
+{
+  std::string problem = CheckForceInputs(image, parameters, smooth, smooth);
+  if (problem.empty() && parameters.NormalizePotential &&
+    parameters.EdgeNormalization == EdgeNormalization::Local)
+  {
+    problem = "the local edge normalisation is not computed in pieces";
+  }
+  if (!problem.empty())
+  {
+    if (error)
+    {
+      *error = problem;
+    }
+    return false;
+  }
+  double sv[3];
+  SigmaVoxels(parameters.Sigma, image.Geometry, sv);
+  const GradientToWorld toWorld(image.Geometry);
+  WithThreads(parameters.NumberOfThreads,
+    [&]()
+    {
+      SmoothImage(image, sv, smooth);
+      const EdgeStatistics stats =
+        EdgeMagnitude(smooth, image.Geometry.Dimensions, toWorld, nullptr);
+      gains = GainsOf(stats, stats.GradientMax, parameters);
+    });
+  if (!std::isfinite(gains.Edge) || !std::isfinite(gains.Image) || !std::isfinite(gains.Offset))
+  {
+    if (error)
+    {
+      *error = "the potential's normalisation is not finite: the weights are too large";
+    }
+    return false;
+  }
+  return true;
+}
+
+void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
+  const PotentialGains& gains, float* potential, float* force)
+{
+  // P over the box grown by a voxel (within the image), for the central differences of -grad P
+  // at the box's faces; each value computed as in ComputeScaleSpaceForceInto.
+  const int* n = geometry.Dimensions;
+  VoxelBox grown;
+  int m[3], b[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    grown.Begin[a] = std::max(0, box.Begin[a] - 1);
+    grown.End[a] = std::min(n[a], box.End[a] + 1);
+    m[a] = grown.End[a] - grown.Begin[a];
+    b[a] = box.End[a] - box.Begin[a];
+  }
+  const GradientToWorld toWorld(geometry);
+  const std::ptrdiff_t imageStep[3] = { 1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1] };
+  const std::ptrdiff_t patchStep[3] = { 1, m[0], static_cast<std::ptrdiff_t>(m[0]) * m[1] };
+  std::vector<float> patch(static_cast<std::size_t>(grown.NumberOfVoxels()));
+  for (int k = grown.Begin[2]; k < grown.End[2]; ++k)
+    for (int j = grown.Begin[1]; j < grown.End[1]; ++j)
+      for (int i = grown.Begin[0]; i < grown.End[0]; ++i)
+      {
+        const int p[3] = { i, j, k };
+        const std::ptrdiff_t v = i * imageStep[0] + j * imageStep[1] + k * imageStep[2];
+        double gw[3];
+        WorldGradientAt(smooth + v, p, n, imageStep, toWorld, gw);
+        const float g =
+          static_cast<float>(std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]));
+        patch[(i - grown.Begin[0]) + (j - grown.Begin[1]) * patchStep[1] +
+          (k - grown.Begin[2]) * patchStep[2]] = PotentialOf(g, smooth[v], gains);
+      }
+  for (int k = box.Begin[2]; k < box.End[2]; ++k)
+    for (int j = box.Begin[1]; j < box.End[1]; ++j)
+      for (int i = box.Begin[0]; i < box.End[0]; ++i)
+      {
+        const int p[3] = { i, j, k };
+        const float* at = patch.data() + (i - grown.Begin[0]) +
+          (j - grown.Begin[1]) * patchStep[1] + (k - grown.Begin[2]) * patchStep[2];
+        double gw[3];
+        WorldGradientAt(at, p, n, patchStep, toWorld, gw);
+        const std::ptrdiff_t o = (i - box.Begin[0]) +
+          (j - box.Begin[1]) * static_cast<std::ptrdiff_t>(b[0]) +
+          (k - box.Begin[2]) * static_cast<std::ptrdiff_t>(b[0]) * b[1];
+        potential[o] = *at;
+        force[3 * o] = static_cast<float>(-gw[0]);
+        force[3 * o + 1] = static_cast<float>(-gw[1]);
+        force[3 * o + 2] = static_cast<float>(-gw[2]);
+      }
+}
+
 std::string ScaleSpaceProblem(const ImageGeometry& geometry, double sigma)
 {
   std::string error;
@@ -478,31 +588,36 @@ std::string ScaleSpaceProblem(const ImageGeometry& geometry, double sigma)
   return error;
 }
 
-bool ComputeScaleSpaceForce(const float* scalars, const ImageGeometry& geometry,
-  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+bool ComputeScaleSpaceForce(const ImageView& image, const ScaleSpaceParameters& parameters,
+  ForceField& out, std::string* error)
 {
   out.Potential.clear();
   out.Force.clear();
-  out.Geometry = geometry;
+  out.Geometry = image.Geometry;
   out.Sigma = parameters.Sigma;
-  if (!scalars || !Validate(geometry, parameters.Sigma, error))
+  if (!image.Data || !Validate(image.Geometry, parameters.Sigma, error))
   {
-    if (!scalars && error)
+    if (!image.Data && error)
     {
       *error = "no data";
     }
     return false;
   }
-  const std::size_t n = static_cast<std::size_t>(geometry.NumberOfVoxels());
+  const std::size_t n = static_cast<std::size_t>(image.Geometry.NumberOfVoxels());
   out.Potential.resize(n);
   out.Force.resize(3 * n);
-  if (!ComputeScaleSpaceForceInto(
-        scalars, geometry, parameters, out.Potential.data(), out.Force.data(), error))
+  if (!ComputeScaleSpaceForceInto(image, parameters, out.Potential.data(), out.Force.data(), error))
   {
     out.Potential.clear();
     out.Force.clear();
     return false;
   }
   return true;
+}
+
+bool ComputeScaleSpaceForce(const float* scalars, const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error)
+{
+  return ComputeScaleSpaceForce(ImageView::Of(scalars, geometry), parameters, out, error);
 }
 } // namespace dsurf

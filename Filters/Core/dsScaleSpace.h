@@ -19,41 +19,14 @@
 #define dsScaleSpace_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsImageView.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace dsurf
 {
-/// Where the voxels are: world = Origin + Direction * (Spacing .* ijk).
-/// Direction is row-major 3x3 and must be orthonormal (VTK's vtkImageData direction
-/// matrix; ComputeScaleSpaceForce rejects anything else).
-struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
-{
-  int Dimensions[3] = { 0, 0, 0 };
-  double Spacing[3] = { 1, 1, 1 };
-  double Origin[3] = { 0, 0, 0 };
-  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-
-  long long NumberOfVoxels() const
-  {
-    return static_cast<long long>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
-  }
-  /// Mean physical extent (the paper's "average extent of the volume"):
-  /// mean over the axes of Dimensions[a] * Spacing[a], so a 256^3 unit-spacing
-  /// volume has extent 256 and sigma = extent / 6 = 42.7.
-  double MeanExtent() const;
-  /// The voxel size, the mean spacing: the finest detail the image shows.
-  double MeanSpacing() const
-  {
-    return (this->Spacing[0] + this->Spacing[1] + this->Spacing[2]) / 3.0;
-  }
-  /// World point -> continuous index (i,j,k).
-  void WorldToIndex(const double x[3], double ijk[3]) const;
-  /// Continuous index -> world point.
-  void IndexToWorld(const double ijk[3], double x[3]) const;
-};
-
 /// How the edge strength g = |grad(G_sigma * f)| is made unit-free before it enters P.
 enum class EdgeNormalization
 {
@@ -78,6 +51,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   int NumberOfThreads = 0;      ///< 0 = all the machine has (vtkSMPTools STDThread)
 };
 
+class FieldBricks;
+
 /// P and -grad P on the voxel grid.
 struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 {
@@ -85,11 +60,17 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
   double Sigma = 0.0;           ///< physical sigma the field was computed at
   std::vector<float> Potential; ///< P per voxel (x fastest)
   std::vector<float> Force;     ///< -grad P per voxel, 3 components, world coordinates
+  /// When set, the field exists only in bricks around the surface (dsFieldBricks.h; Geometry
+  /// is their box): Potential and Force are empty and every sample comes from the bricks.
+  std::shared_ptr<FieldBricks> Bricks;
+  /// The image the field's grid is a box of (Dimensions 0: the grid is the whole image).
+  ImageGeometry Image;
 
-  bool Empty() const { return this->Potential.empty(); }
+  bool Empty() const { return this->Potential.empty() && !this->Bricks; }
   /// Trilinear sample of the force at world point x. Returns false (and f = 0)
-  /// when x lies outside the volume: more than half a voxel beyond the outermost voxel
-  /// centres (within that half voxel the border value is used).
+  /// when x lies outside the image: more than half a voxel beyond its outermost voxel
+  /// centres (within that half voxel the border value is used). Inside the image but outside
+  /// the field's grid (or in a brick not computed), f = 0 and true.
   bool SampleForce(const double x[3], double f[3]) const;
   /// Trilinear sample of the potential (0 outside).
   double SamplePotential(const double x[3]) const;
@@ -99,9 +80,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
 /// what a solve, or the Scale-Space Gradient filter's output, allocates per voxel of the image.
 constexpr double ForceFieldBytesPerVoxel = 4 * sizeof(float);
 
-/// Trilinear sample of a one-value-per-voxel volume at world point x, with the same reach as
+/// Trilinear sample of a one-float-per-voxel volume at world point x, with the same reach as
 /// ForceField::SampleForce (half a voxel past the outermost centres); 0 and *inside = false
-/// outside.
+/// outside (SampleVolume of dsImageView.h for a volume of any type).
 DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
   const float* values, const ImageGeometry& geometry, const double x[3], bool* inside);
 
@@ -113,19 +94,44 @@ DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
 DEFORMABLESURFACEFILTERS_EXPORT std::string ScaleSpaceProblem(
   const ImageGeometry& geometry, double sigma);
 
-/// Force = -grad P in world coordinates. scalars: one float per voxel, x fastest.
-/// Returns false with a message on bad input (empty, 2-D, non-finite sigma...).
+/// Force = -grad P in world coordinates, over the voxels of `image` (any value type; out's
+/// geometry is the view's). Returns false with a message on bad input (empty, 2-D, non-finite
+/// sigma...).
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const ImageView& image,
+  const ScaleSpaceParameters& parameters, ForceField& out, std::string* error);
+/// The same for a float volume, one value per voxel of `geometry`, x fastest.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const float* scalars,
   const ImageGeometry& geometry, const ScaleSpaceParameters& parameters, ForceField& out,
   std::string* error);
 
 /// Same computation into caller-owned buffers (no copy for the VTK filter):
 /// potential holds NumberOfVoxels floats, force 3 * NumberOfVoxels. The force buffer
-/// doubles as the smoothing scratch, so peak memory is input + 4 volumes.
-/// scalars must not alias either buffer.
-DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const float* scalars,
-  const ImageGeometry& geometry, const ScaleSpaceParameters& parameters, float* potential,
-  float* force, std::string* error);
+/// doubles as the smoothing scratch (and holds the image converted to float when it is not a
+/// contiguous float array), so peak memory is the input + 4 floats per voxel.
+/// The image must not alias either buffer.
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const ImageView& image,
+  const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error);
+
+/// How the edge strength g and the smoothed image s make the potential:
+/// P = -(Edge g + Image s + Offset) (the normalisation of the header comment folded in).
+struct DEFORMABLESURFACEFILTERS_EXPORT PotentialGains
+{
+  double Edge = 0, Image = 0, Offset = 0;
+};
+
+/// ComputeScaleSpaceForceInto in two stages, for a field computed only in pieces of the image
+/// (dsFieldBricks.h). First G_sigma * f over the whole `image` into `smooth` (NumberOfVoxels
+/// floats) and the gains, normalised over the whole image as ComputeScaleSpaceForceInto does;
+/// the same checks, false with a message. The local edge normalisation (a second Gaussian of
+/// g over the image) is not staged: parameters must not ask for it.
+DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
+  const ScaleSpaceParameters& parameters, float* smooth, PotentialGains& gains, std::string* error);
+/// Then P and -grad P at the voxels of `box` (x fastest) of the image of `geometry` whose
+/// G_sigma * f is `smooth`: bit for bit what ComputeScaleSpaceForceInto gives there. potential
+/// holds box.NumberOfVoxels() floats, force three times as many. Runs serially.
+DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
+  const ImageGeometry& geometry, const VoxelBox& box, const PotentialGains& gains, float* potential,
+  float* force);
 
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.

@@ -84,8 +84,8 @@ void RingWeights(const TriangleMesh& m, int v, double* w, std::vector<int>& gree
     }
     for (int k = 1; k <= 2; ++k)
     {
-      const int slot = static_cast<int>(
-        std::lower_bound(ring + begin, ring + end, tri[(c + k) % 3]) - ring);
+      const int slot =
+        static_cast<int>(std::lower_bound(ring + begin, ring + end, tri[(c + k) % 3]) - ring);
       w[slot] += UmbrellaWeight(m.CornerLabels[t][c], m.CornerLabels[t][(c + k) % 3]);
       ++greens[slot - begin];
     }
@@ -416,12 +416,11 @@ inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveN
       outside = 1;
     }
   }
-  if (this->RegionScalars)
+  if (this->RegionImage.Data)
   {
     // The region force along the unit normal (dsRegion.h); the normal is kept for the rule.
     bool inside = false;
-    const double intensity =
-      SampleVolume(this->RegionScalars, this->RegionGeometry, p.data(), &inside);
+    const double intensity = SampleVolume(this->RegionImage, p.data(), &inside);
     normal = this->FanNormal(v);
     haveNormal = true;
     const double nn = Norm(normal);
@@ -444,7 +443,7 @@ void Solver::UpdateVertex(int v)
   Vec3 force{ 0, 0, 0 };
   Vec3 applied{ 0, 0, 0 };
   int outside = 0;
-  if ((this->Field && this->Sampler) || this->RegionScalars)
+  if ((this->Field && this->Sampler) || this->RegionImage.Data)
   {
     Vec3 normal{ 0, 0, 0 };
     bool haveNormal = false;

@@ -78,16 +78,16 @@ public:
   }
 
   /// The region force (dsRegion.h): scale * RegionSpeed(I(x), low, high) * n at every vertex,
-  /// I sampled trilinearly in `scalars` (one float per voxel of `geometry`, not copied), n the
-  /// unit area-weighted normal (outward for an outward-oriented surface). It is added to the
-  /// edge force before the projection rule. scale 0 or no scalars: none. outwardOnly: the
+  /// I sampled trilinearly in `image` (read in place, in its own type), n the unit
+  /// area-weighted normal (outward for an outward-oriented surface). It is added to the edge
+  /// force before the projection rule. scale 0 or no image data: none. outwardOnly: the
   /// negative speeds are dropped (grow inside the range, leave the rest to the edge force).
-  void SetRegionForce(const float* scalars, const ImageGeometry& geometry, double low, double high,
-    double scale, bool outwardOnly = false)
+  void SetRegionForce(
+    const ImageView& image, double low, double high, double scale, bool outwardOnly = false)
   {
     this->RegionOutwardOnly = outwardOnly;
-    this->RegionScalars = scale != 0.0 ? scalars : nullptr;
-    this->RegionGeometry = geometry;
+    this->RegionImage = image;
+    this->RegionImage.Data = scale != 0.0 ? image.Data : nullptr;
     this->RegionLow = low;
     this->RegionHigh = high;
     this->RegionScale = scale;
@@ -171,8 +171,7 @@ private:
   const ForceField* Field = nullptr;
   bool (*Sampler)(const ForceField*, const double*, double*) = nullptr;
   double ForceScale = 1.0;
-  const float* RegionScalars = nullptr;
-  ImageGeometry RegionGeometry;
+  ImageView RegionImage; ///< Data nullptr: no region force
   double RegionLow = 0, RegionHigh = 0, RegionScale = 0;
   bool RegionOutwardOnly = false;
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
@@ -196,7 +195,7 @@ private:
   std::vector<int> LocalFanOffsets;         ///< triangles around each local vertex
   std::vector<std::array<int, 3>> LocalFan; ///< their corners (local ids, mesh order)
   std::vector<double> LocalWeights; ///< Weights in the local layout (same slot order per vertex)
-  std::vector<Vec3> LocalPoints; ///< refreshed from the mesh by every call
+  std::vector<Vec3> LocalPoints;    ///< refreshed from the mesh by every call
   struct VertexResult
   {
     double ErrorIndicator = 0, Displacement = 0, Force = 0;

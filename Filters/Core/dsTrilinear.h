@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace dsurf
 {
@@ -33,11 +34,26 @@ struct TrilinearCell
   }
 };
 
+/// Adds the trilinear sample in `cell` of a field of three values per sample (x, y, z) to f.
+inline void AddTrilinearVector(const float* values, const TrilinearCell& cell, double f[3])
+{
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double w = cell.Weight(corner);
+    const float* v = values + 3 * cell.Corner(corner);
+    f[0] += w * v[0];
+    f[1] += w * v[1];
+    f[2] += w * v[2];
+  }
+}
+
 /// The cell of continuous index ijk in a grid whose samples are lo[a] .. hi[a] along axis a
 /// (x fastest; linear ids count from lo). An index up to `tolerance` beyond the first or last
 /// sample is clamped onto it (the border value); further out, or an empty axis: false.
-inline bool LocateTrilinearCell(
-  const double ijk[3], const int lo[3], const int hi[3], double tolerance, TrilinearCell& cell)
+/// increments: the id step per axis when the samples are not contiguous (a box of a larger
+/// array); nullptr: contiguous from lo to hi.
+inline bool LocateTrilinearCell(const double ijk[3], const int lo[3], const int hi[3],
+  double tolerance, TrilinearCell& cell, const std::ptrdiff_t* increments = nullptr)
 {
   long long stride = 1;
   cell.Base = 0;
@@ -56,8 +72,9 @@ inline bool LocateTrilinearCell(
       i0 = std::min(static_cast<long long>(std::floor(v)), static_cast<long long>(hi[a] - 1));
       t = v - static_cast<double>(i0);
     }
-    cell.Base += (i0 - lo[a]) * stride;
-    cell.Step[a] = hi[a] > lo[a] ? stride : 0;
+    const long long step = increments ? static_cast<long long>(increments[a]) : stride;
+    cell.Base += (i0 - lo[a]) * step;
+    cell.Step[a] = hi[a] > lo[a] ? step : 0;
     cell.T[a] = t;
     stride *= hi[a] - lo[a] + 1;
   }

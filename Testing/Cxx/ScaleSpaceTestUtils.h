@@ -35,6 +35,19 @@ inline std::vector<float> SampleOnGrid(
   return values;
 }
 
+/// A ball of radius r around world point c with a soft edge (width ~1 voxel): the value
+/// 1 / (1 + exp(2 (|x - c| - r))) at every voxel of g.
+inline std::vector<float> SoftBall(const dsurf::ImageGeometry& g, const double c[3], double r)
+{
+  return SampleOnGrid(g,
+    [&](const double* x)
+    {
+      const double d = std::sqrt((x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) +
+        (x[2] - c[2]) * (x[2] - c[2]));
+      return 1.0 / (1.0 + std::exp(2.0 * (d - r)));
+    });
+}
+
 /// A float image whose point scalars "f" are value(world point) at every voxel.
 inline vtkSmartPointer<vtkImageData> MakeImage(const int extent[6], const double spacing[3],
   const double origin[3], const double direction[9],

@@ -45,7 +45,7 @@ void CheckBlockMeansOfRamp()
   {
     std::vector<float> coarse;
     ImageGeometry cg;
-    BlockMeans(values.data(), g, f, coarse, cg, 2);
+    BlockMeans(ImageView::Of(values.data(), g), f, coarse, cg, 2);
     double worst = 0;
     // Interior blocks are complete and centred: exact up to float rounding. The end blocks
     // also take in the voxels left over, so only the interior is compared.
@@ -67,22 +67,6 @@ void CheckBlockMeansOfRamp()
     DS_CHECK_LE(
       worst, 1e-4, "ramp: |block mean - value at its world place|, f = " + std::to_string(f));
   }
-}
-
-/// A ball of radius r (soft edge, width ~1 voxel) in an n^3 volume, unit spacing.
-std::vector<float> Ball(const ImageGeometry& g, const Vec3& c, double r)
-{
-  std::vector<float> v(static_cast<std::size_t>(g.NumberOfVoxels()));
-  for (int k = 0; k < g.Dimensions[2]; ++k)
-    for (int j = 0; j < g.Dimensions[1]; ++j)
-      for (int i = 0; i < g.Dimensions[0]; ++i)
-      {
-        const double d =
-          std::sqrt((i - c[0]) * (i - c[0]) + (j - c[1]) * (j - c[1]) + (k - c[2]) * (k - c[2]));
-        v[(static_cast<std::size_t>(k) * g.Dimensions[1] + j) * g.Dimensions[0] + i] =
-          static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (d - r))));
-      }
-  return v;
 }
 
 /// The largest |F_a(x) - F_b(x)| over the points, relative to the largest |F_b(x)|.
@@ -107,7 +91,7 @@ void CheckFields()
   ImageGeometry g;
   g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = 96;
   const Vec3 c{ 47.5, 47.5, 47.5 };
-  const std::vector<float> image = Ball(g, c, 20.0);
+  const std::vector<float> image = sstest::SoftBall(g, c.data(), 20.0);
   // Points from `band` sigma inside to `band` sigma outside the ball's boundary: where a
   // surface feels the field.
   auto shells = [](double sigma, double band, const Vec3& c)
@@ -132,7 +116,9 @@ void CheckFields()
   ForceField full, decimated;
   std::string error;
   DS_CHECK(ComputeScaleSpaceForce(image.data(), g, p, full, &error), error);
-  DS_CHECK(ComputeForceAtScale(image.data(), g, VoxelBox::Whole(g), p, decimated, &error), error);
+  DS_CHECK(
+    ComputeForceAtScale(ImageView::Of(image.data(), g), VoxelBox::Whole(g), p, decimated, &error),
+    error);
   DS_CHECK(decimated.Geometry.Dimensions[0] == 32 && decimated.Sigma == 12.0,
     "the decimated field: 32^3 voxels, at sigma 12");
   // Within sigma / 2 of the edge, measured 6 % against the image's own grid (3 % on the
@@ -150,7 +136,7 @@ void CheckFields()
   const VoxelBox box = SurfaceNeighbourhood(surface, g, NeighbourhoodSigmas * p.Sigma);
   ForceField cut;
   DS_CHECK(ComputeScaleSpaceForce(image.data(), g, p, full, &error), error);
-  DS_CHECK(ComputeForceAtScale(image.data(), g, box, p, cut, &error), error);
+  DS_CHECK(ComputeForceAtScale(ImageView::Of(image.data(), g), box, p, cut, &error), error);
   std::cout << "  neighbourhood: " << box.NumberOfVoxels() << " of " << g.NumberOfVoxels()
             << " voxels" << std::endl;
   DS_CHECK_LE(static_cast<double>(box.NumberOfVoxels()) / g.NumberOfVoxels(), 0.5,
@@ -164,7 +150,7 @@ void CheckFields()
     ImageGeometry big;
     big.Dimensions[0] = big.Dimensions[1] = big.Dimensions[2] = 128;
     const Vec3 c2{ 63.5, 63.5, 63.5 };
-    const std::vector<float> ball = Ball(big, c2, 20.0);
+    const std::vector<float> ball = sstest::SoftBall(big, c2.data(), 20.0);
     ScaleSpaceParameters local = p;
     local.EdgeNormalization = EdgeNormalization::Local;
     const VoxelBox localBox = SurfaceNeighbourhood(
@@ -173,7 +159,9 @@ void CheckFields()
       "local normalisation: the neighbourhood is a cut of the image");
     ForceField wholeLocal, cutLocal;
     DS_CHECK(ComputeScaleSpaceForce(ball.data(), big, local, wholeLocal, &error), error);
-    DS_CHECK(ComputeForceAtScale(ball.data(), big, localBox, local, cutLocal, &error), error);
+    DS_CHECK(
+      ComputeForceAtScale(ImageView::Of(ball.data(), big), localBox, local, cutLocal, &error),
+      error);
     DS_CHECK_LE(ForceDifference(cutLocal, wholeLocal, shells(2.0, 2.0, c2)), 1e-3,
       "local normalisation: neighbourhood vs whole-image field, sigma 2, within 2 sigma");
   }

@@ -44,7 +44,7 @@ int TestRegionRange(int, char*[])
   std::string error;
   DS_CHECK(box.BuildTopology(&error), error);
   RangeEstimate e;
-  DS_CHECK(EstimateIntensityRange(image.data(), g, box, 1.0, e, &error), error);
+  DS_CHECK(EstimateIntensityRange(ImageView::Of(image.data(), g), box, 1.0, e, &error), error);
   std::cout << "box start: " << e.Samples << " voxels inside, median " << e.Median << ", range ["
             << e.Range[0] << ", " << e.Range[1] << "], separation " << e.Separation << std::endl;
   // Centres strictly inside (9..27)^3 = 19^3; those on the box's faces (8 or 28) may count.
@@ -67,7 +67,7 @@ int TestRegionRange(int, char*[])
   DS_CHECK(inward.OrientPiecesOutward() == inward.NumberOfTriangles(),
     "every triangle of the inward box reversed");
   RangeEstimate f;
-  DS_CHECK(EstimateIntensityRange(image.data(), g, inward, 1.0, f, &error), error);
+  DS_CHECK(EstimateIntensityRange(ImageView::Of(image.data(), g), inward, 1.0, f, &error), error);
   DS_CHECK(f.Samples == e.Samples && f.Range[0] == e.Range[0] && f.Range[1] == e.Range[1],
     "inward start turned outward: the same estimate");
 
@@ -75,7 +75,7 @@ int TestRegionRange(int, char*[])
   TriangleMesh click = dstest::MakeCubeSurface(2, 3.0, { 18.0, 18.0, 18.0 });
   DS_CHECK(click.BuildTopology(&error), error);
   RangeEstimate c;
-  DS_CHECK(EstimateIntensityRange(image.data(), g, click, 1.0, c, &error), error);
+  DS_CHECK(EstimateIntensityRange(ImageView::Of(image.data(), g), click, 1.0, c, &error), error);
   std::cout << "click: median " << c.Median << ", spread " << c.Spread << ", range [" << c.Range[0]
             << ", " << c.Range[1] << "]" << std::endl;
   DS_CHECK(!c.Contrast, "a start inside one region: no contrast");
@@ -105,7 +105,8 @@ int TestRegionRange(int, char*[])
       TriangleMesh sphere = dstest::MakeIcosphere(3, radius, { 20.0, 20.0, 20.0 });
       DS_CHECK(sphere.BuildTopology(&error), error);
       RangeEstimate b;
-      DS_CHECK(EstimateIntensityRange(ball.data(), gb, sphere, 1.0, b, &error), error);
+      DS_CHECK(
+        EstimateIntensityRange(ImageView::Of(ball.data(), gb), sphere, 1.0, b, &error), error);
       std::cout << "sphere of radius " << radius << " around the blurred ball: range ["
                 << b.Range[0] << ", " << b.Range[1] << "]" << std::endl;
       DS_CHECK(b.Contrast, "blurred ball: object against background");
@@ -131,7 +132,7 @@ int TestRegionRange(int, char*[])
           mixed[(static_cast<size_t>(k) * n + j) * n + i] = v;
         }
     RangeEstimate mx;
-    DS_CHECK(EstimateIntensityRange(mixed.data(), g, box, 1.0, mx, &error), error);
+    DS_CHECK(EstimateIntensityRange(ImageView::Of(mixed.data(), g), box, 1.0, mx, &error), error);
     std::cout << "two-tone object beside a brighter slab: range [" << mx.Range[0] << ", "
               << mx.Range[1] << "]" << std::endl;
     DS_CHECK(mx.Contrast, "two-tone object: object against background");

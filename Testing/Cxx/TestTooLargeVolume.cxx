@@ -70,7 +70,8 @@ int TestTooLargeVolume(int, char*[])
   // The message itself, with the memory given.
   DS_CHECK(dsurf::MemoryShortfall(1e9, "x", 2e9).empty(), "what fits is not refused");
   DS_CHECK(dsurf::MemoryShortfall(1e9, "x", 0.0).empty(), "unknown memory refuses nothing");
-  DS_CHECK(dsurf::MemoryShortfall(4e9, "This image", 2e9).find("This image needs about 3.73 GiB") == 0,
+  DS_CHECK(
+    dsurf::MemoryShortfall(4e9, "This image", 2e9).find("This image needs about 3.73 GiB") == 0,
     "the need in GiB: " + dsurf::MemoryShortfall(4e9, "This image", 2e9));
 
   const double available = dsurf::AvailableMemoryBytes();
@@ -79,12 +80,12 @@ int TestTooLargeVolume(int, char*[])
     std::cout << "available memory unknown on this system: nothing to refuse" << std::endl;
     return dstest::Result("TestTooLargeVolume");
   }
-  // uint8 input: a float copy (4) and the force field (16) are 20 bytes a voxel, so
-  // available / 8 voxels need 2.5x what is available.
+  // uint8 input, read in place: the force field of a whole-image level is 16 bytes a voxel,
+  // so available / 8 voxels need 2x what is available.
   const int n = static_cast<int>(std::ceil(std::cbrt(available / 8.0)));
   const std::size_t voxels = static_cast<std::size_t>(n) * n * n;
-  void* zeros = mmap(nullptr, voxels, PROT_READ | PROT_WRITE,
-    MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  void* zeros = mmap(
+    nullptr, voxels, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
   DS_CHECK(zeros != MAP_FAILED, "the lazily mapped volume");
   if (zeros == MAP_FAILED)
   {

@@ -1,0 +1,192 @@
+#include "dsFieldBricks.h"
+
+#include "dsThreads.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dsurf
+{
+bool FieldBricks::Initialize(
+  const ImageView& image, const ScaleSpaceParameters& parameters, double reach, std::string* error)
+{
+  this->Grid = image.Geometry;
+  this->Parameters = parameters;
+  this->Reach = reach;
+  this->Potential.clear();
+  this->Force.clear();
+  this->MissCount = 0;
+  this->Smooth.assign(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()), 0.0f);
+  if (!SmoothForPotential(image, parameters, this->Smooth.data(), this->Gains, error))
+  {
+    std::vector<float>().swap(this->Smooth);
+    return false;
+  }
+  // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Bricks[a] = (this->Grid.Dimensions[a] - 2) / BrickSize + 1;
+  }
+  this->Slots.assign(
+    static_cast<std::size_t>(this->Bricks[0]) * this->Bricks[1] * this->Bricks[2], -1);
+  return true;
+}
+
+void FieldBricks::ComputeBrick(const int b[3], int slot)
+{
+  VoxelBox box;
+  for (int a = 0; a < 3; ++a)
+  {
+    box.Begin[a] = b[a] * BrickSize;
+    box.End[a] = std::min(box.Begin[a] + BrickSize, this->Grid.Dimensions[a] - 1) + 1;
+  }
+  const std::size_t n = static_cast<std::size_t>(box.NumberOfVoxels());
+  this->Potential[slot].resize(n);
+  this->Force[slot].resize(3 * n);
+  PotentialAndForceInBox(this->Smooth.data(), this->Grid, box, this->Gains,
+    this->Potential[slot].data(), this->Force[slot].data());
+}
+
+int FieldBricks::Cover(const TriangleMesh& mesh)
+{
+  // The bricks holding a cell within the reach of a vertex (index space, a voxel more).
+  std::vector<char> needed(this->Slots.size(), 0);
+  for (const Vec3& p : mesh.Points)
+  {
+    double ijk[3];
+    this->Grid.WorldToIndex(p.data(), ijk);
+    int lo[3], hi[3];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double r = this->Reach / this->Grid.Spacing[a] + 1.0;
+      const double last = this->Grid.Dimensions[a] - 2;
+      const double from = std::max(0.0, std::floor(ijk[a] - r));
+      const double to = std::min(last, std::floor(ijk[a] + r));
+      inside = inside && from <= to; // also false for NaN
+      lo[a] = inside ? static_cast<int>(from) / BrickSize : 0;
+      hi[a] = inside ? static_cast<int>(to) / BrickSize : -1;
+    }
+    for (int k = lo[2]; inside && k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          needed[(static_cast<std::size_t>(k) * this->Bricks[1] + j) * this->Bricks[0] + i] = 1;
+        }
+  }
+  std::vector<int> fresh; // brick ids to compute
+  for (std::size_t id = 0; id < needed.size(); ++id)
+  {
+    if (needed[id] && this->Slots[id] < 0)
+    {
+      this->Slots[id] = static_cast<int>(this->Potential.size() + fresh.size());
+      fresh.push_back(static_cast<int>(id));
+    }
+  }
+  this->Potential.resize(this->Potential.size() + fresh.size());
+  this->Force.resize(this->Potential.size());
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ ResolveThreads(this->Parameters.NumberOfThreads), "STDThread", false },
+    [&]
+    {
+      vtkSMPTools::For(0, static_cast<int>(fresh.size()),
+        [&](int begin, int end)
+        {
+          for (int f = begin; f < end; ++f)
+          {
+            const int id = fresh[f];
+            const int b[3] = { id % this->Bricks[0], (id / this->Bricks[0]) % this->Bricks[1],
+              id / (this->Bricks[0] * this->Bricks[1]) };
+            this->ComputeBrick(b, this->Slots[id]);
+          }
+        });
+    });
+  return static_cast<int>(fresh.size());
+}
+
+bool FieldBricks::Locate(const double x[3], int& slot, TrilinearCell& cell) const
+{
+  // The cell as LocateTrilinearCell finds it on the whole box (same clamping, same fractions),
+  // then its place in its brick.
+  double ijk[3];
+  this->Grid.WorldToIndex(x, ijk);
+  int brick[3], local[3], samples[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const int n = this->Grid.Dimensions[a];
+    if (!(ijk[a] >= -0.5 && ijk[a] <= n - 1 + 0.5))
+    {
+      return false;
+    }
+    const double v = std::min(std::max(ijk[a], 0.0), static_cast<double>(n - 1));
+    const int i0 = static_cast<int>(
+      std::min(static_cast<long long>(std::floor(v)), static_cast<long long>(n - 2)));
+    cell.T[a] = v - static_cast<double>(i0);
+    brick[a] = i0 / BrickSize;
+    local[a] = i0 - brick[a] * BrickSize;
+    samples[a] = std::min(BrickSize, n - 1 - brick[a] * BrickSize) + 1;
+  }
+  slot =
+    this
+      ->Slots[(static_cast<std::size_t>(brick[2]) * this->Bricks[1] + brick[1]) * this->Bricks[0] +
+        brick[0]];
+  cell.Step[0] = 1;
+  cell.Step[1] = samples[0];
+  cell.Step[2] = static_cast<long long>(samples[0]) * samples[1];
+  cell.Base = local[0] + local[1] * cell.Step[1] + local[2] * cell.Step[2];
+  return true;
+}
+
+bool FieldBricks::SampleForce(const double x[3], double f[3]) const
+{
+  f[0] = f[1] = f[2] = 0.0;
+  int slot = -1;
+  TrilinearCell c;
+  if (!this->Locate(x, slot, c))
+  {
+    return false;
+  }
+  if (slot < 0)
+  {
+    ++this->MissCount;
+    return true;
+  }
+  AddTrilinearVector(this->Force[slot].data(), c, f);
+  return true;
+}
+
+double FieldBricks::SamplePotential(const double x[3]) const
+{
+  int slot = -1;
+  TrilinearCell c;
+  double p = 0.0;
+  if (this->Locate(x, slot, c) && slot >= 0)
+  {
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      p += c.Weight(corner) * this->Potential[slot][c.Corner(corner)];
+    }
+  }
+  return p;
+}
+
+bool FieldBricks::Finite() const
+{
+  const auto finite = [](const std::vector<float>& v)
+  { return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); }); };
+  return std::all_of(this->Potential.begin(), this->Potential.end(), finite) &&
+    std::all_of(this->Force.begin(), this->Force.end(), finite);
+}
+
+double FieldBricks::Bytes() const
+{
+  double bytes = sizeof(float) * static_cast<double>(this->Smooth.size());
+  for (const auto& p : this->Potential)
+  {
+    bytes += 4.0 * sizeof(float) * static_cast<double>(p.size());
+  }
+  return bytes;
+}
+} // namespace dsurf

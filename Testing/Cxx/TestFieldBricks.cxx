@@ -1,0 +1,140 @@
+// A fine level's field kept only in bricks around the surface (dsFieldBricks.h): at the
+// surface's vertices, within its reach and across brick seams it equals the field over the
+// whole box bit for bit (tolerance 0: a brick computes every value exactly as the box does);
+// it holds less memory than the box's field (the share falls as the surface grows against a
+// brick); a point in a brick not computed yet feels no
+// force and is counted as a miss, not as outside the image, until Cover computes its brick; a
+// point outside the level's box but inside the image is not outside the image; a whole solve
+// of a phantom never samples a missing brick.
+#include "DSTestHelpers.h"
+#include "ScaleSpaceTestUtils.h"
+#include "TestSolverMeshes.h"
+
+#include "dsFieldBricks.h"
+#include "dsFieldGrid.h"
+#include "dsMultilevel.h"
+
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+using namespace dsurf;
+
+namespace
+{
+/// The largest |F_a - F_b| and |P_a - P_b| over the points.
+double LargestDifference(const ForceField& a, const ForceField& b, const std::vector<Vec3>& points)
+{
+  double worst = 0;
+  for (const Vec3& p : points)
+  {
+    double fa[3], fb[3];
+    a.SampleForce(p.data(), fa);
+    b.SampleForce(p.data(), fb);
+    for (int k = 0; k < 3; ++k)
+    {
+      worst = std::max(worst, std::abs(fa[k] - fb[k]));
+    }
+    worst = std::max(worst, std::abs(a.SamplePotential(p.data()) - b.SamplePotential(p.data())));
+  }
+  return worst;
+}
+
+/// The vertices of `surface` moved by -reach .. +reach along the radius from c, and a line
+/// through several brick seams.
+std::vector<Vec3> PointsWithinReach(const TriangleMesh& surface, const Vec3& c, double reach)
+{
+  std::vector<Vec3> points;
+  for (const Vec3& p : surface.Points)
+  {
+    const Vec3 u = (1.0 / Norm(p - c)) * (p - c);
+    for (double t = -reach; t <= reach + 1e-9; t += 0.37)
+    {
+      points.push_back(p + t * u);
+    }
+  }
+  for (double x = c[0] - 30.0; x <= c[0] + 30.0; x += 0.1)
+  {
+    points.push_back(Vec3{ x, c[1] + 21.0, c[2] + 0.3 }); // crosses x = 48, 64, ... seams
+  }
+  return points;
+}
+} // namespace
+
+int TestFieldBricks(int, char*[])
+{
+  ImageGeometry g;
+  g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = 128;
+  g.Origin[0] = -3.0;
+  const Vec3 c{ 60.5, 63.5, 63.5 };
+  const std::vector<float> image = sstest::SoftBall(g, c.data(), 30.0);
+  const ImageView view = ImageView::Of(image.data(), g);
+  const TriangleMesh surface = dstest::MakeIcosphere(3, 31.5, c);
+  ScaleSpaceParameters p;
+  p.Sigma = 2.0;
+  p.NumberOfThreads = 2;
+  const VoxelBox box = SurfaceNeighbourhood(surface, g, NeighbourhoodSigmas * p.Sigma);
+  ForceField whole, bricked;
+  std::string error;
+  DS_CHECK(ComputeForceAtScale(view, box, p, whole, &error), error);
+  DS_CHECK(ComputeForceAtScale(view, box, p, bricked, &error, &surface), error);
+  DS_CHECK(
+    bricked.Bricks && whole.Potential.size() == static_cast<std::size_t>(box.NumberOfVoxels()),
+    "the bricked field and the whole box's");
+  const double reach = BrickReachSigmas * p.Sigma;
+  DS_CHECK(LargestDifference(bricked, whole, PointsWithinReach(surface, c, reach)) == 0.0,
+    "bricked = whole-box field bit for bit at the vertices, within the reach, across seams");
+  DS_CHECK(bricked.Bricks->Misses() == 0, "no sample within the reach missed a brick");
+
+  const double wholeBytes = 4.0 * sizeof(float) * static_cast<double>(whole.Potential.size());
+  std::cout << "box " << box.NumberOfVoxels() << " voxels, " << bricked.Bricks->ComputedBricks()
+            << " bricks; bytes: bricked " << bricked.Bricks->Bytes() << ", whole " << wholeBytes
+            << std::endl;
+  // 8^3-voxel bricks within 2 sigma + 1 voxel of a ball of radius 31.5: 583 of the box's 1 728
+  // (0.34), 0.83 of its bytes with G_sigma * f over the box (4 of the 16 bytes a voxel); the
+  // share falls as the ball grows against a brick (512^3 ball, radius 128: docs/SCALING.md).
+  const double boxBricks =
+    std::ceil((box.End[0] - box.Begin[0] - 1) / double(FieldBricks::BrickSize)) *
+    std::ceil((box.End[1] - box.Begin[1] - 1) / double(FieldBricks::BrickSize)) *
+    std::ceil((box.End[2] - box.Begin[2] - 1) / double(FieldBricks::BrickSize));
+  DS_CHECK_LE(bricked.Bricks->ComputedBricks() / boxBricks, 0.5,
+    "bricks computed, of the box's (8^3 voxels each)");
+  DS_CHECK_LE(bricked.Bricks->Bytes() / wholeBytes, 0.9,
+    "memory of the bricked field against the whole box's (16 bytes a voxel)");
+
+  // The centre of the ball is far from the surface: its brick is not computed.
+  double f[3] = { 1, 1, 1 };
+  DS_CHECK(bricked.SampleForce(c.data(), f) && f[0] == 0 && f[1] == 0 && f[2] == 0 &&
+      bricked.Bricks->Misses() == 1,
+    "a point in a brick not computed: no force, a miss, not outside the image");
+  TriangleMesh inner = dstest::MakeIcosphere(1, 2.0, c);
+  DS_CHECK(bricked.Bricks->Cover(inner) > 0, "Cover computes the bricks a surface came near");
+  DS_CHECK(LargestDifference(bricked, whole, { c }) == 0.0, "and then they equal the box's");
+  DS_CHECK(bricked.Bricks->Cover(inner) == 0, "a brick is computed once");
+
+  // Outside the box (the surface's neighbourhood) but inside the image, and outside the image.
+  const Vec3 corner{ g.Origin[0] + 2.0, 2.0, 2.0 }, away{ g.Origin[0] - 5.0, 2.0, 2.0 };
+  DS_CHECK(box.Begin[0] > 3, "the box is a cut of the image");
+  DS_CHECK(whole.SampleForce(corner.data(), f) && bricked.SampleForce(corner.data(), f),
+    "beyond the level's box but inside the image: not outside the image");
+  DS_CHECK(!whole.SampleForce(away.data(), f) && !bricked.SampleForce(away.data(), f),
+    "beyond the image: outside");
+
+  // A whole solve from the box around the volume: no vertex ever sampled a missing brick.
+  MultilevelSolver solver;
+  TriangleMesh mesh = dstest::MakeIcosphere(1, 60.0, c);
+  DS_CHECK(solver.Run(view, mesh, &error), error);
+  long long misses = 0;
+  for (const LevelRecord& rec : solver.GetLevels())
+  {
+    misses += rec.FieldMisses;
+  }
+  DS_CHECK(misses == 0 && solver.GetMaxOutsideVertices() == 0 && solver.GetLevels().size() > 3,
+    "a solve: no missed brick, no vertex outside the image");
+  return dstest::Result("TestFieldBricks");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestFieldBricks(argc, argv);
+}
