@@ -1,5 +1,6 @@
 #include "dsRedGreen.h"
 
+#include <algorithm>
 #include <deque>
 
 namespace dsurf
@@ -69,6 +70,7 @@ bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
   }
   this->TriangleGreen.assign(mesh.Triangles.size(), -1);
   this->ParentEdge.assign(mesh.Points.size(), { -1, -1 });
+  this->Depth.assign(mesh.Points.size(), 0);
   this->ExpectedPoints = mesh.NumberOfPoints();
   this->ExpectedTriangles = mesh.NumberOfTriangles();
   return true;
@@ -404,7 +406,10 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
   const int nOldPoints = this->OldPoints;
   const int nNew = static_cast<int>(this->NewEdges.size());
   std::vector<Vec3> newPoints(nNew);
-  const std::vector<char> greenFlags = this->Refiner.GreenFlags();
+  // Stencils are read at each edge's level: greens as their parents (docs/METHOD.md §6.5).
+  ButterflyHierarchy hierarchy;
+  hierarchy.ParentEdges = &this->Refiner.ParentEdge;
+  hierarchy.Depths = &this->Refiner.Depth;
   for (int j = 0; j < nNew; ++j)
   {
     const int a = this->NewEdges[j][0], b = this->NewEdges[j][1];
@@ -414,7 +419,7 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
     ButterflyRule rule = ButterflyRule::Midpoint;
     if (mode == Prolongation::Butterfly && e >= 0)
     {
-      newPoints[j] = ButterflyEdgePoint(mesh, e, &greenFlags, &rule);
+      newPoints[j] = ButterflyEdgePoint(mesh, e, nullptr, &rule, hierarchy);
     }
     else
     {
@@ -529,6 +534,10 @@ RefinementCounts RedGreenRefiner::Refine(
   mesh.Levels.resize(mesh.Points.size(), this->Level);
   const auto& newPointEdges = step.NewPointEdges();
   this->ParentEdge.insert(this->ParentEdge.end(), newPointEdges.begin(), newPointEdges.end());
+  for (const auto& e : newPointEdges) // in creation order: an edge's ends come first
+  {
+    this->Depth.push_back(1 + std::max(this->Depth[e[0]], this->Depth[e[1]]));
+  }
   this->Greens.swap(greens);
   this->TriangleGreen.swap(triangleGreen);
   mesh.Labels = this->ComputeLabels(mesh.NumberOfPoints());

@@ -25,9 +25,10 @@
 // (M over C over D) is the row of its other edges and what the output's VertexLabel shows.
 //
 // New points are placed by the butterfly scheme (dsButterfly.h) evaluated on the mesh
-// before the step, with green triangles flagged irregular; points on edges that do
-// not exist in that mesh (inner edges of triangles split twice in one step) take the
-// midpoint. Prolongation::Linear puts every new point at the edge midpoint.
+// before the step, each stencil read at its edge's level (greens as their parents, finer
+// regions as the triangles they refine: ButterflyHierarchy from the parent edges); points
+// on edges that do not exist in that mesh (inner edges of triangles split twice in one step)
+// take the midpoint. Prolongation::Linear puts every new point at the edge midpoint.
 #ifndef dsRedGreen_h
 #define dsRedGreen_h
 
@@ -132,6 +133,7 @@ private:
   std::vector<int> TriangleGreen; ///< per current triangle: index into Greens, -1 if not green
   std::unordered_map<unsigned long long, int> Midpoints; ///< edge key -> midpoint vertex
   std::vector<std::array<int, 2>> ParentEdge; ///< per point: the edge it is the midpoint of, or -1
+  std::vector<int> Depth; ///< per point: 0 for the start's, else 1 + its edge's deeper end's
   int Level = 0;
   int ExpectedPoints = -1, ExpectedTriangles = -1;
 };
