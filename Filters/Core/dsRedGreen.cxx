@@ -43,6 +43,7 @@ bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
   mesh.Labels.assign(mesh.Points.size(), LabelN);
   mesh.CornerLabels.clear();
   mesh.Levels.assign(mesh.Points.size(), 0);
+  mesh.Depths.assign(mesh.Points.size(), 0);
   if (!mesh.BuildTopology(error))
   {
     this->ExpectedPoints = this->ExpectedTriangles = -1;
@@ -70,7 +71,6 @@ bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
   }
   this->TriangleGreen.assign(mesh.Triangles.size(), -1);
   this->ParentEdge.assign(mesh.Points.size(), { -1, -1 });
-  this->Depth.assign(mesh.Points.size(), 0);
   this->ExpectedPoints = mesh.NumberOfPoints();
   this->ExpectedTriangles = mesh.NumberOfTriangles();
   return true;
@@ -409,7 +409,7 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
   // Stencils are read at each edge's level: greens as their parents (docs/METHOD.md §6.5).
   ButterflyHierarchy hierarchy;
   hierarchy.ParentEdges = &this->Refiner.ParentEdge;
-  hierarchy.Depths = &this->Refiner.Depth;
+  hierarchy.Depths = &mesh.Depths;
   for (int j = 0; j < nNew; ++j)
   {
     const int a = this->NewEdges[j][0], b = this->NewEdges[j][1];
@@ -502,6 +502,10 @@ std::string RedGreenRefiner::CheckRefineInput(
   {
     return "the mesh connectivity changed since the last refinement";
   }
+  if (static_cast<int>(mesh.Depths.size()) != this->ExpectedPoints)
+  {
+    return "the mesh's Depths changed since the last refinement";
+  }
   if (static_cast<int>(markedTriangles.size()) != nOldTriangles)
   {
     return "one mark per triangle is needed";
@@ -536,7 +540,7 @@ RefinementCounts RedGreenRefiner::Refine(
   this->ParentEdge.insert(this->ParentEdge.end(), newPointEdges.begin(), newPointEdges.end());
   for (const auto& e : newPointEdges) // in creation order: an edge's ends come first
   {
-    this->Depth.push_back(1 + std::max(this->Depth[e[0]], this->Depth[e[1]]));
+    mesh.Depths.push_back(1 + std::max(mesh.Depths[e[0]], mesh.Depths[e[1]]));
   }
   this->Greens.swap(greens);
   this->TriangleGreen.swap(triangleGreen);

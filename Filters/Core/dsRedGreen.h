@@ -65,7 +65,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RefinementCounts
 class DEFORMABLESURFACEFILTERS_EXPORT RedGreenRefiner
 {
 public:
-  /// Attach to a level-0 mesh: forget any hierarchy, label every vertex N and level 0,
+  /// Attach to a level-0 mesh: forget any hierarchy, label every vertex N, level and depth 0,
   /// and build the topology. Returns false with a message when the mesh is not a
   /// manifold triangle mesh.
   bool Initialize(TriangleMesh& mesh, std::string* error);
@@ -133,7 +133,6 @@ private:
   std::vector<int> TriangleGreen; ///< per current triangle: index into Greens, -1 if not green
   std::unordered_map<unsigned long long, int> Midpoints; ///< edge key -> midpoint vertex
   std::vector<std::array<int, 2>> ParentEdge; ///< per point: the edge it is the midpoint of, or -1
-  std::vector<int> Depth; ///< per point: 0 for the start's, else 1 + its edge's deeper end's
   int Level = 0;
   int ExpectedPoints = -1, ExpectedTriangles = -1;
 };

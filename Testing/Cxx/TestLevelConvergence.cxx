@@ -3,7 +3,7 @@
 // sweep (w = PotentialEdgeWidth, wider than sigma below a few voxels), so a tolerance of a fixed
 // share of the edge length h alone let the fine levels stop early: the binary sphere of radius
 // 32 from the box ended at mean |d| 0.066 voxel, its last two levels after 7 and 1 sweeps, where
-// a five times tighter tolerance reaches 0.041 (now 0.052, after 11 and 3 sweeps, and 0.038).
+// a five times tighter tolerance reaches 0.041 (now 0.053, and 0.040).
 // Asserted: the defaults end within 0.06 voxel and within 0.018 of the five times tighter
 // tolerance; each level's tolerance is ConvergenceTolerance h sigma / w.
 #include "DSTestHelpers.h"
