@@ -32,18 +32,6 @@ int Opposite(const TriangleMesh& mesh, int t, int p, int q)
   return -1;
 }
 
-/// The triangle on the other side of edge (p, q) from t, -1 on a boundary.
-int Across(const TriangleMesh& mesh, int t, int p, int q)
-{
-  const int e = mesh.FindEdge(p, q);
-  if (e < 0)
-  {
-    return -1;
-  }
-  const auto& et = mesh.EdgeTriangles[e];
-  return et[0] == t ? et[1] : et[0];
-}
-
 /// Ring of interior vertex v in cyclic order starting at `start`; empty when the fan is
 /// not one closed cycle or touches a flagged triangle.
 std::vector<int> CyclicRing(
@@ -225,6 +213,60 @@ int NextBoundaryVertex(const TriangleMesh& mesh, int a, int b)
   }
   return found;
 }
+/// The boundary edge (a, b) of triangle t1 by the 4-point curve scheme; false when the curve
+/// does not go on at both ends (at the edge's level) or t1 is flagged.
+bool BoundaryPoint(const TriangleMesh& mesh, int a, int b, int t1, const std::vector<char>* flags,
+  const ButterflyHierarchy& h, int level, Vec3& out)
+{
+  int a2 = NextBoundaryVertex(mesh, a, b), b2 = NextBoundaryVertex(mesh, b, a);
+  if (h.ParentEdges)
+  {
+    a2 = a2 < 0 ? -1 : AtLevel(h, a, a2, level);
+    b2 = b2 < 0 ? -1 : AtLevel(h, b, b2, level);
+  }
+  if (a2 < 0 || b2 < 0 || a2 == b2 || Flagged(flags, t1))
+  {
+    return false;
+  }
+  out = (9.0 / 16.0) * (mesh.Points[a] + mesh.Points[b]) -
+    (1.0 / 16.0) * (mesh.Points[a2] + mesh.Points[b2]);
+  return true;
+}
+
+/// The 8-point butterfly on edge (a, b) of triangles t1, t2, both ends of valence 6 at the
+/// edge's level (ringA from b, ringB from a); false when the rings do not share the corners
+/// opposite the edge.
+bool RegularPoint(const TriangleMesh& mesh, int a, int b, int t1, int t2,
+  const std::vector<int>& ringA, const std::vector<int>& ringB, const ButterflyHierarchy& h,
+  int level, Vec3& out)
+{
+  // b1, b2: the corners opposite the edge (of t1, t2 at the edge's level); the four wings
+  // lie across (a, b1), (b, b1), (a, b2), (b, b2).
+  int b1 = Opposite(mesh, t1, a, b), b2 = Opposite(mesh, t2, a, b);
+  if (h.ParentEdges)
+  {
+    b1 = OppositeAtLevel(h, a, b, b1, level);
+    b2 = OppositeAtLevel(h, a, b, b2, level);
+  }
+  if (b1 < 0 || b2 < 0 || b1 == b2)
+  {
+    return false;
+  }
+  const int wing[4] = { Wing(ringA, b1), Wing(ringB, b1), Wing(ringA, b2), Wing(ringB, b2) };
+  if (*std::min_element(wing, wing + 4) < 0)
+  {
+    return false;
+  }
+  Vec3 cSum{ 0, 0, 0 };
+  for (int c : wing)
+  {
+    cSum = cSum + mesh.Points[c];
+  }
+  const double w = 1.0 / 16.0;
+  out = 0.5 * (mesh.Points[a] + mesh.Points[b]) + (2.0 * w) * (mesh.Points[b1] + mesh.Points[b2]) -
+    w * cSum;
+  return true;
+}
 } // namespace
 
 std::vector<double> ZorinWeights(int k)
@@ -253,9 +295,7 @@ Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
   const ButterflyHierarchy& hierarchy)
 {
   const int a = mesh.Edges[edge][0], b = mesh.Edges[edge][1];
-  const Vec3& pa = mesh.Points[a];
-  const Vec3& pb = mesh.Points[b];
-  const Vec3 mid = 0.5 * (pa + pb);
+  const Vec3 mid = 0.5 * (mesh.Points[a] + mesh.Points[b]);
   auto result = [rule](ButterflyRule r, const Vec3& p)
   {
     if (rule)
@@ -274,22 +314,13 @@ Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
   // edge belongs to the level of its deeper end, where the rings of both ends are read.
   const int level = h.ParentEdges ? std::max((*h.Depths)[a], (*h.Depths)[b]) : 0;
   const int t1 = mesh.EdgeTriangles[edge][0], t2 = mesh.EdgeTriangles[edge][1];
-
+  Vec3 p;
   if (t2 < 0)
   {
-    // Open boundary: refine the boundary curve by the 4-point scheme.
-    int a2 = NextBoundaryVertex(mesh, a, b), b2 = NextBoundaryVertex(mesh, b, a);
-    if (h.ParentEdges)
-    {
-      a2 = a2 < 0 ? -1 : AtLevel(h, a, a2, level);
-      b2 = b2 < 0 ? -1 : AtLevel(h, b, b2, level);
-    }
-    if (a2 < 0 || b2 < 0 || a2 == b2 || Flagged(irregularTriangles, t1))
-    {
-      return result(ButterflyRule::Midpoint, mid);
-    }
-    return result(ButterflyRule::Boundary,
-      (9.0 / 16.0) * (pa + pb) - (1.0 / 16.0) * (mesh.Points[a2] + mesh.Points[b2]));
+    // Open boundary: refine the boundary curve by itself.
+    return BoundaryPoint(mesh, a, b, t1, irregularTriangles, h, level, p)
+      ? result(ButterflyRule::Boundary, p)
+      : result(ButterflyRule::Midpoint, mid);
   }
   if (mesh.BoundaryVertex[a] || mesh.BoundaryVertex[b] || Flagged(irregularTriangles, t1) ||
     Flagged(irregularTriangles, t2))
@@ -301,27 +332,9 @@ Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
   const int ka = static_cast<int>(ringA.size()), kb = static_cast<int>(ringB.size());
   if (ka == 6 && kb == 6)
   {
-    // b1, b2: the corners opposite the edge (of t1, t2 at the edge's level); the four wings
-    // lie across (a, b1), (b, b1), (a, b2), (b, b2).
-    int b1 = Opposite(mesh, t1, a, b), b2 = Opposite(mesh, t2, a, b);
-    if (h.ParentEdges)
-    {
-      b1 = OppositeAtLevel(h, a, b, b1, level);
-      b2 = OppositeAtLevel(h, a, b, b2, level);
-    }
-    const int wing[4] = { Wing(ringA, b1), Wing(ringB, b1), Wing(ringA, b2), Wing(ringB, b2) };
-    if (b1 < 0 || b2 < 0 || b1 == b2 || *std::min_element(wing, wing + 4) < 0)
-    {
-      return result(ButterflyRule::Midpoint, mid);
-    }
-    Vec3 cSum{ 0, 0, 0 };
-    for (int c : wing)
-    {
-      cSum = cSum + mesh.Points[c];
-    }
-    const double w = 1.0 / 16.0;
-    return result(
-      ButterflyRule::Regular, mid + (2.0 * w) * (mesh.Points[b1] + mesh.Points[b2]) - w * cSum);
+    return RegularPoint(mesh, a, b, t1, t2, ringA, ringB, h, level, p)
+      ? result(ButterflyRule::Regular, p)
+      : result(ButterflyRule::Midpoint, mid);
   }
   if (ka == 0 || kb == 0)
   {
