@@ -28,7 +28,8 @@
  *   the umbrella operators and F' is F projected onto the umbrella direction when
  *   F . U > 0, else onto the area-weighted vertex normal (the paper's rule against
  *   self-intersection). Sweeps stop when the mean |c| falls below
- *   ConvergenceTolerance times the mean edge length, or after MaxSweepsPerLevel.
+ *   ConvergenceTolerance times the mean edge length times sigma / sqrt(sigma^2 + voxel^2),
+ *   or after MaxSweepsPerLevel.
  * - Multithreaded (vtkSMPTools, STDThread backend, NumberOfThreads) by a distance-2
  *   colouring of the vertex graph: the result is bit-identical for any thread count.
  *
@@ -223,7 +224,8 @@ public:
   ///@{
   /**
    * A level has converged when the mean |c| of a sweep is below this fraction of the
-   * mean edge length. Default 1e-3.
+   * mean edge length, times sigma / sqrt(sigma^2 + voxel^2) (the width of an edge in the
+   * potential, dsurf::PotentialEdgeWidth). Default 1e-3.
    */
   vtkSetClampMacro(ConvergenceTolerance, double, 0.0, 1.0);
   vtkGetMacro(ConvergenceTolerance, double);

@@ -1,5 +1,6 @@
 #include "dsButterfly.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace dsurf
@@ -29,18 +30,6 @@ int Opposite(const TriangleMesh& mesh, int t, int p, int q)
     }
   }
   return -1;
-}
-
-/// The triangle on the other side of edge (p, q) from t, -1 on a boundary.
-int Across(const TriangleMesh& mesh, int t, int p, int q)
-{
-  const int e = mesh.FindEdge(p, q);
-  if (e < 0)
-  {
-    return -1;
-  }
-  const auto& et = mesh.EdgeTriangles[e];
-  return et[0] == t ? et[1] : et[0];
 }
 
 /// Ring of interior vertex v in cyclic order starting at `start`; empty when the fan is
@@ -104,21 +93,101 @@ std::vector<int> CyclicRing(
   return {};
 }
 
-bool ZorinPoint(
-  const TriangleMesh& mesh, int e, int other, const std::vector<char>* flags, Vec3& out)
+/// q, a neighbour of v, as a vertex of v's ring at depth `level` (docs/METHOD.md §6.5); -1 when
+/// it has no place there. In a red split every vertex deeper than a neighbour is the midpoint
+/// of an edge of that neighbour (a corner child), so a deeper q stands for its edge's far end,
+/// repeatedly, until it is no deeper than the level. A deeper q whose edge does not end at v is
+/// a green's midpoint seen across the green's cut from its opposite corner: the green's
+/// parent, in whose ring v lies, has no such vertex.
+int AtLevel(const ButterflyHierarchy& h, int v, int q, int level)
 {
-  const std::vector<int> ring = CyclicRing(mesh, e, other, flags);
-  if (ring.empty())
+  const std::vector<int>& depth = *h.Depths;
+  while (depth[q] > depth[v])
+  {
+    const std::array<int, 2>& pe = (*h.ParentEdges)[q];
+    const int far = pe[0] == v ? pe[1] : (pe[1] == v ? pe[0] : -1);
+    if (far < 0)
+    {
+      return -1;
+    }
+    if (depth[q] <= level)
+    {
+      return q;
+    }
+    q = far;
+  }
+  return q;
+}
+
+/// The corner o opposite edge (a, b) at `level`, seen from a or, for a green's midpoint whose
+/// edge ends at b, from b.
+int OppositeAtLevel(const ButterflyHierarchy& h, int a, int b, int o, int level)
+{
+  const int fromA = AtLevel(h, a, o, level);
+  return fromA >= 0 ? fromA : AtLevel(h, b, o, level);
+}
+
+/// Whether r may be a neighbour of v in a ring at depth `level`: every edge of that ring joins
+/// v to a vertex such that the deeper end is at the level (a shallower one means that side of
+/// v is not refined so far), and a midpoint's shallower neighbours are its edge's ends (any
+/// other is a green's opposite corner across the green's cut: on that side the green's
+/// coarser parent has no vertices of the midpoint's depth).
+bool InRingAt(const ButterflyHierarchy& h, int v, int r, int level)
+{
+  const std::vector<int>& depth = *h.Depths;
+  const std::array<int, 2>& pe = (*h.ParentEdges)[v];
+  if (depth[r] < depth[v] && r != pe[0] && r != pe[1])
   {
     return false;
   }
+  return std::max(depth[v], depth[r]) == level;
+}
+
+/// The ring of interior vertex v in cyclic order from `start`, read at depth `level` when the
+/// hierarchy is known (AtLevel, InRingAt); empty when it is not one closed cycle of at least
+/// three distinct vertices of that level.
+std::vector<int> RingAt(const TriangleMesh& mesh, int v, int start, const std::vector<char>* flags,
+  const ButterflyHierarchy& h, int level)
+{
+  std::vector<int> ring = CyclicRing(mesh, v, start, flags);
+  if (!h.ParentEdges || ring.empty())
+  {
+    return ring;
+  }
+  std::vector<int> atLevel;
+  atLevel.reserve(ring.size());
+  for (int q : ring)
+  {
+    const int r = AtLevel(h, v, q, level);
+    if (r < 0)
+    {
+      continue;
+    }
+    if (!InRingAt(h, v, r, level) || std::find(atLevel.begin(), atLevel.end(), r) != atLevel.end())
+    {
+      return {};
+    }
+    atLevel.push_back(r);
+  }
+  return atLevel.size() >= 3 ? atLevel : std::vector<int>{};
+}
+
+void ZorinPoint(const TriangleMesh& mesh, int e, const std::vector<int>& ring, Vec3& out)
+{
   const std::vector<double> s = ZorinWeights(static_cast<int>(ring.size()));
   out = 0.75 * mesh.Points[e];
   for (size_t j = 0; j < ring.size(); ++j)
   {
     out = out + s[j] * mesh.Points[ring[j]];
   }
-  return true;
+}
+
+/// The far corner of the triangle across edge (v, x) from the triangle (v, x, near): the ring
+/// neighbour of v after x on the side away from `near` (ring of valence 6 from the edge's
+/// other end); -1 when x is not next to the ring's start.
+int Wing(const std::vector<int>& ring, int x)
+{
+  return ring[1] == x ? ring[2] : (ring[5] == x ? ring[4] : -1);
 }
 
 /// The boundary neighbour of a other than b (exactly one, else -1).
@@ -144,6 +213,60 @@ int NextBoundaryVertex(const TriangleMesh& mesh, int a, int b)
   }
   return found;
 }
+/// The boundary edge (a, b) of triangle t1 by the 4-point curve scheme; false when the curve
+/// does not go on at both ends (at the edge's level) or t1 is flagged.
+bool BoundaryPoint(const TriangleMesh& mesh, int a, int b, int t1, const std::vector<char>* flags,
+  const ButterflyHierarchy& h, int level, Vec3& out)
+{
+  int a2 = NextBoundaryVertex(mesh, a, b), b2 = NextBoundaryVertex(mesh, b, a);
+  if (h.ParentEdges)
+  {
+    a2 = a2 < 0 ? -1 : AtLevel(h, a, a2, level);
+    b2 = b2 < 0 ? -1 : AtLevel(h, b, b2, level);
+  }
+  if (a2 < 0 || b2 < 0 || a2 == b2 || Flagged(flags, t1))
+  {
+    return false;
+  }
+  out = (9.0 / 16.0) * (mesh.Points[a] + mesh.Points[b]) -
+    (1.0 / 16.0) * (mesh.Points[a2] + mesh.Points[b2]);
+  return true;
+}
+
+/// The 8-point butterfly on edge (a, b) of triangles t1, t2, both ends of valence 6 at the
+/// edge's level (ringA from b, ringB from a); false when the rings do not share the corners
+/// opposite the edge.
+bool RegularPoint(const TriangleMesh& mesh, int a, int b, int t1, int t2,
+  const std::vector<int>& ringA, const std::vector<int>& ringB, const ButterflyHierarchy& h,
+  int level, Vec3& out)
+{
+  // b1, b2: the corners opposite the edge (of t1, t2 at the edge's level); the four wings
+  // lie across (a, b1), (b, b1), (a, b2), (b, b2).
+  int b1 = Opposite(mesh, t1, a, b), b2 = Opposite(mesh, t2, a, b);
+  if (h.ParentEdges)
+  {
+    b1 = OppositeAtLevel(h, a, b, b1, level);
+    b2 = OppositeAtLevel(h, a, b, b2, level);
+  }
+  if (b1 < 0 || b2 < 0 || b1 == b2)
+  {
+    return false;
+  }
+  const int wing[4] = { Wing(ringA, b1), Wing(ringB, b1), Wing(ringA, b2), Wing(ringB, b2) };
+  if (*std::min_element(wing, wing + 4) < 0)
+  {
+    return false;
+  }
+  Vec3 cSum{ 0, 0, 0 };
+  for (int c : wing)
+  {
+    cSum = cSum + mesh.Points[c];
+  }
+  const double w = 1.0 / 16.0;
+  out = 0.5 * (mesh.Points[a] + mesh.Points[b]) + (2.0 * w) * (mesh.Points[b1] + mesh.Points[b2]) -
+    w * cSum;
+  return true;
+}
 } // namespace
 
 std::vector<double> ZorinWeights(int k)
@@ -168,12 +291,11 @@ std::vector<double> ZorinWeights(int k)
 }
 
 Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
-  const std::vector<char>* irregularTriangles, ButterflyRule* rule)
+  const std::vector<char>* irregularTriangles, ButterflyRule* rule,
+  const ButterflyHierarchy& hierarchy)
 {
   const int a = mesh.Edges[edge][0], b = mesh.Edges[edge][1];
-  const Vec3& pa = mesh.Points[a];
-  const Vec3& pb = mesh.Points[b];
-  const Vec3 mid = 0.5 * (pa + pb);
+  const Vec3 mid = 0.5 * (mesh.Points[a] + mesh.Points[b]);
   auto result = [rule](ButterflyRule r, const Vec3& p)
   {
     if (rule)
@@ -182,63 +304,55 @@ Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
     }
     return p;
   };
+  ButterflyHierarchy h = hierarchy;
+  if (!h.ParentEdges || !h.Depths || h.ParentEdges->size() != mesh.Points.size() ||
+    h.Depths->size() != mesh.Points.size())
+  {
+    h = ButterflyHierarchy(); // none, or not this mesh's: read the stencils as they are
+  }
+  // The edge's level: every triangle of depth k has an edge end of depth k on each edge, so an
+  // edge belongs to the level of its deeper end, where the rings of both ends are read.
+  const int level = h.ParentEdges ? std::max((*h.Depths)[a], (*h.Depths)[b]) : 0;
   const int t1 = mesh.EdgeTriangles[edge][0], t2 = mesh.EdgeTriangles[edge][1];
-
+  Vec3 p;
   if (t2 < 0)
   {
-    // Open boundary: refine the boundary curve by the 4-point scheme.
-    const int a2 = NextBoundaryVertex(mesh, a, b), b2 = NextBoundaryVertex(mesh, b, a);
-    if (a2 < 0 || b2 < 0 || a2 == b2 || Flagged(irregularTriangles, t1))
-    {
-      return result(ButterflyRule::Midpoint, mid);
-    }
-    return result(ButterflyRule::Boundary,
-      (9.0 / 16.0) * (pa + pb) - (1.0 / 16.0) * (mesh.Points[a2] + mesh.Points[b2]));
+    // Open boundary: refine the boundary curve by itself.
+    return BoundaryPoint(mesh, a, b, t1, irregularTriangles, h, level, p)
+      ? result(ButterflyRule::Boundary, p)
+      : result(ButterflyRule::Midpoint, mid);
   }
   if (mesh.BoundaryVertex[a] || mesh.BoundaryVertex[b] || Flagged(irregularTriangles, t1) ||
     Flagged(irregularTriangles, t2))
   {
     return result(ButterflyRule::Midpoint, mid);
   }
-
-  const int ka = Valence(mesh, a), kb = Valence(mesh, b);
+  const std::vector<int> ringA = RingAt(mesh, a, b, irregularTriangles, h, level);
+  const std::vector<int> ringB = RingAt(mesh, b, a, irregularTriangles, h, level);
+  const int ka = static_cast<int>(ringA.size()), kb = static_cast<int>(ringB.size());
   if (ka == 6 && kb == 6)
   {
-    const int b1 = Opposite(mesh, t1, a, b), b2 = Opposite(mesh, t2, a, b);
-    // The four wings: across (a,b1), (b,b1), (a,b2), (b,b2).
-    const int wingT[4] = { Across(mesh, t1, a, b1), Across(mesh, t1, b, b1),
-      Across(mesh, t2, a, b2), Across(mesh, t2, b, b2) };
-    const int wingP[4][2] = { { a, b1 }, { b, b1 }, { a, b2 }, { b, b2 } };
-    Vec3 cSum{ 0, 0, 0 };
-    for (int i = 0; i < 4; ++i)
-    {
-      if (wingT[i] < 0 || Flagged(irregularTriangles, wingT[i]))
-      {
-        return result(ButterflyRule::Midpoint, mid);
-      }
-      cSum = cSum + mesh.Points[Opposite(mesh, wingT[i], wingP[i][0], wingP[i][1])];
-    }
-    const double w = 1.0 / 16.0;
-    return result(
-      ButterflyRule::Regular, mid + (2.0 * w) * (mesh.Points[b1] + mesh.Points[b2]) - w * cSum);
+    return RegularPoint(mesh, a, b, t1, t2, ringA, ringB, h, level, p)
+      ? result(ButterflyRule::Regular, p)
+      : result(ButterflyRule::Midpoint, mid);
   }
-
+  if (ka == 0 || kb == 0)
+  {
+    return result(ButterflyRule::Midpoint, mid);
+  }
   Vec3 qa, qb;
   if (ka != 6 && kb == 6)
   {
-    return ZorinPoint(mesh, a, b, irregularTriangles, qa) ? result(ButterflyRule::Extraordinary, qa)
-                                                          : result(ButterflyRule::Midpoint, mid);
+    ZorinPoint(mesh, a, ringA, qa);
+    return result(ButterflyRule::Extraordinary, qa);
   }
   if (kb != 6 && ka == 6)
   {
-    return ZorinPoint(mesh, b, a, irregularTriangles, qb) ? result(ButterflyRule::Extraordinary, qb)
-                                                          : result(ButterflyRule::Midpoint, mid);
+    ZorinPoint(mesh, b, ringB, qb);
+    return result(ButterflyRule::Extraordinary, qb);
   }
-  if (ZorinPoint(mesh, a, b, irregularTriangles, qa) &&
-    ZorinPoint(mesh, b, a, irregularTriangles, qb))
-  {
-    return result(ButterflyRule::BothExtraordinary, 0.5 * (qa + qb));
-  }
-  return result(ButterflyRule::Midpoint, mid);
+  ZorinPoint(mesh, a, ringA, qa);
+  ZorinPoint(mesh, b, ringB, qb);
+  return result(ButterflyRule::BothExtraordinary, 0.5 * (qa + qb));
 }
 } // namespace dsurf

@@ -20,8 +20,15 @@
 //   vertices), so the boundary curve is refined by itself.
 // - Midpoint (the fallback): 1/2 (a + b) when the stencil is incomplete or irregular:
 //   an interior edge with an end on the boundary, a boundary end with a branching
-//   boundary, or any stencil triangle flagged irregular (a green triangle of red-green
-//   refinement, whose corners are not the coarse-level neighbours the weights assume).
+//   boundary, a ring that is not one cycle (or, read at the edge's level, not complete: a
+//   corner of a refined patch's border has no vertices of that level on its coarse side),
+//   or a stencil triangle flagged irregular.
+// Adaptive meshes (red-green refinement, dsRedGreen.h): the stencil is read on the mesh at the
+// edge's own level, given the hierarchy (ButterflyHierarchy): a green pair counts as its
+// parent triangle and a finer region as the coarse triangles it refines, so the rules above
+// apply where a green or a finer neighbour touches the stencil instead of falling back to
+// the midpoint (each ring neighbour that is the midpoint of a coarser edge of the vertex
+// stands for that edge's far end; a green's midpoint is left out of its other corners' rings).
 // Every rule is an affine combination (weights sum to 1), so a plane stays planar.
 #ifndef dsButterfly_h
 #define dsButterfly_h
@@ -29,6 +36,7 @@
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "dsTriangleMesh.h"
 
+#include <array>
 #include <vector>
 
 namespace dsurf
@@ -42,12 +50,24 @@ enum class ButterflyRule : unsigned char
   Midpoint = 4
 };
 
+/// The refinement hierarchy of a mesh, for reading stencils at an edge's level: per point, the
+/// edge it is the midpoint of ({-1, -1} for a point of the start) and its depth (0 for a point
+/// of the start, else 1 + the deeper end's depth: the level of detail, which a late split of a
+/// coarse triangle keeps low however many steps came before).
+struct ButterflyHierarchy
+{
+  const std::vector<std::array<int, 2>>* ParentEdges = nullptr;
+  const std::vector<int>* Depths = nullptr;
+};
+
 /// New point on edge `edge` of `mesh` (BuildTopology() done). irregularTriangles, when
-/// given, flags triangles (e.g. green ones) that must not be part of a stencil; a
-/// stencil touching one falls back to the midpoint. rule, when given, receives the
-/// rule that was applied.
+/// given, flags triangles that must not be part of a stencil; a stencil touching one falls
+/// back to the midpoint. rule, when given, receives the rule that was applied. hierarchy,
+/// when given (a parent edge and a depth per point), reads the stencil at the edge's level
+/// (see above).
 DEFORMABLESURFACEFILTERS_EXPORT Vec3 ButterflyEdgePoint(const TriangleMesh& mesh, int edge,
-  const std::vector<char>* irregularTriangles = nullptr, ButterflyRule* rule = nullptr);
+  const std::vector<char>* irregularTriangles = nullptr, ButterflyRule* rule = nullptr,
+  const ButterflyHierarchy& hierarchy = ButterflyHierarchy());
 
 /// The Zorin weights s_0..s_{k-1} for an extraordinary vertex of valence k (k >= 3).
 DEFORMABLESURFACEFILTERS_EXPORT std::vector<double> ZorinWeights(int k);

@@ -29,6 +29,11 @@ const char* StopReasonName(StopReason reason)
   }
 }
 
+double PotentialEdgeWidth(double sigma, double voxel)
+{
+  return std::sqrt(sigma * sigma + voxel * voxel);
+}
+
 std::vector<char> MultilevelSolver::MarkTriangles(
   const TriangleMesh& mesh, const std::vector<double>& estimator, double threshold, bool uniform)
 {
@@ -225,8 +230,7 @@ bool MultilevelSolver::SolveLevel(
       [&](const SweepStatistics& st)
       {
         batchStats.push_back(st);
-        if (st.MovedVertices == 0 ||
-          st.MeanCorrection < P.ConvergenceTolerance * rec.MeanEdgeLength)
+        if (st.MovedVertices == 0 || st.MeanCorrection < rec.Tolerance)
         {
           rec.Converged = true;
           return false;
@@ -451,6 +455,12 @@ bool MultilevelSolver::SetUpLevel(
   rec.Vertices = mesh.NumberOfPoints();
   rec.Triangles = mesh.NumberOfTriangles();
   rec.MeanEdgeLength = h;
+  // Near its rest the surface moves by about gamma h sigma d / w^2 per sweep, d its distance
+  // from the rest and w the width of the edge in the potential: a tolerance of a fixed share of
+  // h stops at d ~ tolerance w^2 / (gamma sigma), a fixed share of w only while w ~ sigma. Below
+  // a few voxels w is wider than sigma (docs/METHOD.md §6.1): scaled by sigma / w, the
+  // tolerance stops every level at the same share of its edge width.
+  rec.Tolerance = P.ConvergenceTolerance * h * sigma / PotentialEdgeWidth(sigma, state.Voxel);
   return true;
 }
 

@@ -8,7 +8,9 @@
 //      the mean edge length of the level's mesh (docs/METHOD.md §6b: force in edge lengths,
 //      scale-normalised);
 //   2. Gauss-Seidel sweeps until the mean correction of a sweep is below
-//      ConvergenceTolerance * h_l, or MaxSweepsPerLevel sweeps;
+//      ConvergenceTolerance * h_l * sigma_l / w_l (w_l = PotentialEdgeWidth: the tolerance
+//      stops every level at the same share of the edge's width in the potential), or
+//      MaxSweepsPerLevel sweeps;
 //   3. unless l is the last level: error estimator e(v) = |internal part of the last
 //      correction| (docs/METHOD.md §6.2); a triangle is marked when the mean e of its corners,
 //      as the distance d = e / gamma * sigma_l / h_l at which the image force balances it (F
@@ -110,7 +112,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// Stop the whole run after this many sweeps (0: no limit), exactly there, mid-level if
   /// need be (a warning says so); the surface is valid at every sweep.
   int MaxSweeps = 0;
-  double ConvergenceTolerance = 1e-3; ///< stop a level when mean |c| < this * mean edge length
+  /// Stop a level when mean |c| < this * mean edge length * sigma / PotentialEdgeWidth(sigma).
+  double ConvergenceTolerance = 1e-3;
   double RefinementThreshold = 0.07;  ///< |internal force| in voxels (see above)
   bool UniformRefinement = false;
   /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
@@ -128,6 +131,13 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// a broken invariant stops the run with an error.
   bool CheckTopology = false;
 };
+
+/// The width of an edge in the potential at scale sigma, sqrt(sigma^2 + voxel^2): the central
+/// differences of |grad| and of the potential, and the trilinear reading of the force, widen a
+/// sharp edge by about a voxel (docs/METHOD.md §6.1; measured on the binary sphere of radius 32:
+/// the force's slope across the boundary gives widths 1.14 and 1.65 voxels at sigma 0.5 and
+/// 1.33, i.e. 1.02 and 0.97 voxel added in quadrature).
+DEFORMABLESURFACEFILTERS_EXPORT double PotentialEdgeWidth(double sigma, double voxel);
 
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
 enum class StopReason
@@ -164,6 +174,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int Vertices = 0;
   int Triangles = 0;
   double MeanEdgeLength = 0;
+  double Tolerance = 0; ///< the mean correction below which the level has converged (step 2)
   int MarkedTriangles = 0;     ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing

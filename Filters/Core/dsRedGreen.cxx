@@ -1,5 +1,6 @@
 #include "dsRedGreen.h"
 
+#include <algorithm>
 #include <deque>
 
 namespace dsurf
@@ -42,6 +43,7 @@ bool RedGreenRefiner::Initialize(TriangleMesh& mesh, std::string* error)
   mesh.Labels.assign(mesh.Points.size(), LabelN);
   mesh.CornerLabels.clear();
   mesh.Levels.assign(mesh.Points.size(), 0);
+  mesh.Depths.assign(mesh.Points.size(), 0);
   if (!mesh.BuildTopology(error))
   {
     this->ExpectedPoints = this->ExpectedTriangles = -1;
@@ -404,7 +406,10 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
   const int nOldPoints = this->OldPoints;
   const int nNew = static_cast<int>(this->NewEdges.size());
   std::vector<Vec3> newPoints(nNew);
-  const std::vector<char> greenFlags = this->Refiner.GreenFlags();
+  // Stencils are read at each edge's level: greens as their parents (docs/METHOD.md §6.5).
+  ButterflyHierarchy hierarchy;
+  hierarchy.ParentEdges = &this->Refiner.ParentEdge;
+  hierarchy.Depths = &mesh.Depths;
   for (int j = 0; j < nNew; ++j)
   {
     const int a = this->NewEdges[j][0], b = this->NewEdges[j][1];
@@ -414,7 +419,7 @@ std::vector<Vec3> RedGreenRefiner::Step::PlaceNewPoints(
     ButterflyRule rule = ButterflyRule::Midpoint;
     if (mode == Prolongation::Butterfly && e >= 0)
     {
-      newPoints[j] = ButterflyEdgePoint(mesh, e, &greenFlags, &rule);
+      newPoints[j] = ButterflyEdgePoint(mesh, e, nullptr, &rule, hierarchy);
     }
     else
     {
@@ -497,6 +502,10 @@ std::string RedGreenRefiner::CheckRefineInput(
   {
     return "the mesh connectivity changed since the last refinement";
   }
+  if (static_cast<int>(mesh.Depths.size()) != this->ExpectedPoints)
+  {
+    return "the mesh's Depths changed since the last refinement";
+  }
   if (static_cast<int>(markedTriangles.size()) != nOldTriangles)
   {
     return "one mark per triangle is needed";
@@ -529,6 +538,10 @@ RefinementCounts RedGreenRefiner::Refine(
   mesh.Levels.resize(mesh.Points.size(), this->Level);
   const auto& newPointEdges = step.NewPointEdges();
   this->ParentEdge.insert(this->ParentEdge.end(), newPointEdges.begin(), newPointEdges.end());
+  for (const auto& e : newPointEdges) // in creation order: an edge's ends come first
+  {
+    mesh.Depths.push_back(1 + std::max(mesh.Depths[e[0]], mesh.Depths[e[1]]));
+  }
   this->Greens.swap(greens);
   this->TriangleGreen.swap(triangleGreen);
   mesh.Labels = this->ComputeLabels(mesh.NumberOfPoints());

@@ -25,9 +25,10 @@
 // (M over C over D) is the row of its other edges and what the output's VertexLabel shows.
 //
 // New points are placed by the butterfly scheme (dsButterfly.h) evaluated on the mesh
-// before the step, with green triangles flagged irregular; points on edges that do
-// not exist in that mesh (inner edges of triangles split twice in one step) take the
-// midpoint. Prolongation::Linear puts every new point at the edge midpoint.
+// before the step, each stencil read at its edge's level (greens as their parents, finer
+// regions as the triangles they refine: ButterflyHierarchy from the parent edges); points
+// on edges that do not exist in that mesh (inner edges of triangles split twice in one step)
+// take the midpoint. Prolongation::Linear puts every new point at the edge midpoint.
 #ifndef dsRedGreen_h
 #define dsRedGreen_h
 
@@ -64,7 +65,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RefinementCounts
 class DEFORMABLESURFACEFILTERS_EXPORT RedGreenRefiner
 {
 public:
-  /// Attach to a level-0 mesh: forget any hierarchy, label every vertex N and level 0,
+  /// Attach to a level-0 mesh: forget any hierarchy, label every vertex N, level and depth 0,
   /// and build the topology. Returns false with a message when the mesh is not a
   /// manifold triangle mesh.
   bool Initialize(TriangleMesh& mesh, std::string* error);

@@ -90,10 +90,13 @@ void RingWeights(const TriangleMesh& m, int v, double* w, std::vector<int>& gree
       ++greens[slot - begin];
     }
   }
-  int finest = 0; // the newest neighbour: v's edges to it are its finest (docs/METHOD.md §6.4)
+  // The deepest neighbour: v's edges to it are its finest (docs/METHOD.md §6.4). Depth, not the
+  // step that made a point: a coarse triangle split late makes coarse edges in a late step.
+  const std::vector<int>& depth = m.Depths.size() == m.Points.size() ? m.Depths : m.Levels;
+  int finest = 0;
   for (int i = begin; i < end; ++i)
   {
-    finest = std::max(finest, m.Levels[m.Neighbors[i]]);
+    finest = std::max(finest, depth[m.Neighbors[i]]);
   }
   for (int i = begin; i < end; ++i)
   {
@@ -111,7 +114,7 @@ void RingWeights(const TriangleMesh& m, int v, double* w, std::vector<int>& gree
     {
       // C weighs its fine side 2 and its coarse side 1 (its D); an edge of no green on the
       // coarse side (where a refined region's border turns a corner) is coarse too.
-      const bool coarse = m.Labels[v] == LabelC && m.Levels[q] < finest;
+      const bool coarse = m.Labels[v] == LabelC && depth[q] < finest;
       w[i] = UmbrellaWeight(m.Labels[v], coarse ? LabelD : LabelN);
     }
   }

@@ -117,6 +117,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   /// reorders a triangle's corners.
   std::vector<std::array<unsigned char, 3>> CornerLabels;
   std::vector<int> Levels;                   ///< refinement level that created each point
+  /// Per point, its depth in the refinement hierarchy: 0 for the start's, else 1 + the deeper
+  /// end's of the edge it halves: its level of detail (a late split of a coarse triangle makes
+  /// points of a late level but a low depth). Set by refinement (dsRedGreen.h); empty or stale
+  /// in size: unknown, Levels stands in.
+  std::vector<int> Depths;
 
   // --- topology, derived by BuildTopology() ---
   /// One-ring of vertex v: Neighbors[NeighborOffsets[v] .. NeighborOffsets[v+1]), sorted ascending.

@@ -4,6 +4,7 @@
 // midpoint on a sphere.
 #include "DSSurfaceInvariants.h"
 #include "DSTestHelpers.h"
+#include "TestSolverMeshes.h"
 #include "dsButterfly.h"
 #include "dsRedGreen.h"
 
@@ -17,36 +18,11 @@ namespace
 {
 constexpr double kPi = 3.14159265358979323846;
 
-/// Regular n x n grid, diagonals (i,j)-(i+1,j+1): interior valence 6; z = f(x, y).
-/// flipped(i, j) true takes the other diagonal in that quad (valences 4, 5, 7, 8 appear).
+/// dstest::HeightGrid with its topology built.
 TriangleMesh Grid(int n, const std::function<double(double, double)>& f,
   const std::function<bool(int, int)>& flipped = nullptr)
 {
-  TriangleMesh m;
-  for (int j = 0; j <= n; ++j)
-  {
-    for (int i = 0; i <= n; ++i)
-    {
-      m.Points.push_back({ double(i), double(j), f(i, j) });
-    }
-  }
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      if (flipped && flipped(i, j))
-      {
-        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i, j + 1) });
-        m.Triangles.push_back({ id(i + 1, j), id(i + 1, j + 1), id(i, j + 1) });
-      }
-      else
-      {
-        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
-        m.Triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
-      }
-    }
-  }
+  TriangleMesh m = dstest::HeightGrid(n, f, flipped);
   std::string err;
   m.BuildTopology(&err);
   return m;

@@ -5,9 +5,11 @@
 // every movement is drift of the parameterisation. The weights of each green triangle must
 // hold for that green's own corners (a vertex that is D of one green gives that green's M
 // weight 0 even when it is also C of another). On three seeds: the sheet must not fold (no two
-// triangles intersect, min angle >= 15 degrees), its mean drift must stay below that with all
-// weights 1, and its max drift within 1.25 x of it (see RunSeed). With one label per vertex the
-// first seed folded: 39 intersecting pairs, min angle 0.02 degrees, max drift 2.50 against 0.63.
+// triangles intersect, min angle >= 15 degrees), and neither its mean nor its max drift may
+// exceed that with all weights 1. With one label per vertex the first seed folded: 39
+// intersecting pairs, min angle 0.02 degrees, max drift 2.50 against 0.63; with the coarse side
+// of a C told by the step that made a point rather than its depth, the max drift was up to
+// 1.21 x that of all weights 1 (a coarse triangle split late has coarse edges of a late step).
 #include "DSSurfaceInvariants.h"
 #include "TestSolverMeshes.h"
 #include "dsRedGreen.h"
@@ -150,10 +152,7 @@ void RunSeed(unsigned seed)
             << " edge lengths, min angle " << ones.MinAngle << std::endl;
   DS_CHECK_GE(table.MinAngle, 15.0, "min angle with the green weights (degrees)");
   DS_CHECK_LE(table.Mean, ones.Mean, "mean drift with the green weights (<= all weights 1)");
-  // Where borders of three levels meet at one C vertex the table cannot balance it (its 2 : 1
-  // assumes one fine and one coarse side): there the max drift is up to 1.21 x that of all
-  // weights 1 on these seeds (one label per vertex: 4 x, and the sheet folded).
-  DS_CHECK_LE(table.Max, 1.25 * ones.Max, "max drift with the green weights (<= 1.25 x all 1)");
+  DS_CHECK_LE(table.Max, ones.Max, "max drift with the green weights (<= all weights 1)");
 }
 } // namespace
 

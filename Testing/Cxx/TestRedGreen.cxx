@@ -4,6 +4,7 @@
 // zero T-vertices and the label rules are checked independently of the refiner's code.
 #include "DSSurfaceInvariants.h"
 #include "DSTestHelpers.h"
+#include "TestSolverMeshes.h"
 #include "dsRedGreen.h"
 
 #include <map>
@@ -38,24 +39,7 @@ TriangleMesh Icosahedron()
 /// A flat n x n grid patch in z = 0 (open, a disc: Euler characteristic 1).
 TriangleMesh Grid(int n)
 {
-  TriangleMesh m;
-  for (int j = 0; j <= n; ++j)
-  {
-    for (int i = 0; i <= n; ++i)
-    {
-      m.Points.push_back({ double(i), double(j), 0.0 });
-    }
-  }
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
-      m.Triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
-    }
-  }
-  return m;
+  return dstest::HeightGrid(n, [](double, double) { return 0.0; });
 }
 
 int CountLabel(const TriangleMesh& m, unsigned char label)

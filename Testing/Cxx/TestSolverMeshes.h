@@ -1,6 +1,6 @@
 // Meshes shared by the solver tests and the solver benchmark: an icosphere, a
-// subdivided cube surface (the paper's 12 288 / 49 152 triangle test meshes) and a flat
-// equilateral sheet.
+// subdivided cube surface (the paper's 12 288 / 49 152 triangle test meshes), a flat
+// equilateral sheet and a height field over a regular grid.
 #ifndef TestSolverMeshes_h
 #define TestSolverMeshes_h
 
@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <utility>
 #include <vector>
@@ -117,6 +118,40 @@ inline dsurf::TriangleMesh MakeCubeSurface(int levels, double s, const Vec3& c)
   m.Triangles = f;
   return m;
 }
+/// Regular grid of n x n unit squares, each split by its diagonal (i,j)-(i+1,j+1) (interior
+/// valence 6), z = height(x, y); flipped(i, j) true takes the other diagonal in that square
+/// (valences 4, 5, 7, 8 appear). An open disc; topology not built.
+inline dsurf::TriangleMesh HeightGrid(int n, const std::function<double(double, double)>& height,
+  const std::function<bool(int, int)>& flipped = nullptr)
+{
+  dsurf::TriangleMesh m;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      m.Points.push_back({ double(i), double(j), height(i, j) });
+    }
+  }
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      if (flipped && flipped(i, j))
+      {
+        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i, j + 1) });
+        m.Triangles.push_back({ id(i + 1, j), id(i + 1, j + 1), id(i, j + 1) });
+      }
+      else
+      {
+        m.Triangles.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+        m.Triangles.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+      }
+    }
+  }
+  return m;
+}
+
 /// Equilateral triangle grid (n x n points, unit edges), a flat open sheet.
 inline dsurf::TriangleMesh EquilateralSheet(int n)
 {
