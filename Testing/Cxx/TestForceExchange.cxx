@@ -4,21 +4,21 @@
 //   outputs, statistics) on 1, 2 and 3 threads, with the edge and the region force; it is called
 //   once per colour per sweep with that colour's vertices at their current positions.
 // - Two "ranks" (two solvers on two threads, each holding the field and the image of one half
-//   of the volume plus a voxel of ghosts) that zero the forces of the vertices they do not own
-//   and sum the forces (an all-reduce emulated in memory) give the serial result bit for bit,
-//   including the vertices outside the volume (no rank sampled them).
+//   of the volume plus a voxel of ghosts) exchanging forces with OwnerForceExchange (the forces
+//   of the vertices they do not own zeroed, then summed by an all-reduce emulated in memory)
+//   give the serial result bit for bit, including the vertices outside the volume (no rank
+//   sampled them).
 #include "DSTestHelpers.h"
+#include "EmulatedRanks.h"
 #include "TestSolverMeshes.h"
 
+#include "dsPieceField.h"
 #include "dsScaleSpace.h"
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
 
 #include <algorithm>
 #include <cmath>
-#include <condition_variable>
-#include <mutex>
-#include <thread>
 #include <vector>
 
 using namespace dsurf;
@@ -80,68 +80,15 @@ void Cut(const ForceField& whole, const std::vector<float>& image, int i0, int i
       }
 }
 
-/// An all-reduce (sum) of two ranks running on two threads.
-class PairSum
+/// Rank r's piece: rank 0 owns the voxels 0..32 along x (cells 0..31), rank 1 32..63.
+ImagePiece PieceOf(int r, const ForceField& whole)
 {
-public:
-  void Sum(std::vector<double>& values)
-  {
-    std::unique_lock<std::mutex> lock(this->Mutex);
-    const long long generation = this->Generation;
-    if (!this->Waiting)
-    {
-      this->Buffer = values;
-      this->Waiting = true;
-      this->Done.wait(lock, [&] { return this->Generation != generation; });
-      values = this->Result;
-      return;
-    }
-    for (std::size_t i = 0; i < values.size(); ++i)
-    {
-      this->Buffer[i] += values[i];
-    }
-    this->Result = this->Buffer;
-    values = this->Result;
-    this->Waiting = false;
-    ++this->Generation;
-    this->Done.notify_all();
-  }
-
-private:
-  std::mutex Mutex;
-  std::condition_variable Done;
-  bool Waiting = false;
-  long long Generation = 0;
-  std::vector<double> Buffer, Result;
-};
-
-/// What a distributed solve's hook does: the owner of a vertex (rank 0 for x < 32, rank 1
-/// from 32 on: each voxel cell belongs to one piece) keeps its force, the others zero theirs,
-/// and the sum gives every rank every force; a vertex no rank sampled is outside.
-ForceExchange OwnerSum(int rank, PairSum& reduce)
-{
-  return [rank, &reduce](VertexForce* forces, int count)
-  {
-    std::vector<double> v(4 * static_cast<std::size_t>(count), 0.0);
-    for (int i = 0; i < count; ++i)
-    {
-      const int owner = std::floor(forces[i].Position[0]) < 32 ? 0 : 1;
-      if (owner == rank)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          v[4 * i + a] = forces[i].Force[a];
-        }
-        v[4 * i + 3] = forces[i].Outside ? 0.0 : 1.0;
-      }
-    }
-    reduce.Sum(v);
-    for (int i = 0; i < count; ++i)
-    {
-      forces[i].Force = { v[4 * i], v[4 * i + 1], v[4 * i + 2] };
-      forces[i].Outside = v[4 * i + 3] == 0.0 ? 1 : 0;
-    }
-  };
+  ImagePiece piece;
+  piece.Whole = whole.Geometry;
+  piece.Owned = VoxelBox::Whole(whole.Geometry);
+  piece.Owned.Begin[0] = r == 0 ? 0 : 32;
+  piece.Owned.End[0] = r == 0 ? 33 : N;
+  return piece;
 }
 
 /// A start sphere slightly off-centre (no symmetry) reaching past the volume at the poles.
@@ -268,30 +215,24 @@ void TwoRanks(const ForceField& field, const std::vector<float>& image)
   std::vector<float> images[2];
   Cut(field, image, 0, 34, pieces[0], images[0]);
   Cut(field, image, 31, N, pieces[1], images[1]);
-  PairSum reduce;
+  dstest::EmulatedRanks ranks(2);
   Run runs[2];
-  std::vector<std::thread> ranks;
-  for (int r = 0; r < 2; ++r)
-  {
-    ranks.emplace_back(
-      [&, r]()
-      {
-        runs[r].Mesh = Start(32.5);
-        Solver s;
-        SolverParameters p;
-        p.NumberOfThreads = 1;
-        s.SetParameters(p);
-        s.SetMesh(&runs[r].Mesh);
-        s.SetForceField(&pieces[r], 1.0);
-        s.SetRegionForce(images[r].data(), pieces[r].Geometry, 0.5, 1.5, RegionScale);
-        s.SetForceExchange(OwnerSum(r, reduce));
-        Sweep(s, runs[r], Sweeps);
-      });
-  }
-  for (auto& t : ranks)
-  {
-    t.join();
-  }
+  ranks.Run(
+    [&](int r)
+    {
+      runs[r].Mesh = Start(32.5);
+      Solver s;
+      SolverParameters p;
+      p.NumberOfThreads = 1;
+      s.SetParameters(p);
+      s.SetMesh(&runs[r].Mesh);
+      s.SetForceField(&pieces[r], 1.0);
+      s.SetRegionForce(images[r].data(), pieces[r].Geometry, 0.5, 1.5, RegionScale);
+      PieceReductions reduce;
+      reduce.Sum = [&ranks, r](std::vector<double>& v) { ranks.Sum(r, v); };
+      s.SetForceExchange(OwnerForceExchange(PieceOf(r, field), reduce));
+      Sweep(s, runs[r], Sweeps);
+    });
   for (int r = 0; r < 2; ++r)
   {
     DS_CHECK_LE(Differences(reference, runs[r]), 0,
