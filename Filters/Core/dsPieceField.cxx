@@ -54,34 +54,38 @@ VoxelBox ImagePiece::CountedVoxels() const
 int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a)
 {
   // Two voxels for the central differences of g and of P, and the Gaussian's reach
-  // (dsGaussianSmoother.h): the sampled kernel's radius exactly; for the recursive filter the
-  // reach at which a cut changes the field by < 1e-6 of its maximum (measured by
-  // TestPieceField: ghosts of 6, 8, 10, 12, 14 sigma left 4e-4, 8e-6, 3e-6, 1e-6, 4e-7).
+  // (dsGaussianSmoother.h): the sampled kernel's radius, so the owned voxels get the serial
+  // values bit for bit. The recursive filter's start reaches along the whole axis: ghosts of
+  // 6, 8, 10, 12, 14 sigma left 4e-4, 8e-6, 3e-6, 1e-6, 4e-7 of the largest force (measured),
+  // and the sweeps' projection rule (a switch on the sign of F . U) and the refinement's marks
+  // turned 1e-7 into 2e-5 of the coordinates and a few percent of the vertices; only the
+  // whole axis gives the serial field.
   const double s = sigma / whole.Spacing[a];
-  const double reach = s < GaussianRecursiveFromSigmaVoxels ? std::ceil(4.0 * s) : std::ceil(14.0 * s);
-  return static_cast<int>(std::min(reach, 1e8)) + 2;
+  if (!(s < GaussianRecursiveFromSigmaVoxels))
+  {
+    return whole.Dimensions[a];
+  }
+  return static_cast<int>(std::ceil(4.0 * s)) + 2;
 }
 
 namespace
 {
 /// The block layout BlockMeans (dsFieldGrid.h) uses on an axis of n voxels: blocks of f
-/// centred on voxels first + I f, the end blocks taking in the voxels left over.
+/// centred on voxels First + I f, the end blocks taking in the voxels left over.
 struct AxisBlocks
 {
   int Count = 0, First = 0;
-  std::vector<int> OfVoxel; ///< the block of every voxel of the axis
+  std::vector<int> Begin, End; ///< the voxels [Begin[I], End[I]) of block I
 
   AxisBlocks(int n, int f)
   {
     const int h = f / 2;
     this->Count = (n - 1) / f + 1;
     this->First = (n - 1 - (this->Count - 1) * f) / 2;
-    this->OfVoxel.resize(n);
     for (int I = 0; I < this->Count; ++I)
     {
-      const int begin = I == 0 ? 0 : this->First + I * f - h;
-      const int end = I == this->Count - 1 ? n : this->First + I * f + h + 1;
-      std::fill(this->OfVoxel.begin() + begin, this->OfVoxel.begin() + end, I);
+      this->Begin.push_back(I == 0 ? 0 : this->First + I * f - h);
+      this->End.push_back(I == this->Count - 1 ? n : this->First + I * f + h + 1);
     }
   }
 };
@@ -118,7 +122,7 @@ void ForEachHeldVoxel(const ImagePiece& piece, const VoxelBox& voxels, Visit&& v
   }
 }
 
-/// Coarse scales: the block sums of every piece, summed over the processes, give each the
+/// Coarse scales: the block means of every piece, summed over the processes, give each the
 /// block means of the cut, and from them the serial coarse field.
 bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
@@ -138,22 +142,58 @@ bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
   }
   piece.Whole.IndexToWorld(first, coarseGeometry.Origin);
   const std::size_t m = static_cast<std::size_t>(coarseGeometry.NumberOfVoxels());
-  std::vector<double> sums(2 * m, 0.0); // the sums, then the counts
-  ForEachHeldVoxel(piece, Intersect(piece.CountedVoxels(), cut),
-    [&](int i, int j, int k, float value)
-    {
-      const std::size_t b = blocks[0].OfVoxel[i - cut.Begin[0]] +
-        blocks[0].Count *
-          (blocks[1].OfVoxel[j - cut.Begin[1]] +
-            static_cast<std::size_t>(blocks[1].Count) * blocks[2].OfVoxel[k - cut.Begin[2]]);
-      sums[b] += value;
-      sums[m + b] += 1.0;
-    });
-  reduce.Sum(sums);
-  std::vector<float> coarse(m);
-  for (std::size_t b = 0; b < m; ++b)
+  // Each block's mean comes from the piece counting its first voxel, summed there in the
+  // serial order (so in the same double roundings), and 0 from the others: the sum over the
+  // processes is the serial mean exactly. The last entry counts the pieces that lacked a block.
+  std::vector<double> means(m + 1, 0.0);
+  const VoxelBox counted = Intersect(piece.CountedVoxels(), cut);
+  std::size_t b = 0;
+  for (int K = 0; K < blocks[2].Count; ++K)
+    for (int J = 0; J < blocks[1].Count; ++J)
+      for (int I = 0; I < blocks[0].Count; ++I, ++b)
+      {
+        VoxelBox block;
+        const int index[3] = { I, J, K };
+        for (int a = 0; a < 3; ++a)
+        {
+          block.Begin[a] = cut.Begin[a] + blocks[a].Begin[index[a]];
+          block.End[a] = cut.Begin[a] + blocks[a].End[index[a]];
+        }
+        VoxelBox corner = block;
+        for (int a = 0; a < 3; ++a)
+        {
+          corner.End[a] = corner.Begin[a] + 1;
+        }
+        if (!counted.Contains(corner))
+        {
+          continue;
+        }
+        if (!piece.Held.Contains(block))
+        {
+          means[m] = 1.0;
+          continue;
+        }
+        double sum = 0.0;
+        int count = 0;
+        ForEachHeldVoxel(piece, block,
+          [&](int, int, int, float v)
+          {
+            sum += v;
+            ++count;
+          });
+        means[b] = sum / count;
+      }
+  reduce.Sum(means);
+  if (means[m] > 0.0)
   {
-    coarse[b] = static_cast<float>(sums[b] / sums[m + b]);
+    *error = "a piece holds too few ghost layers for the blocks of sigma " +
+      std::to_string(parameters.Sigma) + " (" + std::to_string(2 * f) + " voxels needed)";
+    return false;
+  }
+  std::vector<float> coarse(m);
+  for (std::size_t c = 0; c < m; ++c)
+  {
+    coarse[c] = static_cast<float>(means[c]);
   }
   ScaleSpaceParameters remaining = parameters;
   remaining.Sigma = RemainingSigma(parameters.Sigma, cutGeometry, f);
@@ -185,8 +225,8 @@ VoxelBox FineRegion(const ImagePiece& piece, const VoxelBox& cut, double sigma, 
   return region;
 }
 
-/// Fine scales: the unnormalised field on the owned voxels and their ghosts, normalised by the
-/// largest edge strength of all pieces. A failed piece still takes part in the reduction (with
+/// Fine scales: the field on the owned voxels and their ghosts, normalised by the largest edge
+/// strength of all pieces. A failed piece still takes part in the reduction (with
 /// an infinite maximum, which tells the others).
 bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
@@ -212,41 +252,36 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
     first[a] = region.Begin[a];
   }
   piece.Whole.IndexToWorld(first, regionGeometry.Origin);
-  ScaleSpaceParameters raw = parameters;
-  raw.NormalizePotential = false; // P = -EdgeWeight g
-  double localMax = std::numeric_limits<double>::infinity();
-  if (problem.empty() && ComputeScaleSpaceForce(values.data(), regionGeometry, raw, out, &problem))
+  // The serial normalisation: by the largest g of the whole image (of the cut), the largest of
+  // every piece's owned voxels (their g is the serial one).
+  ScaleSpaceParameters pieceParameters = parameters;
+  const VoxelBox owned = Intersect(piece.Owned, cut);
+  for (int a = 0; a < 3; ++a)
   {
-    // g on the owned voxels (their edge strengths are the serial ones).
-    localMax = 0.0;
-    const VoxelBox owned = Intersect(piece.Owned, cut);
-    const int* n = regionGeometry.Dimensions;
-    for (int k = owned.Begin[2]; k < owned.End[2]; ++k)
-      for (int j = owned.Begin[1]; j < owned.End[1]; ++j)
-        for (int i = owned.Begin[0]; i < owned.End[0]; ++i)
-        {
-          const std::size_t v = (i - region.Begin[0]) +
-            static_cast<std::size_t>(n[0]) *
-              ((j - region.Begin[1]) + static_cast<std::size_t>(n[1]) * (k - region.Begin[2]));
-          localMax = std::max(localMax, -out.Potential[v] / parameters.EdgeWeight);
-        }
+    pieceParameters.MaximumBegin[a] = owned.Begin[a] - region.Begin[a];
+    pieceParameters.MaximumEnd[a] = owned.End[a] - region.Begin[a];
   }
-  const double gMax = reduce.Max(localMax);
-  if (!std::isfinite(gMax))
+  bool reduced = false;
+  double gMax = 0.0;
+  pieceParameters.GradientMaximum = [&](double ownedMaximum)
+  {
+    reduced = true;
+    gMax = reduce.Max(ownedMaximum);
+    return gMax;
+  };
+  if (problem.empty())
+  {
+    ComputeScaleSpaceForce(values.data(), regionGeometry, pieceParameters, out, &problem);
+  }
+  if (!reduced) // failed before the normalisation: the others still wait for this maximum
+  {
+    gMax = reduce.Max(std::numeric_limits<double>::infinity());
+  }
+  if (!problem.empty() || !std::isfinite(gMax))
   {
     *error = problem.empty() ? "another process's piece failed" : problem;
     out = ForceField();
     return false;
-  }
-  // The serial normalisation, P = -(EdgeWeight / max g) g, and -grad P scaled alike.
-  const double scale = gMax > 0.0 ? 1.0 / gMax : 0.0;
-  for (float& p : out.Potential)
-  {
-    p = static_cast<float>(scale * p);
-  }
-  for (float& f : out.Force)
-  {
-    f = static_cast<float>(scale * f);
   }
   out.Sigma = parameters.Sigma;
   return true;
@@ -294,6 +329,42 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
     *error = message;
   }
   return ok;
+}
+
+std::string PieceProblem(const ImagePiece& piece)
+{
+  if (piece.Owned.NumberOfVoxels() <= 0)
+  {
+    return "its piece of the image is empty";
+  }
+  if (!piece.Scalars || !piece.Held.Contains(piece.Owned) ||
+    !VoxelBox::Whole(piece.Whole).Contains(piece.Held))
+  {
+    return "its piece of the image is invalid (no values, or not the voxels it should hold)";
+  }
+  return std::string();
+}
+
+std::string CheckPieces(const ImagePiece& piece, const PieceReductions& reduce)
+{
+  const std::string mine = PieceProblem(piece);
+  const double failed = reduce.Max(mine.empty() ? 0.0 : 1.0);
+  if (failed == 0.0)
+  {
+    return std::string();
+  }
+  return mine.empty() ? std::string("another process's piece of the image is empty or invalid")
+                      : mine;
+}
+
+long long CountPieceVoxelsInRange(
+  const ImagePiece& piece, double lo, double hi, const PieceReductions& reduce)
+{
+  std::vector<double> count{ 0.0 };
+  ForEachHeldVoxel(piece, piece.CountedVoxels(),
+    [&](int, int, int, float v) { count[0] += v >= lo && v <= hi ? 1.0 : 0.0; });
+  reduce.Sum(count);
+  return static_cast<long long>(count[0]);
 }
 
 ForceExchange OwnerForceExchange(const ImagePiece& piece, const PieceReductions& reduce)

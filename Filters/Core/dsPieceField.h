@@ -4,17 +4,17 @@
 // (ComputeForceAtScale, dsFieldGrid.h). Plain C++: the processes' reductions come in as
 // callbacks (vtkDeformableSurfaceFilter passes vtkMultiProcessController calls).
 //
-// - Coarse scales (a block size f > 1): every process sums the f^3 blocks of the voxels it
-//   owns, on the block layout of the whole image (or of the box the level is cut to), and a
-//   sum over the processes gives every one of them the whole coarse grid (small: 25^3-103^3
-//   points for the first levels of 512^3), whose field they then compute alike. Equal to the
-//   serial field up to the order of the block sums (doubles, rounded to float).
-// - Fine scales (f = 1): each process computes the unnormalised field on the voxels it owns
-//   plus PieceGhostVoxels() around them (within the level's box) and divides it by the
-//   maximum edge strength over all processes (the serial normalisation by max g). Its owned
-//   voxels then agree with the serial field to float rounding (about 2e-7 of the largest
-//   force) with the sampled Gaussian, and to < 1e-6 with the recursive one (its start at the
-//   cut fades over ~14 sigma).
+// - Coarse scales (a block size f > 1): each block of the layout BlockMeans gives the whole
+//   image (or the box the level is cut to) is averaged by the process counting its first
+//   voxel, in the serial order (it holds the block with 2 f ghost layers), and a sum over the
+//   processes gives every one of them the whole coarse grid (small: 25^3-103^3 points for the
+//   first levels of 512^3), whose field they then compute alike: the serial field bit for bit.
+// - Fine scales (f = 1): each process computes the field on the voxels it owns plus
+//   PieceGhostVoxels() around them (within the level's box), normalised by the largest edge
+//   strength over all processes (ScaleSpaceParameters::GradientMaximum). With the sampled
+//   Gaussian (sigma below 3 voxels) a few ghost layers give the serial field bit for bit; the
+//   recursive Gaussian needs the whole axis (a distributed recursion, passing the filter's
+//   state from piece to piece, would not: not done yet).
 // Only the default potential is distributed (EdgeWeight alone, ImageWeight 0, the global
 // maximum normalisation): the image term's range and the local normalisation's second Gaussian
 // would need more reductions; they are refused with a message.
@@ -62,10 +62,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImagePiece
 };
 
 /// Ghost voxels a fine field (block size 1) at `sigma` (world units) needs around the owned
-/// ones along axis a: the Gaussian's reach (the sampled kernel's radius, 4 sigma, below 3
-/// voxels of sigma; 14 sigma for the recursive filter, whose start at a cut fades slowly) and
-/// two voxels for the central differences of the edge strength and the potential. Coarse
-/// fields need none.
+/// ones along axis a for the serial field bit for bit: the sampled Gaussian's radius (4 sigma,
+/// below 3 voxels of sigma) and two voxels for the central differences of the edge strength
+/// and the potential; the whole axis for the recursive Gaussian (3 voxels of sigma and more),
+/// whose start at a cut changes the field everywhere a little (see the .cxx). Coarse fields
+/// (block size f > 1) need 2 f.
 DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a);
 
 /// The field of ComputeForceAtScale(whole image, box, parameters) on this piece (see above):
@@ -76,6 +77,21 @@ DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(double sigma, const ImageGe
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
   std::string* error);
+
+/// Why this piece cannot take part in a distributed solve (no voxels owned, values missing,
+/// owned voxels not held or outside the image); empty when it can. Local: the caller combines
+/// the answers of all processes (CheckPieces).
+DEFORMABLESURFACEFILTERS_EXPORT std::string PieceProblem(const ImagePiece& piece);
+
+/// PieceProblem of every process, combined: empty when all pieces are fine, else this
+/// process's problem or, when only others have one, a message saying so. Collective.
+DEFORMABLESURFACEFILTERS_EXPORT std::string CheckPieces(
+  const ImagePiece& piece, const PieceReductions& reduce);
+
+/// The image's voxels with a value in [lo, hi], each counted by one piece (CountedVoxels) and
+/// summed over the processes: CountVoxelsInRange (dsRegion.h) of the whole image. Collective.
+DEFORMABLESURFACEFILTERS_EXPORT long long CountPieceVoxelsInRange(
+  const ImagePiece& piece, double lo, double hi, const PieceReductions& reduce);
 
 /// The solver's force exchange (Solver::SetForceExchange) of a distributed solve, where every
 /// process holds the same mesh and the field of its piece: each keeps the forces of the

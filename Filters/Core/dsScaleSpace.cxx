@@ -355,6 +355,30 @@ EdgeStatistics EdgeMagnitude(
   return s;
 }
 
+/// The largest g over the voxels [MaximumBegin, MaximumEnd) of `parameters` (a piece's own,
+/// ScaleSpaceParameters::GradientMaximum), in double as EdgeMagnitude computes it.
+double BoxGradientMaximum(const float* smooth, const int dims[3], const GradientToWorld& toWorld,
+  const ScaleSpaceParameters& parameters)
+{
+  const int* b = parameters.MaximumBegin;
+  const int* e = parameters.MaximumEnd;
+  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
+  double gm = 0.0;
+  for (int k = std::max(0, b[2]); k < std::min(dims[2], e[2]); ++k)
+  {
+    ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
+      [&](std::ptrdiff_t v, const double gw[3])
+      {
+        const std::ptrdiff_t j = (v - k * sz) / nx, i = v - k * sz - j * nx;
+        if (j >= b[1] && j < e[1] && i >= b[0] && i < e[0])
+        {
+          gm = std::max(gm, std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]));
+        }
+      });
+  }
+  return gm;
+}
+
 /// P = -(ge g + gs s + offset) in place of g in `potential` (docs/METHOD.md §2, with the
 /// optional normalisation of both terms); `scratch` holds one volume for the local one.
 void CombinePotential(float* potential, const float* smooth, float* scratch, const int dims[3],
@@ -431,7 +455,12 @@ bool ComputeScaleSpaceForceInto(const float* scalars, const ImageGeometry& geome
       // scratch for the local edge normalisation.
       float* smooth = force;
       SmoothGaussianSeparable(scalars, smooth, dims, sv);
-      const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
+      EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
+      if (parameters.GradientMaximum)
+      {
+        stats.GradientMax =
+          parameters.GradientMaximum(BoxGradientMaximum(smooth, dims, toWorld, parameters));
+      }
       float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
       CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
 
