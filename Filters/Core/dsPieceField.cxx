@@ -311,9 +311,8 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
     return false;
   }
   // The cut and the block size as ComputeForceAtScale chooses them.
-  const VoxelBox cut = 2 * box.NumberOfVoxels() <= piece.Whole.NumberOfVoxels()
-    ? box
-    : VoxelBox::Whole(piece.Whole);
+  const VoxelBox cut =
+    2 * box.NumberOfVoxels() <= piece.Whole.NumberOfVoxels() ? box : VoxelBox::Whole(piece.Whole);
   ImageGeometry cutGeometry = piece.Whole;
   for (int a = 0; a < 3; ++a)
   {
@@ -321,9 +320,8 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
   }
   const int f = DecimationFactor(parameters.Sigma, cutGeometry);
   std::string message;
-  const bool ok = f > 1
-    ? CoarsePieceForce(piece, cut, f, parameters, reduce, out, &message)
-    : FinePieceForce(piece, cut, parameters, reduce, out, &message);
+  const bool ok = f > 1 ? CoarsePieceForce(piece, cut, f, parameters, reduce, out, &message)
+                        : FinePieceForce(piece, cut, parameters, reduce, out, &message);
   if (!ok && error)
   {
     *error = message;

@@ -47,7 +47,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImagePiece
   /// The voxels this process answers for (a VTK piece's extent without its ghosts; neighbouring
   /// pieces share their border voxels, as VTK image pieces do).
   VoxelBox Owned;
-  VoxelBox Held;                 ///< the voxels in Scalars: Owned and ghost layers, x fastest
+  VoxelBox Held; ///< the voxels in Scalars: Owned and ghost layers, x fastest
   const float* Scalars = nullptr;
 
   /// The geometry of Held (its own dimensions and origin).
@@ -67,7 +67,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImagePiece
 /// and the potential; the whole axis for the recursive Gaussian (3 voxels of sigma and more),
 /// whose start at a cut changes the field everywhere a little (see the .cxx). Coarse fields
 /// (block size f > 1) need 2 f.
-DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a);
+DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(
+  double sigma, const ImageGeometry& whole, int a);
 
 /// The field of ComputeForceAtScale(whole image, box, parameters) on this piece (see above):
 /// on coarse scales the whole coarse grid, on fine scales the owned voxels of the box and the

@@ -48,7 +48,8 @@ std::vector<float> Image()
       for (int i = 0; i < NX; ++i)
       {
         const double z = std::min(190.0, std::max(50.0, double(k)));
-        const double d = std::sqrt((i - 15.5) * (i - 15.5) + (j - 15.5) * (j - 15.5) + (k - z) * (k - z));
+        const double d =
+          std::sqrt((i - 15.5) * (i - 15.5) + (j - 15.5) * (j - 15.5) + (k - z) * (k - z));
         state = state * 1664525u + 1013904223u;
         const double noise = 10.0 * ((state >> 8) / 16777216.0 - 0.5);
         v.push_back(static_cast<float>(100.0 / (1.0 + std::exp(2.0 * (d - 9.0))) + noise));
@@ -134,8 +135,8 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
   DS_CHECK(emulated.Mismatches() == 0, "the ranks reduced vectors of one size");
 }
 
-void SameAsSerial(const std::string& label, const MultilevelParameters& p, const TriangleMesh& start,
-  bool pieceSmaller)
+void SameAsSerial(const std::string& label, const MultilevelParameters& p,
+  const TriangleMesh& start, bool pieceSmaller)
 {
   const ImageGeometry g = Geometry();
   const std::vector<float> image = Image();
@@ -154,8 +155,8 @@ void SameAsSerial(const std::string& label, const MultilevelParameters& p, const
       DS_CHECK(o.Mesh.NumberOfPoints() == serial.Mesh.NumberOfPoints(),
         l + ": " + std::to_string(o.Mesh.NumberOfPoints()) + " vertices, serial " +
           std::to_string(serial.Mesh.NumberOfPoints()));
-      for (int v = 0; v < o.Mesh.NumberOfPoints() &&
-           o.Mesh.NumberOfPoints() == serial.Mesh.NumberOfPoints();
+      for (int v = 0;
+           v < o.Mesh.NumberOfPoints() && o.Mesh.NumberOfPoints() == serial.Mesh.NumberOfPoints();
            ++v)
       {
         worst = std::max(

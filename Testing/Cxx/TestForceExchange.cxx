@@ -178,7 +178,8 @@ void IdentityHook(const ForceField& field, const std::vector<float>& image)
     std::vector<int> calls, colors;
     int positionsSeen = 0, positionsMatching = 0;
     const TriangleMesh start = Start(32.5);
-    const Run hooked = Serial(field, image, threads,
+    const Run hooked = Serial(
+      field, image, threads,
       [&](VertexForce* forces, int count)
       {
         calls.push_back(count);

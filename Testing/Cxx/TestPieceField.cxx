@@ -5,7 +5,8 @@
 // - The piece fields equal the whole image's field (ComputeForceAtScale) on the owned voxels to
 //   1e-12 of the largest force: a fine sigma (sampled Gaussian: a few ghost layers), a middle
 //   one (recursive Gaussian: the whole axis), a coarse one (block means summed over the ranks,
-//   twice the block size of ghosts), over the whole image and over a box (a later level's neighbourhood).
+//   twice the block size of ghosts), over the whole image and over a box (a later level's
+//   neighbourhood).
 // - With the sampled Gaussian and on coarse grids no rank holds the whole image.
 // - A single-level solve on every rank with its piece field and OwnerForceExchange equals the
 //   serial solve on the whole field (coordinates to 1e-12 relative).
@@ -56,17 +57,18 @@ std::vector<float> Image(const ImageGeometry& g)
         const double x = i - 20.0, y = 1.1 * j - 26.0, z = 0.9 * k - 22.0;
         const double ball = 1.0 / (1.0 + std::exp(std::sqrt(x * x + y * y + z * z) - 12.0));
         const double cube = 0.5 /
-          (1.0 + std::exp(std::max({ std::abs(i - 38.0), std::abs(1.1 * j - 14.0),
-                            std::abs(0.9 * k - 32.0) }) -
-            5.0));
+          (1.0 +
+            std::exp(
+              std::max({ std::abs(i - 38.0), std::abs(1.1 * j - 14.0), std::abs(0.9 * k - 32.0) }) -
+              5.0));
         state = state * 1664525u + 1013904223u;
         v.push_back(static_cast<float>(100.0 * (ball + cube) + 5.0 * (state >> 8) / 16777216.0));
       }
   return v;
 }
 
-/// Rank r's piece of `ranks` slabs along z with the ghosts sigma needs (the holding itself is a copy
-/// of those voxels: what a parallel reader gives the rank).
+/// Rank r's piece of `ranks` slabs along z with the ghosts sigma needs (the holding itself is a
+/// copy of those voxels: what a parallel reader gives the rank).
 ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, int ranks,
   double sigma, std::vector<float>& held, int ghostOverride = -1)
 {
@@ -81,7 +83,9 @@ ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, 
   {
     // Coarse fields need twice the block size.
     const int f = DecimationFactor(sigma, g);
-    const int ghost = ghostOverride >= 0 ? ghostOverride : f > 1 ? 2 * f : PieceGhostVoxels(sigma, g, a);
+    const int ghost = ghostOverride >= 0 ? ghostOverride
+      : f > 1                            ? 2 * f
+                                         : PieceGhostVoxels(sigma, g, a);
     piece.Held.Begin[a] = std::max(0, piece.Held.Begin[a] - ghost);
     piece.Held.End[a] = std::min(g.Dimensions[a], piece.Held.End[a] + ghost);
   }
@@ -110,7 +114,8 @@ PieceReductions ReductionsOf(dstest::EmulatedRanks& ranks, int r)
 void CompareOnOwned(const ForceField& whole, const ForceField& piece, const ImagePiece& p,
   const VoxelBox& box, double& maxDiff, double& maxForce, int& missing)
 {
-  for (int k = std::max(p.Owned.Begin[2], box.Begin[2]); k < std::min(p.Owned.End[2], box.End[2]); ++k)
+  for (int k = std::max(p.Owned.Begin[2], box.Begin[2]); k < std::min(p.Owned.End[2], box.End[2]);
+       ++k)
     for (int j = box.Begin[1]; j < box.End[1]; ++j)
       for (int i = box.Begin[0]; i < box.End[0]; ++i)
       {
@@ -160,7 +165,8 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<float>& image, int nR
     std::cout << " " << h;
   }
   std::cout << " of " << g.NumberOfVoxels() << std::endl;
-  DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, label + ": every rank computed its field");
+  DS_CHECK(
+    std::count(ok.begin(), ok.end(), 1) == nRanks, label + ": every rank computed its field");
   DS_CHECK_LE(relative, 1e-12, label + ": max |F_piece - F_whole| / max |F| on the owned voxels");
   DS_CHECK_LE(*std::max_element(missing.begin(), missing.end()), 0,
     label + ": owned voxels inside one field and outside the other");
@@ -245,8 +251,8 @@ void BadPieces(const ImageGeometry& g, const std::vector<float>& image)
       std::string message;
       ok[r] = ComputePieceForce(
         piece, VoxelBox::Whole(g), parameters, ReductionsOf(ranks, r), field, &message);
-      named[r] = message.find(r == 1 ? "too few ghost layers" : "another process") !=
-        std::string::npos;
+      named[r] =
+        message.find(r == 1 ? "too few ghost layers" : "another process") != std::string::npos;
       if (r == 1)
       {
         std::cout << "rank 1 without ghosts: " << message << std::endl;
@@ -266,8 +272,8 @@ void BadPieces(const ImageGeometry& g, const std::vector<float>& image)
       parameters.ImageWeight = 0.5;
       ForceField field;
       std::string message;
-      refused[r] = !ComputePieceForce(
-                     piece, VoxelBox::Whole(g), parameters, ReductionsOf(ranks, r), field, &message) &&
+      refused[r] = !ComputePieceForce(piece, VoxelBox::Whole(g), parameters, ReductionsOf(ranks, r),
+                     field, &message) &&
         message.find("default potential") != std::string::npos;
     });
   DS_CHECK(std::count(refused.begin(), refused.end(), 1) == 3,
