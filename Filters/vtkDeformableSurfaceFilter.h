@@ -454,7 +454,8 @@ private:
   /// The one mapping between this filter's solver properties and the core's parameters of
   /// the same names: into `core` (toCore) or from it (the constructor takes the defaults).
   void ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore);
-  /// The image array as floats (dsVTKImage.h); false (an error said why) for a bad or constant one.
+  /// The image array read in place in its own type (dsVTKImage.h); false (an error said why) for
+  /// a bad or constant one.
   bool ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume);
   /// The start surface as the core's mesh, consistently oriented; false (an error said why).
   bool StartMesh(vtkPolyData* start, dsurf::TriangleMesh& mesh);
