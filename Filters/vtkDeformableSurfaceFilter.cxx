@@ -6,6 +6,7 @@
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
 #include "dsVTKImage.h"
+#include "dsVTKPieces.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -563,13 +564,41 @@ bool vtkDeformableSurfaceFilter::ServeFromCache(vtkImageData* image, vtkPolyData
 }
 
 //------------------------------------------------------------------------------
-// The Gaussian reaches across the whole volume: always ask for all of it, also when the
-// pipeline runs distributed and would otherwise hand each process one piece. The surface is
-// asked whole in serial, one piece per process when distributed (gathered in RequestData).
+// The Gaussian reaches across the whole volume: ask for all of it, also when the pipeline runs
+// distributed, unless the image goes in pieces (ImageInPieces). The surface is asked whole in
+// serial, one piece per process when distributed (gathered in RequestData).
 int vtkDeformableSurfaceFilter::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  if (vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0))
+  vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0);
+  if (imageInfo && this->ImageInPieces() &&
+    imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    // This process's piece and the ghost layers the levels' sigma need (docs/METHOD.md §9.8).
+    const int* whole = imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    dsurf::ImageGeometry geometry;
+    for (int a = 0; a < 3; ++a)
+    {
+      geometry.Dimensions[a] = whole[2 * a + 1] - whole[2 * a] + 1;
+      geometry.Spacing[a] = imageInfo->Has(vtkDataObject::SPACING())
+        ? imageInfo->Get(vtkDataObject::SPACING())[a]
+        : 1.0;
+    }
+    dsurf::MultilevelParameters mp;
+    this->ExchangeParameters(mp, true);
+    int ghost = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      ghost = std::max(ghost, dsurf::MultilevelSolver::DistributedGhostVoxels(mp, geometry, a));
+    }
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(),
+      this->Controller->GetLocalProcessId());
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(),
+      this->Controller->GetNumberOfProcesses());
+    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), ghost);
+    imageInfo = nullptr; // no whole-image request below
+  }
+  if (imageInfo)
   {
     imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
     imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
@@ -775,13 +804,18 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
     mp.SweepBatch = 1; // a snapshot exactly every SweepsPerTimeStep sweeps
     this->Snapshots.push_back(MeshSnapshot(mesh, 0));
   }
+  if (this->OnPieces)
+  {
+    // The force exchange calls MPI from the solver's threads: one thread (the caller's).
+    mp.Solver.NumberOfThreads = 1;
+  }
   solver.SetParameters(mp);
   solver.SetCoarsenCallback(CoarsenMesh);
   solver.SetProgressCallback(
     [this](double f)
     {
       this->UpdateProgress(0.02 + 0.96 * f);
-      return !this->GetAbortExecute();
+      return this->OnPieces || !this->GetAbortExecute(); // one process must not stop alone
     });
   ConvergenceColumns columns;
   solver.SetSweepCallback(
@@ -813,6 +847,78 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
 }
 
 //------------------------------------------------------------------------------
+bool vtkDeformableSurfaceFilter::ImageInPieces()
+{
+  // sigma_0 and the intensity range must not need the whole image (dsMultilevel.h).
+  return vtkDSPolyDataGather::IsDistributed(this->Controller) &&
+    (this->Sigma > 0 || this->SigmaFraction > 0 || !this->HierarchicalSigma) &&
+    (this->RegionWeight <= 0 || this->IntensityRange[0] < this->IntensityRange[1]);
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::SolveOnPieces(vtkImageData* image, vtkDataArray* array,
+  vtkPolyData* surface, const int wholeExtent[6], vtkPolyData* output, vtkTable* table)
+{
+  // Local problems first, agreed by one reduction before any other collective call, so that
+  // no process is left waiting; what follows depends only on what every process has alike.
+  dsurf::ImageVolume volume;
+  std::string problem;
+  if (!image || image->GetNumberOfPoints() <= 0)
+  {
+    problem = "this process's piece of the image is empty";
+  }
+  else
+  {
+    dsurf::GetImageVolume(image, array, dsurf::ForceFieldBytesPerVoxel, volume, problem);
+  }
+  const dsurf::PieceReductions reduce = dsurf::ControllerReductions(this->Controller);
+  if (reduce.Max(problem.empty() ? 0.0 : 1.0) > 0.0)
+  {
+    vtkErrorMacro("Distributed image: "
+      << (problem.empty() ? "another process's piece of the image is empty or invalid" : problem)
+      << ".");
+    return;
+  }
+  const int rank = this->Controller->GetLocalProcessId();
+  const int ranks = this->Controller->GetNumberOfProcesses();
+  const dsurf::ImagePiece piece =
+    dsurf::ImagePieceOf(volume.Image, image->GetExtent(), wholeExtent, rank, ranks);
+  dsurf::TriangleMesh mesh;
+  dsurf::MultilevelSolver solver;
+  solver.SetDistribution(piece, reduce);
+  // Run's image in a distributed solve: the piece's values with the whole image's geometry
+  // (MultilevelSolver::SetDistribution); the core reads the values through the piece.
+  dsurf::ImageVolume whole;
+  whole.Image = piece.Image;
+  whole.Image.Geometry = piece.Whole;
+  this->OnPieces = true;
+  const bool solved = this->ParametersAreFinite() && this->StartMesh(surface, mesh) &&
+    this->Solve(whole, mesh, solver, table);
+  this->OnPieces = false;
+  std::vector<double> held(ranks, 0.0);
+  held[rank] = static_cast<double>(piece.Held.NumberOfVoxels());
+  reduce.Sum(held);
+  if (!solved || rank != 0)
+  {
+    table->Initialize(); // the surface and the table are delivered once, by process 0
+    return;
+  }
+  this->Report(solver);
+  FillOutput(mesh, solver, output);
+  const double* used = solver.GetIntensityRange();
+  AddFieldData(solver, mesh, used[0] < used[1], false, output->GetFieldData());
+  vtkNew<vtkDoubleArray> voxels;
+  voxels->SetName("PieceVoxels");
+  for (double h : held)
+  {
+    voxels->InsertNextValue(h);
+  }
+  output->GetFieldData()->AddArray(voxels);
+  AddFieldValue<vtkDoubleArray>(
+    output->GetFieldData(), "ImageVoxels", static_cast<double>(piece.Whole.NumberOfVoxels()));
+}
+
+//------------------------------------------------------------------------------
 int vtkDeformableSurfaceFilter::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -834,8 +940,22 @@ int vtkDeformableSurfaceFilter::RequestData(
   const bool distributed = vtkDSPolyDataGather::IsDistributed(this->Controller);
   if (distributed)
   {
-    if (!vtkDSPolyDataGather::GatherOnProcessZero(
-          this->Controller, OwnedSurfacePiece(surface), gathered))
+    const bool onZero = vtkDSPolyDataGather::GatherOnProcessZero(
+      this->Controller, OwnedSurfacePiece(surface), gathered);
+    if (this->ImageInPieces())
+    {
+      this->Controller->Broadcast(gathered, 0); // every process solves
+      int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 };
+      vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0);
+      if (imageInfo && imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+      {
+        imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+      }
+      this->SolveOnPieces(
+        image, this->GetInputArrayToProcess(0, inputVector), gathered, wholeExtent, output, table);
+      return 1;
+    }
+    if (!onZero)
     {
       return 1;
     }

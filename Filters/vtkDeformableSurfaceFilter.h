@@ -89,9 +89,19 @@
  * serial result on the same gathered surface; the vertex order follows the pieces, so
  * against a serial run on the undivided surface it agrees up to the convergence tolerance.
  *
- * Caveats: the whole image is requested. Abort stops after the current sweep and
- * outputs the (valid) surface reached so far. A weak boundary next to a strong one
- * needs HierarchicalSigma off, whose default sigma is one voxel (mean spacing).
+ * The image in pieces (docs/METHOD.md §9.8): when the parameters need nothing of the image
+ * beyond each process's piece -- Sigma or SigmaFraction given (or HierarchicalSigma off), and
+ * RegionWeight 0 or IntensityRange given -- each process instead requests its piece of the image
+ * with the ghost levels its levels' sigma need, the gathered surface is sent to every process,
+ * and every process runs the same solve (the forces sampled by the owner of each vertex's voxel
+ * cell and summed per colour); process 0 outputs the surface (equal to the serial result bit
+ * for bit) with field data PieceVoxels (the voxels each process held) and ImageVoxels. An empty
+ * or invalid piece on any process is an error on all of them. The sweeps then run on one thread
+ * per process, and Abort is not answered.
+ *
+ * Caveats: the whole image is requested unless it goes in pieces (above). Abort stops after the
+ * current sweep and outputs the (valid) surface reached so far. A weak boundary next to a strong
+ * one needs HierarchicalSigma off, whose default sigma is one voxel (mean spacing).
  */
 #ifndef vtkDeformableSurfaceFilter_h
 #define vtkDeformableSurfaceFilter_h
@@ -446,7 +456,8 @@ private:
   /// The one mapping between this filter's solver properties and the core's parameters of
   /// the same names: into `core` (toCore) or from it (the constructor takes the defaults).
   void ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore);
-  /// The image array as floats (dsVTKImage.h); false (an error said why) for a bad or constant one.
+  /// The image array read in place in its own type (dsVTKImage.h); false (an error said why) for
+  /// a bad or constant one.
   bool ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume);
   /// The start surface as the core's mesh, consistently oriented; false (an error said why).
   bool StartMesh(vtkPolyData* start, dsurf::TriangleMesh& mesh);
@@ -458,6 +469,14 @@ private:
     dsurf::MultilevelSolver& solver, vtkTable* table);
   /// The solver's warnings and debug lines.
   void Report(const dsurf::MultilevelSolver& solver);
+  /// Distributed, with parameters that need nothing of the image beyond each process's piece
+  /// (see the class comment): the image is requested in pieces and solved by every process.
+  bool ImageInPieces();
+  /// That solve (docs/METHOD.md §9.8): the local input checks agreed by all processes first,
+  /// then the core on this process's piece; process 0 delivers the surface.
+  void SolveOnPieces(vtkImageData* image, vtkDataArray* array, vtkPolyData* surface,
+    const int wholeExtent[6], vtkPolyData* output, vtkTable* table);
+  bool OnPieces = false; ///< SolveOnPieces is running: one solver thread, no abort
   /// The warm start's copy and the time steps' cache of this result (complete: not aborted,
   /// serial).
   void KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],

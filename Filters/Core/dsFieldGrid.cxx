@@ -39,41 +39,46 @@ int DecimationFactor(double sigma, const ImageGeometry& geometry)
   return f;
 }
 
+AxisBlocks::AxisBlocks(int n, int f)
+  : Voxels(n)
+  , Factor(f)
+  , Count((n - 1) / f + 1)
+  , First((n - 1 - ((n - 1) / f) * f) / 2)
+{
+}
+
+void AxisBlocks::Range(int I, int& begin, int& end) const
+{
+  const int h = this->Factor / 2;
+  begin = I == 0 ? 0 : this->First + I * this->Factor - h;
+  end = I == this->Count - 1 ? this->Voxels : this->First + I * this->Factor + h + 1;
+}
+
 void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
   ImageGeometry& coarseGeometry, int numberOfThreads)
 {
   const ImageGeometry& geometry = image.Geometry;
-  // Blocks of f = 2h + 1 voxels centred on voxels: coarse voxel I sits on voxel
-  // first + I f, with as many voxels left over at each end of the axis (one more at the far
-  // end when their number is odd), so the coarse grid is the image's, only sparser. The
-  // blocks at the ends take in the voxels left over there.
-  const int h = f / 2;
+  // Blocks centred on voxels (AxisBlocks): the coarse grid is the image's, only sparser.
   const int* n = geometry.Dimensions;
-  int m[3], first[3];
+  const AxisBlocks blocks[3] = { AxisBlocks(n[0], f), AxisBlocks(n[1], f), AxisBlocks(n[2], f) };
+  int m[3];
   double firstIndex[3];
   for (int a = 0; a < 3; ++a)
   {
-    m[a] = (n[a] - 1) / f + 1;
-    first[a] = (n[a] - 1 - (m[a] - 1) * f) / 2;
-    firstIndex[a] = first[a];
+    m[a] = blocks[a].Count;
+    firstIndex[a] = blocks[a].First;
     coarseGeometry.Dimensions[a] = m[a];
     coarseGeometry.Spacing[a] = f * geometry.Spacing[a];
   }
   geometry.IndexToWorld(firstIndex, coarseGeometry.Origin);
   std::copy(geometry.Direction, geometry.Direction + 9, coarseGeometry.Direction);
-  // The voxels [begin, end) of block I along axis a.
-  const auto block = [&](int a, int I, int& begin, int& end)
-  {
-    begin = I == 0 ? 0 : first[a] + I * f - h;
-    end = I == m[a] - 1 ? n[a] : first[a] + I * f + h + 1;
-  };
 
   coarse.assign(static_cast<std::size_t>(m[0]) * m[1] * m[2], 0.0f);
   std::vector<int> column(n[0]); // the coarse column of every voxel of a row
   for (int I = 0; I < m[0]; ++I)
   {
     int b, e;
-    block(0, I, b, e);
+    blocks[0].Range(I, b, e);
     std::fill(column.begin() + b, column.begin() + e, I);
   }
   vtkSMPTools::LocalScope(
@@ -91,11 +96,11 @@ void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
               for (int K = kBegin; K < kEnd; ++K)
               {
                 int k0, k1;
-                block(2, K, k0, k1);
+                blocks[2].Range(K, k0, k1);
                 for (int J = 0; J < m[1]; ++J)
                 {
                   int j0, j1;
-                  block(1, J, j0, j1);
+                  blocks[1].Range(J, j0, j1);
                   std::fill(sum.begin(), sum.end(), 0.0);
                   std::fill(count.begin(), count.end(), 0);
                   for (int k = k0; k < k1; ++k)

@@ -27,6 +27,17 @@ constexpr double SamplesPerSigma = 4.0;
 /// The block size for a field at `sigma` (world units) on `geometry`.
 DEFORMABLESURFACEFILTERS_EXPORT int DecimationFactor(double sigma, const ImageGeometry& geometry);
 
+/// The blocks of BlockMeans along an axis of n voxels: Count blocks of f = 2h + 1 voxels, block
+/// I centred on voxel First + I f, with as many voxels left over at each end of the axis (one
+/// more at the far end when their number is odd), which the end blocks take in.
+struct DEFORMABLESURFACEFILTERS_EXPORT AxisBlocks
+{
+  int Voxels = 0, Factor = 1, Count = 0, First = 0;
+  AxisBlocks(int n, int f);
+  /// The voxels [begin, end) of block I.
+  void Range(int I, int& begin, int& end) const;
+};
+
 /// The mean of each f^3 block of `image` (f odd, each block centred on a voxel, the blocks at
 /// the ends of an axis also taking in the few voxels left over there; the values read in their
 /// own type) into `coarse`, whose geometry places each coarse voxel on its block's centre

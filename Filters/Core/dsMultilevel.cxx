@@ -125,7 +125,10 @@ bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& m
     // region, and the edge force finds the boundary beyond.
     this->RegionOutwardOnly = !estimate.Contrast;
   }
-  if (CountVoxelsInRange(image, lo, hi) == 0)
+  const long long matching = this->Distributed
+    ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
+    : CountVoxelsInRange(image, lo, hi);
+  if (matching == 0)
   {
     this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) +
       ", " + std::to_string(hi) + "] matches no voxel of the image");
@@ -362,6 +365,18 @@ bool MultilevelSolver::Start(
 {
   const MultilevelParameters& P = this->Parameters;
   const ImageGeometry& geometry = image.Geometry;
+  if (this->Distributed)
+  {
+    // Collective, first: an empty or invalid piece fails every process here; what follows
+    // depends only on the mesh, the parameters and the whole image, the same on all of them.
+    const std::string problem = CheckPieces(this->Piece, this->Reduce);
+    if (!problem.empty())
+    {
+      *error = "distributed image: " + problem;
+      return false;
+    }
+    state.LevelSolver.SetForceExchange(OwnerForceExchange(this->Piece, this->Reduce));
+  }
   if (!image.Data || geometry.NumberOfVoxels() <= 0)
   {
     *error = "the volume is empty";
@@ -378,6 +393,12 @@ bool MultilevelSolver::Start(
   if (!state.Refiner.Initialize(mesh, &msg))
   {
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
+    return false;
+  }
+  msg = this->Distributed ? this->DistributionProblem(geometry, mesh) : std::string();
+  if (!msg.empty())
+  {
+    *error = "distributed image: " + msg;
     return false;
   }
   if (!this->FirstSigma(image, mesh, state.Sigma, error))
@@ -430,10 +451,13 @@ bool MultilevelSolver::SetUpLevel(
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
-    // After the first level, a field on the image's own grid only where the surface is
-    // (dsFieldBricks.h).
-    if (!ComputeForceAtScale(
-          image, box, state.FieldParameters, state.Field, &msg, rec.Level == 0 ? nullptr : &mesh))
+    // Serial, after the first level: a field on the image's own grid only where the surface
+    // is (dsFieldBricks.h). Distributed: each piece's field (dsPieceField.h), no bricks.
+    const bool computed = this->Distributed
+      ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
+      : ComputeForceAtScale(
+          image, box, state.FieldParameters, state.Field, &msg, rec.Level == 0 ? nullptr : &mesh);
+    if (!computed)
     {
       *error = "scale-space force: " + msg;
       return false;
@@ -448,8 +472,9 @@ bool MultilevelSolver::SetUpLevel(
     // the edge force takes over the detail, so the region force shrinks with sigma (at full
     // strength it presses the surface into every narrow dark gap of the object).
     const double decay = std::min(1.0, sigma / state.FirstSigma);
-    state.LevelSolver.SetRegionForce(image, this->UsedRange[0], this->UsedRange[1],
-      decay * P.RegionWeight * h, this->RegionOutwardOnly);
+    // Distributed, each process samples its own piece (it owns the vertices it samples).
+    state.LevelSolver.SetRegionForce(this->Distributed ? this->Piece.Image : image,
+      this->UsedRange[0], this->UsedRange[1], decay * P.RegionWeight * h, this->RegionOutwardOnly);
   }
   rec.Sigma = sigma;
   rec.Vertices = mesh.NumberOfPoints();
@@ -656,6 +681,48 @@ bool MultilevelSolver::RunLevels(
     state.Sigma = nextSigma;
   }
   return true;
+}
+
+std::string MultilevelSolver::DistributionProblem(
+  const ImageGeometry& whole, const TriangleMesh& mesh) const
+{
+  const MultilevelParameters& P = this->Parameters;
+  const bool spans = StartSpansImage(whole, mesh);
+  if (P.Sigma <= 0 && P.SigmaFraction <= 0 && P.HierarchicalSigma && !spans)
+  {
+    return "sigma_0 from the start's distance to its edges is not distributed yet: give Sigma "
+           "or SigmaFraction, or start around the whole volume";
+  }
+  const bool estimate = !(P.IntensityRange[0] < P.IntensityRange[1]);
+  if (P.RegionWeight > 0 && estimate && !spans && mesh.IsClosed())
+  {
+    return "the estimate of the intensity range is not distributed yet: give IntensityRange, "
+           "or set RegionWeight to 0";
+  }
+  return std::string();
+}
+
+int MultilevelSolver::DistributedGhostVoxels(
+  const MultilevelParameters& p, const ImageGeometry& whole, int a)
+{
+  double sigma = p.Sigma > 0 ? p.Sigma
+    : p.SigmaFraction > 0    ? p.SigmaFraction * whole.MeanExtent()
+    : p.HierarchicalSigma    ? whole.MeanExtent() / 6.0
+                             : ConstantSigmaVoxels * whole.MeanSpacing();
+  // The levels halve sigma down to half a voxel: the coarse ones need twice their block size
+  // (dsPieceField.h), the first on the image's own grid the most of the fine ones.
+  int ghost = 0;
+  for (int level = 0; level <= std::max(0, p.MaxLevels); ++level)
+  {
+    const int f = DecimationFactor(sigma, whole);
+    ghost = std::max(ghost, f > 1 ? 2 * f : PieceGhostVoxels(sigma, whole, a));
+    if (f == 1 || !p.HierarchicalSigma || !(sigma > 0.5 * whole.MeanSpacing()))
+    {
+      break;
+    }
+    sigma = std::max(0.5 * sigma, std::min(sigma, 0.5 * whole.MeanSpacing()));
+  }
+  return std::min(ghost, whole.Dimensions[a]);
 }
 
 bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::string* error)

@@ -53,6 +53,7 @@
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "dsFieldGrid.h"
 #include "dsInitialSigma.h"
+#include "dsPieceField.h"
 #include "dsRedGreen.h"
 #include "dsScaleSpace.h"
 #include "dsSolver.h"
@@ -202,6 +203,28 @@ public:
   void SetSweepCallback(SweepCallback cb) { this->OnSweep = std::move(cb); }
   void SetCoarsenCallback(CoarsenCallback cb) { this->Coarsen = std::move(cb); }
 
+  /// A distributed solve (docs/METHOD.md §9.8): this process holds `piece` of the image, and
+  /// Run's image has the whole image's geometry (piece.Whole) and non-null data; its values
+  /// are read only through the piece (piece.Image). Every process runs the same
+  /// schedule on the same mesh (so every process ends with the same surface); each level's
+  /// field is computed per piece (ComputePieceForce), the forces are exchanged per colour
+  /// (OwnerForceExchange) and the region force's voxel count is summed. An empty or invalid
+  /// piece on any process fails the run on all of them. Not distributed yet (refused with a
+  /// message on every process): sigma_0 from a start that does not span the image (give Sigma
+  /// or SigmaFraction) and an estimated intensity range (give IntensityRange, or RegionWeight
+  /// 0). No progress callback may abort one process alone.
+  void SetDistribution(const ImagePiece& piece, const PieceReductions& reduce)
+  {
+    this->Distributed = true;
+    this->Piece = piece;
+    this->Reduce = reduce;
+  }
+  /// The ghost voxels along axis a that a distributed solve of `whole` with parameters p needs
+  /// around each piece: those of the largest sigma computed on the image's own grid, with
+  /// sigma_0 as p gives it (or extent / 6 for a start spanning the image).
+  static int DistributedGhostVoxels(
+    const MultilevelParameters& p, const ImageGeometry& whole, int a);
+
   /// Deform `mesh` (any closed or open manifold triangle mesh, Points/Triangles set)
   /// toward the boundaries of the volume `image` (read in place, in its own type).
   /// Returns false with a message on bad input or a broken invariant; the mesh is then
@@ -268,6 +291,11 @@ private:
   InitialSigmaChoice SigmaChoice;
   double UsedRange[2] = { 0, 0 };
   bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
+  bool Distributed = false;       ///< SetDistribution was called
+  ImagePiece Piece;
+  PieceReductions Reduce;
+  /// What a distributed run cannot do yet (see SetDistribution); empty when it can.
+  std::string DistributionProblem(const ImageGeometry& whole, const TriangleMesh& mesh) const;
   struct RunState;
   // Run's steps, in order.
   void ClearResults();

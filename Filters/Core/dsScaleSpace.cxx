@@ -331,6 +331,45 @@ EdgeStatistics EdgeMagnitude(
   return s;
 }
 
+/// The largest g over the voxels [MaximumBegin, MaximumEnd) of `parameters` (a piece's own,
+/// ScaleSpaceParameters::GradientMaximum), in double as EdgeMagnitude computes it.
+double BoxGradientMaximum(const float* smooth, const int dims[3], const GradientToWorld& toWorld,
+  const ScaleSpaceParameters& parameters)
+{
+  const int* b = parameters.MaximumBegin;
+  const int* e = parameters.MaximumEnd;
+  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
+  double gm = 0.0;
+  for (int k = std::max(0, b[2]); k < std::min(dims[2], e[2]); ++k)
+  {
+    ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
+      [&](std::ptrdiff_t v, const double gw[3])
+      {
+        const std::ptrdiff_t j = (v - k * sz) / nx, i = v - k * sz - j * nx;
+        if (j >= b[1] && j < e[1] && i >= b[0] && i < e[0])
+        {
+          gm = std::max(gm, std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]));
+        }
+      });
+  }
+  return gm;
+}
+
+/// The edge statistics of G_sigma*f (EdgeMagnitude, g into `g` when given) with, on a piece of a
+/// distributed image, the normalising maximum of g over every piece
+/// (ScaleSpaceParameters::GradientMaximum). In the caller's SMP scope.
+EdgeStatistics EdgeStatisticsOf(const float* smooth, const int dims[3],
+  const GradientToWorld& toWorld, float* g, const ScaleSpaceParameters& parameters)
+{
+  EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, g);
+  if (parameters.GradientMaximum)
+  {
+    stats.GradientMax =
+      parameters.GradientMaximum(BoxGradientMaximum(smooth, dims, toWorld, parameters));
+  }
+  return stats;
+}
+
 /// The gains of P = -(Edge g + Image s + Offset) (docs/METHOD.md §2, with the optional
 /// normalisation of both terms), g divided by gNorm when normalised.
 PotentialGains GainsOf(
@@ -451,7 +490,7 @@ bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParamete
       // scratch for the local edge normalisation.
       float* smooth = force;
       SmoothImage(image, sv, smooth);
-      const EdgeStatistics stats = EdgeMagnitude(smooth, dims, toWorld, potential);
+      const EdgeStatistics stats = EdgeStatisticsOf(smooth, dims, toWorld, potential, parameters);
       float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
       CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
 
@@ -513,7 +552,7 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
     {
       SmoothImage(image, sv, smooth);
       const EdgeStatistics stats =
-        EdgeMagnitude(smooth, image.Geometry.Dimensions, toWorld, nullptr);
+        EdgeStatisticsOf(smooth, image.Geometry.Dimensions, toWorld, nullptr, parameters);
       gains = GainsOf(stats, stats.GradientMax, parameters);
     });
   if (!std::isfinite(gains.Edge) || !std::isfinite(gains.Image) || !std::isfinite(gains.Offset))

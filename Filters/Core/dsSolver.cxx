@@ -439,21 +439,46 @@ inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveN
 
 void Solver::UpdateVertex(int v)
 {
+  Vec3 force{ 0, 0, 0 };
+  Vec3 normal{ 0, 0, 0 };
+  int outside = 0;
+  bool haveNormal = false;
+  const bool external = this->HasExternalForce();
+  if (external)
+  {
+    force = this->ExternalForce(v, outside, normal, haveNormal);
+  }
+  this->CorrectVertex(v, external, force, outside, haveNormal ? &normal : nullptr);
+}
+
+void Solver::SampleVertexForce(int v, VertexForce& out) const
+{
+  Vec3 normal;
+  bool haveNormal = false;
+  out.Position = this->LocalPoints[v];
+  out.Outside = 0;
+  out.Force = { 0, 0, 0 };
+  if (this->HasExternalForce())
+  {
+    // The region force's normal is not kept: phase (c) recomputes it when the rule needs it
+    // (the same value: no vertex of the colour moves v's fan).
+    out.Force = this->ExternalForce(v, out.Outside, normal, haveNormal);
+  }
+}
+
+inline void Solver::CorrectVertex(
+  int v, bool external, const Vec3& force, int outside, const Vec3* normal)
+{
   Vec3 u;
   const Vec3 internal = this->InternalCorrection(v, u);
 
-  // External force and the docs/METHOD.md §5 rule (dsSelfIntersectionRule.h).
-  Vec3 force{ 0, 0, 0 };
+  // The docs/METHOD.md §5 rule on the external force (dsSelfIntersectionRule.h).
   Vec3 applied{ 0, 0, 0 };
-  int outside = 0;
-  if ((this->Field && this->Sampler) || this->RegionImage.Data)
+  if (external)
   {
-    Vec3 normal{ 0, 0, 0 };
-    bool haveNormal = false;
-    force = this->ExternalForce(v, outside, normal, haveNormal);
     applied = !this->Parameters.ProjectExternalForce
       ? force
-      : SelfIntersectionRule(force, u, [&]() { return haveNormal ? normal : this->FanNormal(v); });
+      : SelfIntersectionRule(force, u, [&]() { return normal ? *normal : this->FanNormal(v); });
   }
 
   const double gamma = this->Parameters.Gamma;
@@ -465,6 +490,29 @@ void Solver::UpdateVertex(int v)
   result.ErrorIndicator = gamma * Norm(internal);
   result.Displacement = Norm(c);
   result.Force = Norm(force);
+}
+
+void Solver::SampleRange(int colorBegin, int first, int last)
+{
+  for (int k = first; k < last; ++k)
+  {
+    this->SampleVertexForce(this->LocalColors.Vertices[k], this->ColorForces[k - colorBegin]);
+  }
+}
+
+void Solver::CorrectRange(int colorBegin, int first, int last)
+{
+  for (int k = first; k < last; ++k)
+  {
+    const VertexForce& f = this->ColorForces[k - colorBegin];
+    this->CorrectVertex(this->LocalColors.Vertices[k], true, f.Force, f.Outside, nullptr);
+  }
+}
+
+void Solver::ExchangeColor(int color)
+{
+  const int count = this->LocalColors.Offsets[color + 1] - this->LocalColors.Offsets[color];
+  this->Exchange(this->ColorForces.data(), count);
 }
 
 Vec3 Solver::FanNormal(int v) const
@@ -578,6 +626,15 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   {
     return 0;
   }
+  if (this->Exchange)
+  {
+    int largest = 0;
+    for (int c = 0; c < this->NumberOfColors(); ++c)
+    {
+      largest = std::max(largest, this->Colors.Offsets[c + 1] - this->Colors.Offsets[c]);
+    }
+    this->ColorForces.resize(largest);
+  }
   const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
   if (numThreads <= 1 || this->Colors.Offsets.back() < 256)
   {
@@ -596,9 +653,23 @@ int Solver::SerialSweeps(
   this->RefreshLocal(0, n);
   for (int sweep = 1;; ++sweep)
   {
-    for (int k = 0; k < total; ++k)
+    if (this->Exchange)
     {
-      this->UpdateVertex(this->LocalColors.Vertices[k]);
+      for (int color = 0; color < this->NumberOfColors(); ++color)
+      {
+        const int begin = this->LocalColors.Offsets[color];
+        const int end = this->LocalColors.Offsets[color + 1];
+        this->SampleRange(begin, begin, end);
+        this->ExchangeColor(color);
+        this->CorrectRange(begin, begin, end);
+      }
+    }
+    else
+    {
+      for (int k = 0; k < total; ++k)
+      {
+        this->UpdateVertex(this->LocalColors.Vertices[k]);
+      }
     }
     for (int c = 0; c < numChunks; ++c)
     {
@@ -613,8 +684,9 @@ int Solver::SerialSweeps(
 }
 
 /// The parallel sweeps as steps of a StepScheduler: step 0 copies the mesh into the local
-/// layout; then per sweep one step per colour (its vertices updated in place) and one for
-/// the statistics, which ends with the caller's callback; the step after the last sweep
+/// layout; then per sweep one step per colour (its vertices updated in place; with a force
+/// exchange two: the forces sampled, ending with the exchange, then the vertices corrected) and
+/// one for the statistics, which ends with the caller's callback; the step after the last sweep
 /// copies the results back to the mesh.
 class Solver::SweepJob : public StepScheduler::Job
 {
@@ -626,7 +698,8 @@ public:
     , MaxSweeps(maxSweeps)
     , AfterSweep(afterSweep)
     , Points(solver.Mesh->NumberOfPoints())
-    , StepsPerSweep(solver.NumberOfColors() + 1)
+    , PhasesPerColor(solver.Exchange ? 2 : 1)
+    , StepsPerSweep(solver.NumberOfColors() * PhasesPerColor + 1)
     , Chunks((solver.Colors.Offsets.back() + StatisticsChunk - 1) / StatisticsChunk)
   {
   }
@@ -640,7 +713,7 @@ public:
       this->Finishing ? this->S.CopyOut(first, last) : this->S.RefreshLocal(first, last);
       return;
     }
-    const int phase = static_cast<int>((step - 1) % this->StepsPerSweep);
+    const int phase = this->Phase(step);
     if (phase == this->StepsPerSweep - 1)
     {
       StepScheduler::BlockRange(
@@ -651,22 +724,45 @@ public:
       }
       return;
     }
-    const int cBegin = this->S.LocalColors.Offsets[phase];
+    const int color = phase / this->PhasesPerColor;
+    const int cBegin = this->S.LocalColors.Offsets[color];
     StepScheduler::BlockRange(
-      this->S.LocalColors.Offsets[phase + 1] - cBegin, block, this->Blocks, first, last);
-    for (int k = cBegin + first; k < cBegin + last; ++k)
+      this->S.LocalColors.Offsets[color + 1] - cBegin, block, this->Blocks, first, last);
+    if (this->PhasesPerColor == 1)
     {
-      this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
+      for (int k = cBegin + first; k < cBegin + last; ++k)
+      {
+        this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
+      }
+    }
+    else if (phase % 2 == 0)
+    {
+      this->S.SampleRange(cBegin, cBegin + first, cBegin + last);
+    }
+    else
+    {
+      this->S.CorrectRange(cBegin, cBegin + first, cBegin + last);
     }
   }
 
   bool HasEnd(long long step) const override
   {
-    return step > 0 && (step - 1) % this->StepsPerSweep == this->StepsPerSweep - 1;
+    if (step == 0)
+    {
+      return false;
+    }
+    const int phase = this->Phase(step);
+    return phase == this->StepsPerSweep - 1 || (this->PhasesPerColor == 2 && phase % 2 == 0);
   }
 
-  bool EndStep(long long) override
+  bool EndStep(long long step) override
   {
+    const int phase = this->Phase(step);
+    if (phase != this->StepsPerSweep - 1)
+    {
+      this->S.ExchangeColor(phase / 2); // every force of the colour is sampled
+      return false;
+    }
     // Every chunk is summed: combine and report; the other threads wait meanwhile.
     ++this->SweepsDone;
     this->Finishing = !this->AfterSweep(this->S.CombineStatistics(this->Chunks)) ||
@@ -677,10 +773,12 @@ public:
   int SweepsDone = 0;
 
 private:
+  int Phase(long long step) const { return static_cast<int>((step - 1) % this->StepsPerSweep); }
+
   Solver& S;
   const int Blocks, MaxSweeps;
   const std::function<bool(const SweepStatistics&)>& AfterSweep;
-  const int Points, StepsPerSweep;
+  const int Points, PhasesPerColor, StepsPerSweep;
   std::vector<ChunkSums> Chunks;
   bool Finishing = false; ///< the last step: write the results back to the mesh
 };

@@ -53,6 +53,23 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SweepStatistics
   int OutsideVertices = 0;   ///< vertices that sampled no force because they lie outside the volume
 };
 
+/// The external force of one vertex of the colour being swept, between its computation and its
+/// use (Solver::SetForceExchange).
+struct DEFORMABLESURFACEFILTERS_EXPORT VertexForce
+{
+  Vec3 Position{ 0, 0, 0 }; ///< where the force was sampled (world coordinates)
+  /// F before the docs/METHOD.md §5 rule: the edge force (forceScale applied) plus the region
+  /// force.
+  Vec3 Force{ 0, 0, 0 };
+  int Outside = 0; ///< 1: no edge force was sampled, the vertex lies outside the field's volume
+};
+
+/// Called once per colour of every sweep with the forces of that colour's vertices (in the
+/// solver's order, the same for equal meshes), after they were sampled and before any is
+/// applied; it may replace Force and Outside. A distributed solve passes this to combine the
+/// forces that each process sampled in its piece of the volume (vtkDeformableSurfaceFilter).
+using ForceExchange = std::function<void(VertexForce* forces, int count)>;
+
 class DEFORMABLESURFACEFILTERS_EXPORT Solver
 {
 public:
@@ -92,6 +109,17 @@ public:
     this->RegionHigh = high;
     this->RegionScale = scale;
   }
+
+  /// The hook between sampling and applying the external forces of each colour (see
+  /// ForceExchange); empty (the default) = none. With a hook a colour is swept in three
+  /// phases: (a) the forces of all its vertices are sampled, (b) the hook is called once, on
+  /// one of the solver's threads while the others wait, (c) every vertex is corrected with
+  /// its force. A vertex's force depends only on its own position and its fan normal, which no
+  /// vertex of its colour moves (the distance-2 colouring), so a hook that changes nothing
+  /// gives results bit-identical to a sweep without one, for any number of threads. The hook
+  /// is called even when the solver has no force field of its own (its vertices then carry
+  /// zero forces, Outside 0).
+  void SetForceExchange(ForceExchange exchange) { this->Exchange = std::move(exchange); }
 
   /// One Gauss-Seidel sweep: every vertex not on an open boundary is corrected once,
   /// in place: c = gamma (tau c1 + (1 - tau) alpha c2 + F_projected), p <- p + c.
@@ -153,6 +181,18 @@ private:
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
   /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);
+  /// Phase (a) of a colour with a force exchange: v's force into `out`.
+  void SampleVertexForce(int v, VertexForce& out) const;
+  /// Phase (c), and the second half of UpdateVertex: correct v with the external force
+  /// `force` (applied through the §5 rule when `external`); `normal` is v's fan normal when
+  /// already known, else nullptr.
+  void CorrectVertex(int v, bool external, const Vec3& force, int outside, const Vec3* normal);
+  /// Phases (a) and (c) on the vertices [first, last) of LocalColors.Vertices, of the colour
+  /// whose vertices start at `colorBegin` there (ColorForces[k - colorBegin] is vertex k's).
+  void SampleRange(int colorBegin, int first, int last);
+  void CorrectRange(int colorBegin, int first, int last);
+  /// Phase (b): the hook on the colour's forces.
+  void ExchangeColor(int color);
   /// The internal part of the correction of local vertex v, tau c1 + (1 - tau) alpha c2
   /// (docs/METHOD.md §3-4), and its umbrella vector U(v) in `umbrella`.
   Vec3 InternalCorrection(int v, Vec3& umbrella) const;
@@ -160,6 +200,8 @@ private:
   /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
   /// region force's fan normal is returned in `normal` (haveNormal) for the rule to reuse.
   Vec3 ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const;
+  /// An edge field or a region force is set (else the external force is zero).
+  bool HasExternalForce() const { return (this->Field && this->Sampler) || this->RegionImage.Data; }
 
   SolverParameters Parameters;
   TriangleMesh* Mesh = nullptr;
@@ -171,7 +213,9 @@ private:
   const ForceField* Field = nullptr;
   bool (*Sampler)(const ForceField*, const double*, double*) = nullptr;
   double ForceScale = 1.0;
-  ImageView RegionImage; ///< Data nullptr: no region force
+  ForceExchange Exchange;
+  std::vector<VertexForce> ColorForces; ///< phase (a) to (c) of one colour, with an exchange
+  ImageView RegionImage;                ///< Data nullptr: no region force
   double RegionLow = 0, RegionHigh = 0, RegionScale = 0;
   bool RegionOutwardOnly = false;
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.

@@ -1,0 +1,385 @@
+#include "dsPieceField.h"
+
+#include "dsGaussianSmoother.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dsurf
+{
+ImageGeometry ImagePiece::HeldGeometry() const
+{
+  ImageGeometry g = this->Whole;
+  double first[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    g.Dimensions[a] = this->Held.End[a] - this->Held.Begin[a];
+    first[a] = this->Held.Begin[a];
+  }
+  this->Whole.IndexToWorld(first, g.Origin);
+  return g;
+}
+
+bool ImagePiece::OwnsCell(const double x[3]) const
+{
+  double ijk[3];
+  this->Whole.WorldToIndex(x, ijk);
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lastCell = std::max(0, this->Whole.Dimensions[a] - 2);
+    const double c = std::min(lastCell, std::max(0.0, std::floor(ijk[a])));
+    // Cells Begin .. End - 2: the cell from the shared border voxel on is the next piece's.
+    if (!(c >= this->Owned.Begin[a] && c <= std::max(this->Owned.Begin[a], this->Owned.End[a] - 2)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+VoxelBox ImagePiece::CountedVoxels() const
+{
+  VoxelBox counted = this->Owned;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (counted.End[a] < this->Whole.Dimensions[a])
+    {
+      counted.End[a] = std::max(counted.Begin[a], counted.End[a] - 1);
+    }
+  }
+  return counted;
+}
+
+int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a)
+{
+  // Two voxels for the central differences of g and of P, and the Gaussian's reach
+  // (dsGaussianSmoother.h): the sampled kernel's radius, so the owned voxels get the serial
+  // values bit for bit. The recursive filter's start reaches along the whole axis: ghosts of
+  // 6, 8, 10, 12, 14 sigma left 4e-4, 8e-6, 3e-6, 1e-6, 4e-7 of the largest force (measured),
+  // and the sweeps' projection rule (a switch on the sign of F . U) and the refinement's marks
+  // turned 1e-7 into 2e-5 of the coordinates and a few percent of the vertices; only the
+  // whole axis gives the serial field.
+  const double s = sigma / whole.Spacing[a];
+  if (!(s < GaussianRecursiveFromSigmaVoxels))
+  {
+    return whole.Dimensions[a];
+  }
+  return static_cast<int>(std::ceil(4.0 * s)) + 2;
+}
+
+namespace
+{
+/// The voxels of both boxes.
+VoxelBox Intersect(const VoxelBox& a, const VoxelBox& b)
+{
+  VoxelBox r;
+  for (int k = 0; k < 3; ++k)
+  {
+    r.Begin[k] = std::max(a.Begin[k], b.Begin[k]);
+    r.End[k] = std::max(r.Begin[k], std::min(a.End[k], b.End[k]));
+  }
+  return r;
+}
+
+/// Calls visit(i, j, k, value) for the piece's voxels in `voxels` (whole-image indices), each
+/// value as float (AsFloat), as BlockMeans and CountVoxelsInRange read it.
+template <typename Visit>
+void ForEachHeldVoxel(const ImagePiece& piece, const VoxelBox& voxels, Visit&& visit)
+{
+  const int* h = piece.Held.Begin;
+  VisitValues(piece.Image,
+    [&](const auto* values)
+    {
+      for (int k = voxels.Begin[2]; k < voxels.End[2]; ++k)
+      {
+        for (int j = voxels.Begin[1]; j < voxels.End[1]; ++j)
+        {
+          const auto* row = values + piece.Image.RowOffset(j - h[1], k - h[2]);
+          for (int i = voxels.Begin[0]; i < voxels.End[0]; ++i)
+          {
+            visit(i, j, k, AsFloat(row[i - h[0]]));
+          }
+        }
+      }
+    });
+}
+
+/// Coarse scales: the block means of every piece, summed over the processes, give each the
+/// block means of the cut, and from them the serial coarse field.
+bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
+  const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
+  std::string* error)
+{
+  ImageGeometry cutGeometry = piece.Whole;
+  const AxisBlocks blocks[3] = { AxisBlocks(cut.End[0] - cut.Begin[0], f),
+    AxisBlocks(cut.End[1] - cut.Begin[1], f), AxisBlocks(cut.End[2] - cut.Begin[2], f) };
+  ImageGeometry coarseGeometry = piece.Whole;
+  double first[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    coarseGeometry.Dimensions[a] = blocks[a].Count;
+    coarseGeometry.Spacing[a] = f * piece.Whole.Spacing[a];
+    first[a] = cut.Begin[a] + blocks[a].First;
+    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
+  }
+  piece.Whole.IndexToWorld(first, coarseGeometry.Origin);
+  const std::size_t m = static_cast<std::size_t>(coarseGeometry.NumberOfVoxels());
+  // Each block's mean comes from the piece counting its first voxel, summed there in the
+  // serial order (so in the same double roundings), and 0 from the others: the sum over the
+  // processes is the serial mean exactly. The last entry counts the pieces that lacked a block.
+  std::vector<double> means(m + 1, 0.0);
+  const VoxelBox counted = Intersect(piece.CountedVoxels(), cut);
+  std::size_t b = 0;
+  for (int K = 0; K < blocks[2].Count; ++K)
+    for (int J = 0; J < blocks[1].Count; ++J)
+      for (int I = 0; I < blocks[0].Count; ++I, ++b)
+      {
+        VoxelBox block;
+        const int index[3] = { I, J, K };
+        for (int a = 0; a < 3; ++a)
+        {
+          blocks[a].Range(index[a], block.Begin[a], block.End[a]);
+          block.Begin[a] += cut.Begin[a];
+          block.End[a] += cut.Begin[a];
+        }
+        VoxelBox corner = block;
+        for (int a = 0; a < 3; ++a)
+        {
+          corner.End[a] = corner.Begin[a] + 1;
+        }
+        if (!counted.Contains(corner))
+        {
+          continue;
+        }
+        if (!piece.Held.Contains(block))
+        {
+          means[m] = 1.0;
+          continue;
+        }
+        double sum = 0.0;
+        int count = 0;
+        ForEachHeldVoxel(piece, block,
+          [&](int, int, int, float v)
+          {
+            sum += v;
+            ++count;
+          });
+        means[b] = sum / count;
+      }
+  reduce.Sum(means);
+  if (means[m] > 0.0)
+  {
+    *error = "a piece holds too few ghost layers for the blocks of sigma " +
+      std::to_string(parameters.Sigma) + " (" + std::to_string(2 * f) + " voxels needed)";
+    return false;
+  }
+  std::vector<float> coarse(m);
+  for (std::size_t c = 0; c < m; ++c)
+  {
+    coarse[c] = static_cast<float>(means[c]);
+  }
+  ScaleSpaceParameters remaining = parameters;
+  remaining.Sigma = RemainingSigma(parameters.Sigma, cutGeometry, f);
+  if (!ComputeScaleSpaceForce(coarse.data(), coarseGeometry, remaining, out, error))
+  {
+    return false;
+  }
+  out.Sigma = parameters.Sigma;
+  out.Image = piece.Whole;
+  return true;
+}
+
+/// The owned voxels of `cut` and their ghosts, or an empty box (with `error`) when the piece
+/// does not hold them all.
+VoxelBox FineRegion(const ImagePiece& piece, const VoxelBox& cut, double sigma, std::string& error)
+{
+  VoxelBox region = Intersect(piece.Owned, cut);
+  for (int a = 0; a < 3; ++a)
+  {
+    const int ghost = PieceGhostVoxels(sigma, piece.Whole, a);
+    region.Begin[a] = std::max(cut.Begin[a], region.Begin[a] - ghost);
+    region.End[a] = std::min(cut.End[a], region.End[a] + ghost);
+  }
+  if (!piece.Held.Contains(region))
+  {
+    error = "the piece holds too few ghost layers for sigma " + std::to_string(sigma) + " (" +
+      std::to_string(PieceGhostVoxels(sigma, piece.Whole, 0)) + " voxels needed)";
+    return VoxelBox();
+  }
+  return region;
+}
+
+/// Fine scales: the field on the owned voxels and their ghosts, normalised by the largest edge
+/// strength of all pieces. A failed piece still takes part in the reduction (with
+/// an infinite maximum, which tells the others).
+bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
+  const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
+  std::string* error)
+{
+  std::string problem;
+  if (Intersect(piece.Owned, cut).NumberOfVoxels() == 0)
+  {
+    // Nothing of the box here: no field (its vertices are other pieces'), and a maximum of 0.
+    const double gMax = reduce.Max(0.0);
+    *error = std::isfinite(gMax) ? std::string() : "another process's piece failed";
+    return std::isfinite(gMax);
+  }
+  const VoxelBox region = FineRegion(piece, cut, parameters.Sigma, problem);
+  // The region as a view of the piece's values (read in place, in their own type), placed
+  // by the whole image's geometry as the serial field's box is.
+  VoxelBox inHeld = region;
+  for (int a = 0; a < 3; ++a)
+  {
+    inHeld.Begin[a] = problem.empty() ? region.Begin[a] - piece.Held.Begin[a] : 0;
+    inHeld.End[a] = problem.empty() ? region.End[a] - piece.Held.Begin[a] : 0;
+  }
+  ImageView regionImage = piece.Image.Box(inHeld);
+  double first[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = region.Begin[a];
+  }
+  piece.Whole.IndexToWorld(first, regionImage.Geometry.Origin);
+  // The serial normalisation: by the largest g of the whole image (of the cut), the largest of
+  // every piece's owned voxels (their g is the serial one).
+  ScaleSpaceParameters pieceParameters = parameters;
+  const VoxelBox owned = Intersect(piece.Owned, cut);
+  for (int a = 0; a < 3; ++a)
+  {
+    pieceParameters.MaximumBegin[a] = owned.Begin[a] - region.Begin[a];
+    pieceParameters.MaximumEnd[a] = owned.End[a] - region.Begin[a];
+  }
+  bool reduced = false;
+  double gMax = 0.0;
+  pieceParameters.GradientMaximum = [&](double ownedMaximum)
+  {
+    reduced = true;
+    gMax = reduce.Max(ownedMaximum);
+    return gMax;
+  };
+  if (problem.empty())
+  {
+    ComputeScaleSpaceForce(regionImage, pieceParameters, out, &problem);
+  }
+  if (!reduced) // failed before the normalisation: the others still wait for this maximum
+  {
+    gMax = reduce.Max(std::numeric_limits<double>::infinity());
+  }
+  if (!problem.empty() || !std::isfinite(gMax))
+  {
+    *error = problem.empty() ? "another process's piece failed" : problem;
+    out = ForceField();
+    return false;
+  }
+  out.Sigma = parameters.Sigma;
+  out.Image = piece.Whole;
+  return true;
+}
+} // namespace
+
+bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
+  const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
+  std::string* error)
+{
+  out = ForceField();
+  std::string problem = ScaleSpaceProblem(piece.Whole, parameters.Sigma);
+  if (problem.empty() &&
+    (parameters.ImageWeight != 0.0 || !(parameters.EdgeWeight > 0.0) ||
+      !parameters.NormalizePotential ||
+      parameters.EdgeNormalization != EdgeNormalization::GlobalMaximum))
+  {
+    problem = "a distributed image supports the default potential only (EdgeWeight > 0, "
+              "ImageWeight 0, the global maximum normalisation)";
+  }
+  if (!problem.empty()) // the same on every process: none makes a reduction
+  {
+    if (error)
+    {
+      *error = problem;
+    }
+    return false;
+  }
+  // The cut and the block size as ComputeForceAtScale chooses them.
+  const VoxelBox cut =
+    2 * box.NumberOfVoxels() <= piece.Whole.NumberOfVoxels() ? box : VoxelBox::Whole(piece.Whole);
+  ImageGeometry cutGeometry = piece.Whole;
+  for (int a = 0; a < 3; ++a)
+  {
+    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
+  }
+  const int f = DecimationFactor(parameters.Sigma, cutGeometry);
+  std::string message;
+  const bool ok = f > 1 ? CoarsePieceForce(piece, cut, f, parameters, reduce, out, &message)
+                        : FinePieceForce(piece, cut, parameters, reduce, out, &message);
+  if (!ok && error)
+  {
+    *error = message;
+  }
+  return ok;
+}
+
+std::string PieceProblem(const ImagePiece& piece)
+{
+  if (piece.Owned.NumberOfVoxels() <= 0)
+  {
+    return "its piece of the image is empty";
+  }
+  const ImageGeometry held = piece.HeldGeometry();
+  if (!piece.Image.Data || !piece.Held.Contains(piece.Owned) ||
+    !std::equal(held.Dimensions, held.Dimensions + 3, piece.Image.Geometry.Dimensions) ||
+    !VoxelBox::Whole(piece.Whole).Contains(piece.Held))
+  {
+    return "its piece of the image is invalid (no values, or not the voxels it should hold)";
+  }
+  return std::string();
+}
+
+std::string CheckPieces(const ImagePiece& piece, const PieceReductions& reduce)
+{
+  const std::string mine = PieceProblem(piece);
+  const double failed = reduce.Max(mine.empty() ? 0.0 : 1.0);
+  if (failed == 0.0)
+  {
+    return std::string();
+  }
+  return mine.empty() ? std::string("another process's piece of the image is empty or invalid")
+                      : mine;
+}
+
+long long CountPieceVoxelsInRange(
+  const ImagePiece& piece, double lo, double hi, const PieceReductions& reduce)
+{
+  std::vector<double> count{ 0.0 };
+  ForEachHeldVoxel(piece, piece.CountedVoxels(),
+    [&](int, int, int, float v) { count[0] += v >= lo && v <= hi ? 1.0 : 0.0; });
+  reduce.Sum(count);
+  return static_cast<long long>(count[0]);
+}
+
+ForceExchange OwnerForceExchange(const ImagePiece& piece, const PieceReductions& reduce)
+{
+  return [piece, reduce](VertexForce* forces, int count)
+  {
+    // Per vertex: the force and 1 when this process sampled it, else zeros.
+    std::vector<double> v(4 * static_cast<std::size_t>(count), 0.0);
+    for (int i = 0; i < count; ++i)
+    {
+      if (piece.OwnsCell(forces[i].Position.data()))
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          v[4 * i + a] = forces[i].Force[a];
+        }
+        v[4 * i + 3] = forces[i].Outside ? 0.0 : 1.0;
+      }
+    }
+    reduce.Sum(v);
+    for (int i = 0; i < count; ++i)
+    {
+      forces[i].Force = { v[4 * i], v[4 * i + 1], v[4 * i + 2] };
+      forces[i].Outside = v[4 * i + 3] > 0.0 ? 0 : 1;
+    }
+  };
+}
+} // namespace dsurf

@@ -1,0 +1,328 @@
+// The field of a piece of a distributed image (dsPieceField.h), with the processes emulated by
+// threads (EmulatedRanks.h): a 49 x 47 x 160 image of two blurred objects and noise, split into
+// 2 and 3 slabs along z as VTK splits an image (neighbouring pieces share their border voxels),
+// each rank holding its slab and the ghost layers PieceGhostVoxels() asks for.
+// - The piece fields equal the whole image's field (ComputeForceAtScale) on the owned voxels to
+//   1e-12 of the largest force: a fine sigma (sampled Gaussian: a few ghost layers), a middle
+//   one (recursive Gaussian: the whole axis), a coarse one (block means summed over the ranks,
+//   twice the block size of ghosts), over the whole image and over a box (a later level's
+//   neighbourhood); the same for a uint16 image, its pieces read in their own type.
+// - With the sampled Gaussian and on coarse grids no rank holds the whole image.
+// - A single-level solve on every rank with its piece field and OwnerForceExchange equals the
+//   serial solve on the whole field (coordinates to 1e-12 relative).
+// - Bad input: a rank holding too few ghost layers makes every rank fail with a message, none
+//   waiting in a reduction (a hang would hit the ctest timeout); a non-default potential is
+//   refused on every rank.
+#include "DSTestHelpers.h"
+#include "EmulatedRanks.h"
+#include "TestSolverMeshes.h"
+
+#include "dsFieldGrid.h"
+#include "dsPieceField.h"
+#include "dsSolver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+using namespace dsurf;
+
+namespace
+{
+ImageGeometry Geometry()
+{
+  ImageGeometry g;
+  g.Dimensions[0] = 49;
+  g.Dimensions[1] = 47;
+  g.Dimensions[2] = 160;
+  g.Spacing[0] = 1.0;
+  g.Spacing[1] = 1.1;
+  g.Spacing[2] = 0.9;
+  g.Origin[0] = -3;
+  g.Origin[1] = 2;
+  g.Origin[2] = 5;
+  return g;
+}
+
+/// A soft ball and a dimmer soft cube, with deterministic noise.
+std::vector<float> Image(const ImageGeometry& g)
+{
+  std::vector<float> v;
+  unsigned state = 12345;
+  for (int k = 0; k < g.Dimensions[2]; ++k)
+    for (int j = 0; j < g.Dimensions[1]; ++j)
+      for (int i = 0; i < g.Dimensions[0]; ++i)
+      {
+        const double x = i - 20.0, y = 1.1 * j - 26.0, z = 0.9 * k - 22.0;
+        const double ball = 1.0 / (1.0 + std::exp(std::sqrt(x * x + y * y + z * z) - 12.0));
+        const double cube = 0.5 /
+          (1.0 +
+            std::exp(
+              std::max({ std::abs(i - 38.0), std::abs(1.1 * j - 14.0), std::abs(0.9 * k - 32.0) }) -
+              5.0));
+        state = state * 1664525u + 1013904223u;
+        v.push_back(static_cast<float>(100.0 * (ball + cube) + 5.0 * (state >> 8) / 16777216.0));
+      }
+  return v;
+}
+
+/// Rank r's piece of `ranks` slabs along z with the ghosts sigma needs (the holding itself is a
+/// copy of those voxels, in the image's own type: what a parallel reader gives the rank).
+template <typename T>
+ImagePiece Slab(const ImageGeometry& g, const std::vector<T>& image, int r, int ranks, double sigma,
+  std::vector<T>& held, int ghostOverride = -1)
+{
+  ImagePiece piece;
+  piece.Whole = g;
+  piece.Owned = VoxelBox::Whole(g);
+  const int cells = g.Dimensions[2] - 1;
+  piece.Owned.Begin[2] = cells * r / ranks;
+  piece.Owned.End[2] = cells * (r + 1) / ranks + 1; // the shared border voxel included
+  piece.Held = piece.Owned;
+  for (int a = 0; a < 3; ++a)
+  {
+    // Coarse fields need twice the block size.
+    const int f = DecimationFactor(sigma, g);
+    const int ghost = ghostOverride >= 0 ? ghostOverride
+      : f > 1                            ? 2 * f
+                                         : PieceGhostVoxels(sigma, g, a);
+    piece.Held.Begin[a] = std::max(0, piece.Held.Begin[a] - ghost);
+    piece.Held.End[a] = std::min(g.Dimensions[a], piece.Held.End[a] + ghost);
+  }
+  held.clear();
+  const int nx = g.Dimensions[0], ny = g.Dimensions[1];
+  for (int k = piece.Held.Begin[2]; k < piece.Held.End[2]; ++k)
+    for (int j = piece.Held.Begin[1]; j < piece.Held.End[1]; ++j)
+      for (int i = piece.Held.Begin[0]; i < piece.Held.End[0]; ++i)
+      {
+        held.push_back(image[i + nx * (j + static_cast<std::size_t>(ny) * k)]);
+      }
+  piece.Image = ImageView::Of(held.data(), piece.HeldGeometry());
+  return piece;
+}
+
+PieceReductions ReductionsOf(dstest::EmulatedRanks& ranks, int r)
+{
+  PieceReductions reduce;
+  reduce.Sum = [&ranks, r](std::vector<double>& v) { ranks.Sum(r, v); };
+  reduce.Max = [&ranks, r](double v) { return ranks.Max(r, v); };
+  return reduce;
+}
+
+/// Largest |F_piece - F_whole| over the world points of the piece's owned voxels in `box`,
+/// sampled in both fields, and the largest |F_whole| there.
+void CompareOnOwned(const ForceField& whole, const ForceField& piece, const ImagePiece& p,
+  const VoxelBox& box, double& maxDiff, double& maxForce, int& missing)
+{
+  for (int k = std::max(p.Owned.Begin[2], box.Begin[2]); k < std::min(p.Owned.End[2], box.End[2]);
+       ++k)
+    for (int j = box.Begin[1]; j < box.End[1]; ++j)
+      for (int i = box.Begin[0]; i < box.End[0]; ++i)
+      {
+        const double ijk[3] = { double(i), double(j), double(k) };
+        double x[3], a[3], b[3];
+        p.Whole.IndexToWorld(ijk, x);
+        const bool inWhole = whole.SampleForce(x, a);
+        const bool inPiece = piece.SampleForce(x, b);
+        missing += inWhole != inPiece;
+        for (int c = 0; c < 3; ++c)
+        {
+          maxDiff = std::max(maxDiff, std::abs(a[c] - b[c]));
+          maxForce = std::max(maxForce, std::abs(a[c]));
+        }
+      }
+}
+
+template <typename T>
+void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks, double sigma,
+  const VoxelBox& box, bool pieceSmaller, const std::string& label)
+{
+  ScaleSpaceParameters parameters;
+  parameters.Sigma = sigma;
+  parameters.NumberOfThreads = 1;
+  ForceField whole;
+  std::string error;
+  DS_CHECK(
+    ComputeForceAtScale(ImageView::Of(image.data(), g), box, parameters, whole, &error), error);
+  dstest::EmulatedRanks ranks(nRanks);
+  std::vector<double> diff(nRanks, 0.0), force(nRanks, 0.0);
+  std::vector<int> missing(nRanks, 0), ok(nRanks, 0);
+  std::vector<long long> heldVoxels(nRanks, 0);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<T> held;
+      const ImagePiece piece = Slab(g, image, r, nRanks, sigma, held);
+      heldVoxels[r] = piece.Held.NumberOfVoxels();
+      ForceField field;
+      std::string message;
+      ok[r] = ComputePieceForce(piece, box, parameters, ReductionsOf(ranks, r), field, &message);
+      CompareOnOwned(whole, field, piece, box, diff[r], force[r], missing[r]);
+    });
+  const double relative = *std::max_element(diff.begin(), diff.end()) /
+    std::max(1e-300, *std::max_element(force.begin(), force.end()));
+  std::cout << label << ": held voxels per rank";
+  for (long long h : heldVoxels)
+  {
+    std::cout << " " << h;
+  }
+  std::cout << " of " << g.NumberOfVoxels() << std::endl;
+  DS_CHECK(
+    std::count(ok.begin(), ok.end(), 1) == nRanks, label + ": every rank computed its field");
+  DS_CHECK_LE(relative, 1e-12, label + ": max |F_piece - F_whole| / max |F| on the owned voxels");
+  DS_CHECK_LE(*std::max_element(missing.begin(), missing.end()), 0,
+    label + ": owned voxels inside one field and outside the other");
+  if (pieceSmaller)
+  {
+    DS_CHECK_LE(*std::max_element(heldVoxels.begin(), heldVoxels.end()), g.NumberOfVoxels() - 1,
+      label + ": voxels held by the largest piece");
+  }
+  DS_CHECK(ranks.Mismatches() == 0, label + ": the ranks reduced vectors of one size");
+}
+
+/// One level's sweeps from a sphere around the ball: serial on the whole field, and on every
+/// rank with its piece field and the owner exchange.
+void SolvesAgree(const ImageGeometry& g, const std::vector<float>& image, int nRanks, double sigma)
+{
+  ScaleSpaceParameters parameters;
+  parameters.Sigma = sigma;
+  parameters.NumberOfThreads = 1;
+  const VoxelBox box = VoxelBox::Whole(g);
+  const Vec3 centre{ 17.0, 28.0, 27.0 }; // the ball's centre in world coordinates
+  const auto sweep = [&](const ForceField& field, const ForceExchange& exchange)
+  {
+    TriangleMesh mesh = dstest::MakeIcosphere(3, 16.0, centre);
+    std::string err;
+    mesh.BuildTopology(&err);
+    Solver s;
+    SolverParameters p;
+    p.NumberOfThreads = 2;
+    s.SetParameters(p);
+    s.SetMesh(&mesh);
+    s.SetForceField(&field, mesh.MeanEdgeLength() * sigma);
+    s.SetForceExchange(exchange);
+    s.Sweeps(150, [](const SweepStatistics&) { return true; });
+    return mesh;
+  };
+  ForceField whole;
+  std::string error;
+  ComputeForceAtScale(ImageView::Of(image.data(), g), box, parameters, whole, &error);
+  const TriangleMesh serial = sweep(whole, nullptr);
+  dstest::EmulatedRanks ranks(nRanks);
+  std::vector<TriangleMesh> results(nRanks);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<float> held;
+      const ImagePiece piece = Slab(g, image, r, nRanks, sigma, held);
+      ForceField field;
+      std::string message;
+      ComputePieceForce(piece, box, parameters, ReductionsOf(ranks, r), field, &message);
+      results[r] = sweep(field, OwnerForceExchange(piece, ReductionsOf(ranks, r)));
+    });
+  double worst = 0.0, moved = 0.0;
+  for (const TriangleMesh& m : results)
+  {
+    DS_CHECK(m.NumberOfPoints() == serial.NumberOfPoints(), "same vertices");
+    for (int v = 0; v < m.NumberOfPoints() && m.NumberOfPoints() == serial.NumberOfPoints(); ++v)
+    {
+      worst = std::max(worst, Norm(m.Points[v] - serial.Points[v]) / Norm(serial.Points[v]));
+      moved = std::max(moved, std::abs(Norm(serial.Points[v] - centre) - 16.0));
+    }
+  }
+  const std::string label = std::to_string(nRanks) + " ranks, sigma " + std::to_string(sigma);
+  DS_CHECK_GE(moved, 1.0, label + ": the serial solve moved the sphere (largest |r - 16|)");
+  DS_CHECK_LE(worst, 1e-12, label + ": max |x_rank - x_serial| / |x_serial| after 150 sweeps");
+}
+
+void BadPieces(const ImageGeometry& g, const std::vector<float>& image)
+{
+  const double sigma = 4.0;
+  dstest::EmulatedRanks ranks(3);
+  std::vector<int> ok(3, 1), named(3, 0);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<float> held;
+      // Rank 1 holds its slab without ghosts.
+      const ImagePiece piece = Slab(g, image, r, 3, sigma, held, r == 1 ? 0 : -1);
+      ScaleSpaceParameters parameters;
+      parameters.Sigma = sigma;
+      parameters.NumberOfThreads = 1;
+      ForceField field;
+      std::string message;
+      ok[r] = ComputePieceForce(
+        piece, VoxelBox::Whole(g), parameters, ReductionsOf(ranks, r), field, &message);
+      named[r] =
+        message.find(r == 1 ? "too few ghost layers" : "another process") != std::string::npos;
+      if (r == 1)
+      {
+        std::cout << "rank 1 without ghosts: " << message << std::endl;
+      }
+    });
+  DS_CHECK(std::count(ok.begin(), ok.end(), 0) == 3, "a piece without ghosts fails on every rank");
+  DS_CHECK(std::count(named.begin(), named.end(), 1) == 3, "each rank says why");
+
+  std::vector<int> refused(3, 0);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<float> held;
+      const ImagePiece piece = Slab(g, image, r, 3, sigma, held);
+      ScaleSpaceParameters parameters;
+      parameters.Sigma = sigma;
+      parameters.ImageWeight = 0.5;
+      ForceField field;
+      std::string message;
+      refused[r] = !ComputePieceForce(piece, VoxelBox::Whole(g), parameters, ReductionsOf(ranks, r),
+                     field, &message) &&
+        message.find("default potential") != std::string::npos;
+    });
+  DS_CHECK(std::count(refused.begin(), refused.end(), 1) == 3,
+    "ImageWeight > 0 is refused on every rank, saying why");
+}
+} // namespace
+
+int TestPieceField(int, char*[])
+{
+  const ImageGeometry g = Geometry();
+  const std::vector<float> image = Image(g);
+  VoxelBox box; // a later level's neighbourhood: less than half the image
+  box.Begin[0] = 4;
+  box.End[0] = 40;
+  box.Begin[1] = 6;
+  box.End[1] = 44;
+  box.Begin[2] = 3;
+  box.End[2] = 35;
+  for (int nRanks : { 2, 3 })
+  {
+    const std::string n = std::to_string(nRanks) + " ranks";
+    FieldsAgree(
+      g, image, nRanks, 1.5, VoxelBox::Whole(g), true, n + ", sigma 1.5 (sampled Gaussian)");
+    FieldsAgree(
+      g, image, nRanks, 3.0, VoxelBox::Whole(g), false, n + ", sigma 3 (recursive Gaussian)");
+    FieldsAgree(g, image, nRanks, 3.0, box, false, n + ", sigma 3 on a box");
+    FieldsAgree(g, image, nRanks, 14.0, VoxelBox::Whole(g), true, n + ", sigma 14 (blocks of 3)");
+    FieldsAgree(g, image, nRanks, 14.0, box, true, n + ", sigma 14 on a box");
+    SolvesAgree(g, image, nRanks, 2.0);
+    SolvesAgree(g, image, nRanks, 3.0);
+  }
+  // The pieces read in the input's own type (no float copy): a uint16 image's piece fields
+  // equal its whole field as the float image's do.
+  std::vector<std::uint16_t> image16;
+  for (float v : image)
+  {
+    image16.push_back(static_cast<std::uint16_t>(std::lround(100.0 * v)));
+  }
+  FieldsAgree(g, image16, 3, 1.5, VoxelBox::Whole(g), true, "uint16, 3 ranks, sigma 1.5");
+  FieldsAgree(g, image16, 3, 14.0, box, true, "uint16, 3 ranks, sigma 14 on a box");
+  BadPieces(g, image);
+  return dstest::Result("TestPieceField");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestPieceField(argc, argv);
+}
