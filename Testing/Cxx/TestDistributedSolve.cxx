@@ -5,8 +5,9 @@
 // - Every default, from the box around the volume: every rank ends with the serial surface, bit
 //   for bit (the levels on the image's own grid use the recursive Gaussian: each rank holds the
 //   whole image).
-// - A start near the object with Sigma 2.5 voxels and IntensityRange given (the region force
-//   on): the serial surface bit for bit, and no rank holds the whole image.
+// - A start near the object with Sigma 2.5 voxels and the edge force alone (RegionWeight 0; the
+//   region force's exchange is TestForceExchange's): the serial surface bit for bit, and no rank
+//   holds the whole image.
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
 //   reduction: a hang would hit the ctest timeout); a start that would need sigma_0 from the
 //   image is refused on every rank.
@@ -218,9 +219,8 @@ int TestDistributedSolve(int, char*[])
   // sigma_0 = 2.5 voxels: the sampled Gaussian only, a dozen ghost layers.
   MultilevelParameters small = defaults;
   small.Sigma = 2.5;
-  small.IntensityRange[0] = 50.0;
-  small.IntensityRange[1] = 200.0;
-  SameAsSerial("a start near the capsule, Sigma 2.5 and IntensityRange given", small, near, true);
+  small.RegionWeight = 0.0;
+  SameAsSerial("a start near the capsule, Sigma 2.5, RegionWeight 0", small, near, true);
   BadInput(around, near);
   return dstest::Result("TestDistributedSolve");
 }
