@@ -29,6 +29,10 @@
  * - Derivatives are central differences (one-sided on the border) in index
  *   space, taken to world coordinates by Direction * diag(1/Spacing). Spacing,
  *   origin, extent and the direction matrix are honoured: Force is a world vector.
+ *   Force is -grad P by the chain rule, w_edge H grad s / |grad s| + w_image grad s
+ *   (with the gains of the normalisation below), H the Hessian of s = G_sigma * f from
+ *   second differences [1, -2, 1] and mixed central differences: central differences of
+ *   the sampled P would widen an edge by about a voxel (docs/METHOD.md section 6.1).
  * - NormalizePotential (default on) makes the defaults work on CT in HU, MRI in
  *   uint8 and float phantoms alike:
  *     P = -( w_edge * g / max(g) + w_image * (s - min s) / (max s - min s) ),
@@ -46,8 +50,8 @@
  * direction matrix must be a rotation (orthonormal): a shear or scale is rejected
  * with an error, as are non-finite voxel values (one NaN would spread through the
  * recursive filter). Peak memory is the input and 4 float volumes (P and Force;
- * the image converted to float, then smoothed, lives in the Force buffer until P
- * is known). The max-normalisation follows
+ * the image converted to float, then smoothed, lives in the Potential buffer and
+ * is replaced by P slice by slice, with two slices of scratch). The max-normalisation follows
  * the strongest edge: one very strong edge (metal in CT) weakens the others.
  * Bad input (no scalars, a 2-D or empty image, multi-component array, NaN/Inf
  * values, a non-rotation direction matrix, a sigma of more than 100000 voxels along an

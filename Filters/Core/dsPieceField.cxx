@@ -53,7 +53,8 @@ VoxelBox ImagePiece::CountedVoxels() const
 
 int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a)
 {
-  // Two voxels for the central differences of g and of P, and the Gaussian's reach
+  // One voxel for the differences of G_sigma * f (g and the force's chain rule read the 3^3
+  // voxels around a voxel: dsScaleSpace.h), and the Gaussian's reach
   // (dsGaussianSmoother.h): the sampled kernel's radius, so the owned voxels get the serial
   // values bit for bit. The recursive filter's start reaches along the whole axis: ghosts of
   // 6, 8, 10, 12, 14 sigma left 4e-4, 8e-6, 3e-6, 1e-6, 4e-7 of the largest force (measured),
@@ -65,7 +66,7 @@ int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a)
   {
     return whole.Dimensions[a];
   }
-  return static_cast<int>(std::ceil(4.0 * s)) + 2;
+  return static_cast<int>(std::ceil(4.0 * s)) + 1;
 }
 
 namespace

@@ -65,8 +65,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImagePiece
 
 /// Ghost voxels a fine field (block size 1) at `sigma` (world units) needs around the owned
 /// ones along axis a for the serial field bit for bit: the sampled Gaussian's radius (4 sigma,
-/// below 3 voxels of sigma) and two voxels for the central differences of the edge strength
-/// and the potential; the whole axis for the recursive Gaussian (3 voxels of sigma and more),
+/// below 3 voxels of sigma) and one voxel for the differences of G_sigma * f (the edge strength
+/// and the force's chain rule); the whole axis for the recursive Gaussian (3 voxels of sigma and more),
 /// whose start at a cut changes the field everywhere a little (see the .cxx). Coarse fields
 /// (block size f > 1) need 2 f.
 DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(

@@ -151,6 +151,13 @@ struct GradientToWorld
     gw[1] = this->J[3] * gi[0] + this->J[4] * gi[1] + this->J[5] * gi[2];
     gw[2] = this->J[6] * gi[0] + this->J[7] * gi[1] + this->J[8] * gi[2];
   }
+  /// J^T w: a world covector (the gradient of a function of the world gradient) to index space.
+  void ApplyTransposed(const double w[3], double wi[3]) const
+  {
+    wi[0] = this->J[0] * w[0] + this->J[3] * w[1] + this->J[6] * w[2];
+    wi[1] = this->J[1] * w[0] + this->J[4] * w[1] + this->J[7] * w[2];
+    wi[2] = this->J[2] * w[0] + this->J[5] * w[1] + this->J[8] * w[2];
+  }
 };
 
 // Index-space derivative along one axis at position p of n: central inside,
@@ -166,6 +173,32 @@ inline double Diff(const float* v, int p, int n, std::ptrdiff_t step)
     return static_cast<double>(v[0]) - v[-step];
   }
   return 0.5 * (static_cast<double>(v[step]) - v[-step]);
+}
+
+// Index-space second derivative along one axis at position p of n: [1, -2, 1], the border
+// value replicated past the grid's ends (as the Gaussian replicates it).
+inline double SecondDiff(const float* v, int p, int n, std::ptrdiff_t step)
+{
+  const double below = p == 0 ? v[0] : v[-step];
+  const double above = p == n - 1 ? v[0] : v[step];
+  return above - 2.0 * v[0] + below;
+}
+
+// Index-space mixed derivative along axes a != b at grid position p: Diff along b of Diff
+// along a (the two commute).
+inline double MixedDiff(
+  const float* v, const int p[3], const int n[3], const std::ptrdiff_t step[3], int a, int b)
+{
+  const auto along = [&](std::ptrdiff_t o) { return Diff(v + o, p[a], n[a], step[a]); };
+  if (p[b] == 0)
+  {
+    return along(step[b]) - along(0);
+  }
+  if (p[b] == n[b] - 1)
+  {
+    return along(0) - along(-step[b]);
+  }
+  return 0.5 * (along(step[b]) - along(-step[b]));
 }
 
 template <typename Body>
@@ -395,6 +428,109 @@ inline float PotentialOf(float g, float s, const PotentialGains& gains)
   return static_cast<float>(-(gains.Edge * g + gains.Image * s + gains.Offset));
 }
 
+/// The index-space gradient gi (Diff) and Hessian H (row-major: SecondDiff on the diagonal,
+/// MixedDiff off it) of `v` at grid position p. Inside the grid the same arithmetic without
+/// the border's branches.
+inline void IndexDerivatives(const float* v, const int p[3], const int n[3],
+  const std::ptrdiff_t step[3], double gi[3], double H[9])
+{
+  if (p[0] > 0 && p[0] < n[0] - 1 && p[1] > 0 && p[1] < n[1] - 1 && p[2] > 0 && p[2] < n[2] - 1)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::ptrdiff_t s = step[a];
+      gi[a] = 0.5 * (static_cast<double>(v[s]) - v[-s]);
+      H[4 * a] = static_cast<double>(v[s]) - 2.0 * v[0] + static_cast<double>(v[-s]);
+      for (int b = a + 1; b < 3; ++b)
+      {
+        const std::ptrdiff_t t = step[b];
+        const double up = 0.5 * (static_cast<double>(v[t + s]) - v[t - s]);
+        const double down = 0.5 * (static_cast<double>(v[-t + s]) - v[-t - s]);
+        H[3 * a + b] = H[3 * b + a] = 0.5 * (up - down);
+      }
+    }
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    gi[a] = Diff(v, p[a], n[a], step[a]);
+    H[4 * a] = SecondDiff(v, p[a], n[a], step[a]);
+    for (int b = a + 1; b < 3; ++b)
+    {
+      H[3 * a + b] = H[3 * b + a] = MixedDiff(v, p, n, step, a, b);
+    }
+  }
+}
+
+/// P and -grad P at the voxel v points at (grid position p of a grid of n voxels, neighbours
+/// step[a] values apart) of s = G_sigma*f, with the global normalisation (or none):
+/// P = PotentialOf(g, s) with g = |grad s|, and -grad P = Edge grad g + Image grad s, where
+/// grad g = H grad s / g by the chain rule, H the Hessian of s (IndexDerivatives). Central
+/// differences of P instead would widen the edge by a voxel again and move the force's zero
+/// 1.5 voxels into a cube's corner at sigma = 0.5 voxel (0.7 with the chain rule, the
+/// continuous Gaussian's 0.66; docs/METHOD.md §6 item 1).
+inline void PotentialAndForceAt(const float* v, const int p[3], const int n[3],
+  const std::ptrdiff_t step[3], const GradientToWorld& toWorld, const PotentialGains& gains,
+  float& potential, float force[3])
+{
+  double gi[3], H[9], gw[3];
+  IndexDerivatives(v, p, n, step, gi, H);
+  toWorld.Apply(gi, gw);
+  const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
+  potential = PotentialOf(static_cast<float>(g), v[0], gains);
+  double edge[3] = { 0.0, 0.0, 0.0 };
+  if (g > 0.0)
+  {
+    // grad g in index space is H J^T gw / g (g = |J gi|), then to world like any gradient.
+    double w[3], u[3];
+    toWorld.ApplyTransposed(gw, w);
+    for (int a = 0; a < 3; ++a)
+    {
+      u[a] = (H[3 * a] * w[0] + H[3 * a + 1] * w[1] + H[3 * a + 2] * w[2]) / g;
+    }
+    toWorld.Apply(u, edge);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    force[a] = static_cast<float>(gains.Edge * edge[a] + gains.Image * gw[a]);
+  }
+}
+
+/// P and -grad P (PotentialAndForceAt) of the whole grid, s = G_sigma*f in `potential` on entry
+/// and P there on return. Slice by slice, each slice's rows in parallel: a slice's P goes back
+/// only once the next slice, whose differences read it, is done (two slices of scratch).
+void PotentialAndForceInPlace(float* potential, float* force, const int dims[3],
+  const GradientToWorld& toWorld, const PotentialGains& gains)
+{
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(nx) * ny;
+  const std::ptrdiff_t step[3] = { 1, nx, sz };
+  std::vector<float> done[2] = { std::vector<float>(sz), std::vector<float>(sz) };
+  for (int k = 0; k < nz; ++k)
+  {
+    float* slice = done[k % 2].data();
+    vtkSMPTools::For(0, ny,
+      [&](int jb, int je)
+      {
+        for (int j = jb; j < je; ++j)
+        {
+          for (int i = 0; i < nx; ++i)
+          {
+            const int p[3] = { i, j, k };
+            const std::ptrdiff_t v = k * sz + j * step[1] + i;
+            PotentialAndForceAt(potential + v, p, dims, step, toWorld, gains,
+              slice[j * step[1] + i], force + 3 * v);
+          }
+        }
+      });
+    if (k > 0)
+    {
+      std::copy(done[(k - 1) % 2].begin(), done[(k - 1) % 2].end(), potential + (k - 1) * sz);
+    }
+  }
+  std::copy(done[(nz - 1) % 2].begin(), done[(nz - 1) % 2].end(), potential + (nz - 1) * sz);
+}
+
 /// P in place of g in `potential`; `scratch` holds one volume for the local normalisation.
 void CombinePotential(float* potential, const float* smooth, float* scratch, const int dims[3],
   const double sigmaVoxels[3], const EdgeStatistics& stats, const ScaleSpaceParameters& parameters)
@@ -444,6 +580,36 @@ void SigmaVoxels(double sigma, const ImageGeometry& geometry, double sv[3])
     sv[a] = sigma / geometry.Spacing[a];
   }
 }
+
+/// P and -grad P with the local edge normalisation (EdgeNormalization::Local), in the caller's
+/// SMP scope: P = -(Edge g / (G_2sigma * g + floor) + ...) and -grad P by central differences
+/// of P (the chain rule of PotentialAndForceAt would need the local mean's gradient too).
+void LocallyNormalisedField(const ImageView& image, const ScaleSpaceParameters& parameters,
+  const double sigmaVoxels[3], const GradientToWorld& toWorld, float* potential, float* force)
+{
+  const int* dims = image.Geometry.Dimensions;
+  // The first third of the force buffer holds G_sigma*f until P is known; the rest is
+  // scratch for the local edge normalisation.
+  float* smooth = force;
+  SmoothImage(image, sigmaVoxels, smooth);
+  const EdgeStatistics stats = EdgeStatisticsOf(smooth, dims, toWorld, potential, parameters);
+  float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
+  CombinePotential(potential, smooth, scratch, dims, sigmaVoxels, stats, parameters);
+
+  // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
+  ForEachVoxelSlice(dims,
+    [&](int k)
+    {
+      ForEachWorldGradientOfSlice(potential, dims, toWorld, k,
+        [&](std::ptrdiff_t v, const double gw[3])
+        {
+          float* f = force + 3 * v;
+          f[0] = static_cast<float>(-gw[0]);
+          f[1] = static_cast<float>(-gw[1]);
+          f[2] = static_cast<float>(-gw[2]);
+        });
+    });
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -483,30 +649,21 @@ bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParamete
   SigmaVoxels(parameters.Sigma, geometry, sv);
   const GradientToWorld toWorld(geometry);
 
+  const bool local =
+    parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
   WithThreads(parameters.NumberOfThreads,
     [&]()
     {
-      // The first third of the force buffer holds G_sigma*f until P is known; the rest is
-      // scratch for the local edge normalisation.
-      float* smooth = force;
-      SmoothImage(image, sv, smooth);
-      const EdgeStatistics stats = EdgeStatisticsOf(smooth, dims, toWorld, potential, parameters);
-      float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
-      CombinePotential(potential, smooth, scratch, dims, sv, stats, parameters);
-
-      // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
-      ForEachVoxelSlice(dims,
-        [&](int k)
-        {
-          ForEachWorldGradientOfSlice(potential, dims, toWorld, k,
-            [&](std::ptrdiff_t v, const double gw[3])
-            {
-              float* f = force + 3 * v;
-              f[0] = static_cast<float>(-gw[0]);
-              f[1] = static_cast<float>(-gw[1]);
-              f[2] = static_cast<float>(-gw[2]);
-            });
-        });
+      if (local)
+      {
+        LocallyNormalisedField(image, parameters, sv, toWorld, potential, force);
+        return;
+      }
+      SmoothImage(image, sv, potential); // G_sigma*f, replaced by P as the force is computed
+      const EdgeStatistics stats =
+        EdgeStatisticsOf(potential, dims, toWorld, nullptr, parameters);
+      PotentialAndForceInPlace(
+        potential, force, dims, toWorld, GainsOf(stats, stats.GradientMax, parameters));
     });
   // Finite inputs can still overflow single precision: a weight near VTK_DOUBLE_MAX, or a
   // sigma so large that the recursive filter's coefficients are not finite.
@@ -569,51 +726,21 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
 void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
   const PotentialGains& gains, float* potential, float* force)
 {
-  // P over the box grown by a voxel (within the image), for the central differences of -grad P
-  // at the box's faces; each value computed as in ComputeScaleSpaceForceInto.
+  // Each value as ComputeScaleSpaceForceInto computes it (PotentialAndForceAt on the image's
+  // grid), so the box's values equal the whole field's bit for bit.
   const int* n = geometry.Dimensions;
-  VoxelBox grown;
-  int m[3], b[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    grown.Begin[a] = std::max(0, box.Begin[a] - 1);
-    grown.End[a] = std::min(n[a], box.End[a] + 1);
-    m[a] = grown.End[a] - grown.Begin[a];
-    b[a] = box.End[a] - box.Begin[a];
-  }
   const GradientToWorld toWorld(geometry);
-  const std::ptrdiff_t imageStep[3] = { 1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1] };
-  const std::ptrdiff_t patchStep[3] = { 1, m[0], static_cast<std::ptrdiff_t>(m[0]) * m[1] };
-  std::vector<float> patch(static_cast<std::size_t>(grown.NumberOfVoxels()));
-  for (int k = grown.Begin[2]; k < grown.End[2]; ++k)
-    for (int j = grown.Begin[1]; j < grown.End[1]; ++j)
-      for (int i = grown.Begin[0]; i < grown.End[0]; ++i)
-      {
-        const int p[3] = { i, j, k };
-        const std::ptrdiff_t v = i * imageStep[0] + j * imageStep[1] + k * imageStep[2];
-        double gw[3];
-        WorldGradientAt(smooth + v, p, n, imageStep, toWorld, gw);
-        const float g =
-          static_cast<float>(std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]));
-        patch[(i - grown.Begin[0]) + (j - grown.Begin[1]) * patchStep[1] +
-          (k - grown.Begin[2]) * patchStep[2]] = PotentialOf(g, smooth[v], gains);
-      }
+  const std::ptrdiff_t step[3] = { 1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1] };
+  const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
   for (int k = box.Begin[2]; k < box.End[2]; ++k)
     for (int j = box.Begin[1]; j < box.End[1]; ++j)
       for (int i = box.Begin[0]; i < box.End[0]; ++i)
       {
         const int p[3] = { i, j, k };
-        const float* at = patch.data() + (i - grown.Begin[0]) +
-          (j - grown.Begin[1]) * patchStep[1] + (k - grown.Begin[2]) * patchStep[2];
-        double gw[3];
-        WorldGradientAt(at, p, n, patchStep, toWorld, gw);
-        const std::ptrdiff_t o = (i - box.Begin[0]) +
-          (j - box.Begin[1]) * static_cast<std::ptrdiff_t>(b[0]) +
-          (k - box.Begin[2]) * static_cast<std::ptrdiff_t>(b[0]) * b[1];
-        potential[o] = *at;
-        force[3 * o] = static_cast<float>(-gw[0]);
-        force[3 * o + 1] = static_cast<float>(-gw[1]);
-        force[3 * o + 2] = static_cast<float>(-gw[2]);
+        const std::ptrdiff_t o = (i - box.Begin[0]) + (j - box.Begin[1]) * bx +
+          (k - box.Begin[2]) * bx * by;
+        PotentialAndForceAt(smooth + i + j * step[1] + k * step[2], p, n, step, toWorld, gains,
+          potential[o], force + 3 * o);
       }
 }
 

@@ -14,7 +14,15 @@
 //                             floor), rescaled to a maximum of 1; see EdgeNormalization)
 //                             so P lies in [-(w_edge + w_image), 0]; a zero range gives 0.
 //   NormalizePotential off:   P = -(w_edge * g + w_image * s)
-//   Force = -grad P           central differences of P, to world like g.
+//   Force = -grad P           by the chain rule from the derivatives of s: -grad P =
+//                             w_edge' H grad s / g + w_image' grad s (the gains of P), with
+//                             grad s as for g and its Hessian H from second differences
+//                             [1, -2, 1] (the border value replicated) and mixed central
+//                             differences, to world like g. Central differences of the sampled
+//                             P would widen an edge by a voxel and move the force's zero 1.5
+//                             voxels into a cube's corner at sigma = 0.5 voxel (docs/METHOD.md
+//                             §6 item 1). With the local edge normalisation, whose P divides
+//                             by a local mean, the central differences of P.
 #ifndef dsScaleSpace_h
 #define dsScaleSpace_h
 
@@ -114,9 +122,11 @@ DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForce(const float* scalars
   std::string* error);
 
 /// Same computation into caller-owned buffers (no copy for the VTK filter):
-/// potential holds NumberOfVoxels floats, force 3 * NumberOfVoxels. The force buffer
-/// doubles as the smoothing scratch (and holds the image converted to float when it is not a
-/// contiguous float array), so peak memory is the input + 4 floats per voxel.
+/// potential holds NumberOfVoxels floats, force 3 * NumberOfVoxels. The potential buffer
+/// holds G_sigma * f (and first the image converted to float when it is not a contiguous float
+/// array), replaced by P slice by slice as the force is computed (two slices of scratch); with
+/// the local edge normalisation the force buffer is the scratch. So peak memory is the input
+/// + 4 floats per voxel.
 /// The image must not alias either buffer.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeScaleSpaceForceInto(const ImageView& image,
   const ScaleSpaceParameters& parameters, float* potential, float* force, std::string* error);

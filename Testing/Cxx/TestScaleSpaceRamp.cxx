@@ -2,7 +2,7 @@
 // ImageWeight 1 and no normalisation, Force = grad(G_sigma * f), which must equal
 // (a, b, c) in the interior to 1e-4 relative (2.5e-4 at 6 sigma), at a recursive (IIR) and
 // a sampled (FIR) sigma, on an axis-aligned unit grid and on an anisotropic rotated one.
-// With EdgeWeight 1 the edge term is constant on a ramp, so Force must vanish.
+// With EdgeWeight 1 the edge term is constant on a ramp, so Force must vanish (to 2e-4).
 // "Interior" = at least ~6 sigma from every face: replicated borders bend a ramp,
 // and the recursive Gaussian's tail holds ~3.4e-4 of its mass beyond 6 sigma (9e-5
 // beyond 7; a sampled Gaussian cut at 4 sigma holds none).
@@ -69,13 +69,16 @@ void RunCase(const char* name, const int extent[6], const double spacing[3], con
   DS_CHECK(counted > 1000, "enough interior voxels");
   DS_CHECK_LE(err, limit, std::string(name) + ": max |Force - (a,b,c)| / |(a,b,c)|");
 
-  // Edge term only: |grad(G*f)| is constant on a ramp, so -grad P vanishes inside.
+  // Edge term only: |grad(G*f)| is constant on a ramp, so -grad P vanishes inside. The chain
+  // rule's second differences of the float G*f (values up to ~250 here, so rounding of ~1e-5)
+  // leave up to 1.03e-4 (measured), hence twice the limit.
   filter->SetEdgeWeight(1.0);
   filter->SetImageWeight(0.0);
   filter->Update();
   const double zero[3] = { 0, 0, 0 };
   const double err0 = MaxError(filter->GetOutput(), zero, margin, counted);
-  DS_CHECK_LE(err0, limit, std::string(name) + ": edge-only max |Force| (g is constant, so ~0)");
+  DS_CHECK_LE(
+    err0, 2 * limit, std::string(name) + ": edge-only max |Force| (g is constant, so ~0)");
 }
 } // namespace
 
