@@ -14,8 +14,8 @@ only feels the brain as a blob, each refinement halves sigma and lets the finer 
 follow finer detail.
 
 Every filter parameter is the default: the start box is split once (SubdivideInitialSurface)
-to 48 triangles, and the levels run until sigma reaches its floor, half the 1 mm voxel (from
-sigma_0 = extent/6 = 32 mm: 8 levels), refined where the cortex has detail (~22 000 vertices).
+to 48 triangles, and the levels run until sigma reaches its floor, 2/3 of the 1 mm voxel (from
+sigma_0 = extent/6 = 32 mm: 7 levels), refined where the cortex has detail (~30 000 vertices).
 
 Truth: the boundary of the brain mask (ch2bet > 0), the 0.5 iso-surface of that binary
 volume. The numbers: distance of every surface vertex to it (how well the surface sits on

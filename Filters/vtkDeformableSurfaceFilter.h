@@ -66,9 +66,9 @@
  * voxel, nor, with the region force, than the level's sigma); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
- * Sigma never goes below half a voxel; the level solved there is the last (finer meshes would
- * follow detail the image does not show), so the number of levels follows the resolution:
- * halving from extent / 6 takes 7 levels at 128^3, 9 at 512^3. MaxLevels is a cap. Refinement
+ * Sigma never goes below 2/3 of a voxel; the level solved there is the last (finer meshes
+ * would follow detail the image does not show), so the number of levels follows the resolution:
+ * halving from extent / 6 takes 6 levels at 128^3, 8 at 512^3. MaxLevels is a cap. Refinement
  * stops where nothing is marked or before a step would exceed MaxVertices (a warning; the
  * red-green closure can add some more); the levels still halve sigma on the same mesh, so the
  * surface always ends on the fine-scale boundary. With HierarchicalSigma off the run ends when
@@ -244,7 +244,7 @@ public:
   ///@{
   /**
    * Cap on the refinement steps after the first level (default 10, the most; 0 = a single level
-   * on the initial mesh). The levels end before it at sigma's floor (half a voxel) or, with
+   * on the initial mesh). The levels end before it at sigma's floor (2/3 voxel) or, with
    * constant sigma, when nothing is left to refine (field data StopReason).
    */
   vtkSetClampMacro(MaxLevels, int, 0, 10);

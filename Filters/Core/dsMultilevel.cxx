@@ -626,11 +626,12 @@ bool MultilevelSolver::RunLevels(
   const MultilevelParameters& P = this->Parameters;
   const int maxLevels = std::max(0, P.MaxLevels);
   // Progress is reported against the levels a hierarchical run takes to sigma's floor (halving
-  // from sigma_0 to half a voxel), within the cap.
+  // from sigma_0 to SigmaFloorVoxels), within the cap.
   this->PlannedLevels = maxLevels;
-  if (P.HierarchicalSigma && state.Sigma > 0.5 * state.Voxel)
+  const double sigmaFloor = SigmaFloorVoxels * state.Voxel;
+  if (P.HierarchicalSigma && state.Sigma > sigmaFloor)
   {
-    const double halvings = std::ceil(std::log2(state.Sigma / (0.5 * state.Voxel)) - 1e-9);
+    const double halvings = std::ceil(std::log2(state.Sigma / sigmaFloor) - 1e-9);
     this->PlannedLevels = std::min(maxLevels, static_cast<int>(halvings));
   }
   for (int level = 0; level <= maxLevels; ++level)
@@ -643,10 +644,10 @@ bool MultilevelSolver::RunLevels(
     }
     const bool stop =
       this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
-    // With the hierarchical sigma, the level solved at sigma's floor (half a voxel) is the
+    // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).
-    const bool atFloor = P.HierarchicalSigma && !(state.Sigma > 0.5 * state.Voxel * (1 + 1e-9));
+    const bool atFloor = P.HierarchicalSigma && !(state.Sigma > sigmaFloor * (1 + 1e-9));
     const bool lastLevel = stop || level == maxLevels || atFloor;
     this->EndSweeps(state.LevelSolver, mesh, rec, lastLevel);
     if (lastLevel)
@@ -663,12 +664,12 @@ bool MultilevelSolver::RunLevels(
     // The next level's sigma. Even when nothing was refined (nothing marked, the marked
     // triangles already below a voxel, or the vertex budget reached) the schedule goes on
     // with a smaller sigma: otherwise the surface would rest where the coarse, blurred
-    // edge lies, voxels off the boundary. Sigma stops at half a voxel, below which the
+    // edge lies, voxels off the boundary. Sigma stops at its floor, below which the
     // image has nothing more to show; a level that would change neither mesh nor sigma
     // ends the run.
     const double sigma = state.Sigma;
     const double nextSigma =
-      P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, 0.5 * state.Voxel)) : sigma;
+      P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, sigmaFloor)) : sigma;
     if (!refined && !(nextSigma < sigma))
     {
       if (!(rec.MeanEdgeLength <= rec.Sigma)) // else EndSweeps has smoothed it
@@ -709,18 +710,18 @@ int MultilevelSolver::DistributedGhostVoxels(
     : p.SigmaFraction > 0    ? p.SigmaFraction * whole.MeanExtent()
     : p.HierarchicalSigma    ? whole.MeanExtent() / 6.0
                              : ConstantSigmaVoxels * whole.MeanSpacing();
-  // The levels halve sigma down to half a voxel: the coarse ones need twice their block size
+  // The levels halve sigma down to its floor: the coarse ones need twice their block size
   // (dsPieceField.h), the first on the image's own grid the most of the fine ones.
   int ghost = 0;
   for (int level = 0; level <= std::max(0, p.MaxLevels); ++level)
   {
     const int f = DecimationFactor(sigma, whole);
     ghost = std::max(ghost, f > 1 ? 2 * f : PieceGhostVoxels(sigma, whole, a));
-    if (f == 1 || !p.HierarchicalSigma || !(sigma > 0.5 * whole.MeanSpacing()))
+    if (f == 1 || !p.HierarchicalSigma || !(sigma > SigmaFloorVoxels * whole.MeanSpacing()))
     {
       break;
     }
-    sigma = std::max(0.5 * sigma, std::min(sigma, 0.5 * whole.MeanSpacing()));
+    sigma = std::max(0.5 * sigma, std::min(sigma, SigmaFloorVoxels * whole.MeanSpacing()));
   }
   return std::min(ghost, whole.Dimensions[a]);
 }

@@ -73,6 +73,12 @@ constexpr double InitialEdgeSigmaRatio = 4.0;
 /// given, in voxels (mean spacing): the paper's small sigma for a weak boundary next to a strong
 /// one (docs/METHOD.md §6.6); its basin of attraction is ~2 voxels.
 constexpr double ConstantSigmaVoxels = 1.0;
+/// Sigma's floor with the hierarchical sigma, in voxels (mean spacing): sigma halves level by
+/// level, never below this, and the level solved there is the last. With the force's chain rule
+/// (dsScaleSpace.h) an edge at 2/3 voxel is 0.70 voxel wide in the potential; a level at half a
+/// voxel (0.59 wide) changed the noise-free phantoms by <= 0.01 voxel and moved the noisy
+/// sphere's worst vertex 0.03-0.05 voxel further out (docs/METHOD.md §6 item 1).
+constexpr double SigmaFloorVoxels = 2.0 / 3.0;
 /// A start of more triangles than this, with a mean edge below sigma_0 / 2, begins the
 /// hierarchy on a coarse copy (MultilevelSolver::CoarsenStart).
 constexpr int CoarsenAboveTriangles = 100000;
@@ -137,7 +143,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
 /// differences of |grad| and of the potential, and the trilinear reading of the force, widen a
 /// sharp edge by about a voxel (docs/METHOD.md §6.1; measured on the binary sphere of radius 32:
 /// the force's slope across the boundary gives widths 1.14 and 1.65 voxels at sigma 0.5 and
-/// 1.33, i.e. 1.02 and 0.97 voxel added in quadrature).
+/// 1.33, i.e. 1.02 and 0.97 voxel added in quadrature). Measured with -grad P as central
+/// differences of P; the force's chain rule (dsScaleSpace.h) keeps the edge narrower (0.70 and
+/// 1.34 voxels at sigma 2/3 and 1.33), so this width is a conservative one: the levels stop nearer
+/// their rest than the same share of the narrower width.
 DEFORMABLESURFACEFILTERS_EXPORT double PotentialEdgeWidth(double sigma, double voxel);
 
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).

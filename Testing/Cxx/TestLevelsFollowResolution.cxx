@@ -39,8 +39,9 @@ void Solve(Run& run, const std::vector<float>& volume, const ImageGeometry& geom
 
 void HierarchyFollowsResolution()
 {
-  // Sphere of radius n/4 in n^3 from the box: sigma_0 = n / 6 halves to half a voxel, which takes
-  // ceil(log2(n / 3)) halvings: 5 at 64^3, 6 at 128^3 (the former fixed 4 stopped at 1.3 voxels).
+  // Sphere of radius n/4 in n^3 from the box: sigma_0 = n / 6 halves to its floor, 2/3 voxel,
+  // which takes ceil(log2(n / 4)) halvings: 4 at 64^3, 5 at 128^3 (the former fixed 4 stopped at
+  // 1.3 voxels at 128^3).
   int previousLevels = 0;
   for (const int n : { 64, 128 })
   {
@@ -49,9 +50,10 @@ void HierarchyFollowsResolution()
     Solve(run, dsphantom::Sphere(n, n / 4.0), dsphantom::Geometry(n), MultilevelParameters(), n,
       n / 4.0);
     const auto& levels = run.Solver.GetLevels();
-    const int halvings = static_cast<int>(std::ceil(std::log2(n / 3.0)));
+    const int halvings = static_cast<int>(std::ceil(std::log2(n / 4.0) - 1e-9));
     DS_CHECK(static_cast<int>(levels.size()) == halvings + 1, "levels from sigma_0 to the floor");
-    DS_CHECK(levels.back().Sigma == 0.5, "the last level at sigma's floor, half a voxel");
+    DS_CHECK(std::abs(levels.back().Sigma - SigmaFloorVoxels) < 1e-12,
+      "the last level at sigma's floor, 2/3 voxel");
     DS_CHECK(run.Solver.GetStopReason() == StopReason::SigmaFloor, "stop reason: sigma floor");
     DS_CHECK(static_cast<int>(levels.size()) > previousLevels, "a finer volume, more levels");
     previousLevels = static_cast<int>(levels.size());
