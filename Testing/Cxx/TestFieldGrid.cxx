@@ -1,8 +1,8 @@
 // The grid a level's force field lives on (dsFieldGrid.h): block means land where their
-// geometry says (any spacing, origin, rotation); a field at a coarse sigma on the decimated
-// grid agrees with the one on the image's own grid; a field over the surface's
-// neighbourhood agrees with the whole image's where the surface is; the neighbourhood box
-// holds the surface and its reach.
+// geometry says (any spacing, origin, rotation) and equal each block's plain sum; a field at
+// a coarse sigma on the decimated grid agrees with the one on the image's own grid; a field
+// over the surface's neighbourhood agrees with the whole image's where the surface is; the
+// neighbourhood box holds the surface and its reach.
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
@@ -66,6 +66,50 @@ void CheckBlockMeansOfRamp()
       "coarse dimensions and spacing, f = " + std::to_string(f));
     DS_CHECK_LE(
       worst, 1e-4, "ramp: |block mean - value at its world place|, f = " + std::to_string(f));
+  }
+}
+
+/// Block means equal, bit for bit, each block's voxels summed in double in the image's order
+/// and divided by their number (float values of magnitudes from 2^-20 to 2^20; an odd and an
+/// even axis, a block size that leaves one block along the short axis, and blocks of 1).
+void CheckBlockMeansExact()
+{
+  ImageGeometry g;
+  g.Dimensions[0] = 37;
+  g.Dimensions[1] = 30;
+  g.Dimensions[2] = 23;
+  std::vector<float> values(static_cast<std::size_t>(g.NumberOfVoxels()));
+  unsigned state = 12345u;
+  for (float& v : values)
+  {
+    state = state * 1664525u + 1013904223u;
+    v = std::ldexp(static_cast<float>(state >> 8), static_cast<int>(state % 41) - 44);
+  }
+  for (int f : { 1, 3, 7, 25 })
+  {
+    std::vector<float> coarse;
+    ImageGeometry cg;
+    BlockMeans(ImageView::Of(values.data(), g), f, coarse, cg, 2);
+    const AxisBlocks bx(37, f), by(30, f), bz(23, f);
+    long long differing = 0;
+    for (int K = 0; K < bz.Count; ++K)
+      for (int J = 0; J < by.Count; ++J)
+        for (int I = 0; I < bx.Count; ++I)
+        {
+          int b[3], e[3];
+          bx.Range(I, b[0], e[0]);
+          by.Range(J, b[1], e[1]);
+          bz.Range(K, b[2], e[2]);
+          double sum = 0;
+          for (int k = b[2]; k < e[2]; ++k)
+            for (int j = b[1]; j < e[1]; ++j)
+              for (int i = b[0]; i < e[0]; ++i)
+                sum += values[(k * 30 + j) * 37 + i];
+          const int count = (e[0] - b[0]) * (e[1] - b[1]) * (e[2] - b[2]);
+          differing += coarse[(K * by.Count + J) * bx.Count + I] != static_cast<float>(sum / count);
+        }
+    DS_CHECK(cg.Dimensions[2] == bz.Count && differing == 0,
+      "block means = the plain sum of each block in the image's order, f = " + std::to_string(f));
   }
 }
 
@@ -190,6 +234,7 @@ void CheckFields()
 int TestFieldGrid(int, char*[])
 {
   CheckBlockMeansOfRamp();
+  CheckBlockMeansExact();
   CheckFields();
   return dstest::Result("TestFieldGrid");
 }
