@@ -73,6 +73,10 @@ void AddRowToBlocks(const T* line, const AxisBlocks& blocks, double* sum)
       sum[I] += AsFloat(line[i]);
     }
   }
+  if (m <= 2)
+  {
+    return;
+  }
   const T* first = line + blocks.First + f - f / 2; // block 1's first voxel
   for (int t = 0; t < f; ++t)
   {
