@@ -17,6 +17,7 @@ bool FieldBricks::Initialize(
   this->Reach = reach;
   this->Potential.clear();
   this->Force.clear();
+  this->BrickFinite.clear();
   this->MissCount = 0;
   this->Smooth.assign(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()), 0.0f);
   if (!SmoothForPotential(image, parameters, this->Smooth.data(), this->Gains, error))
@@ -47,6 +48,10 @@ void FieldBricks::ComputeBrick(const int b[3], int slot)
   this->Force[slot].resize(3 * n);
   PotentialAndForceInBox(this->Smooth.data(), this->Grid, box, this->Gains,
     this->Potential[slot].data(), this->Force[slot].data());
+  // Checked here, in the parallel loop, while the brick is in cache.
+  const auto finite = [](const std::vector<float>& v)
+  { return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); }); };
+  this->BrickFinite[slot] = finite(this->Potential[slot]) && finite(this->Force[slot]);
 }
 
 int FieldBricks::Cover(const TriangleMesh& mesh)
@@ -87,6 +92,7 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
   }
   this->Potential.resize(this->Potential.size() + fresh.size());
   this->Force.resize(this->Potential.size());
+  this->BrickFinite.resize(this->Potential.size(), 1);
   vtkSMPTools::LocalScope(
     vtkSMPTools::Config{ ResolveThreads(this->Parameters.NumberOfThreads), "STDThread", false },
     [&]
@@ -174,10 +180,8 @@ double FieldBricks::SamplePotential(const double x[3]) const
 
 bool FieldBricks::Finite() const
 {
-  const auto finite = [](const std::vector<float>& v)
-  { return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); }); };
-  return std::all_of(this->Potential.begin(), this->Potential.end(), finite) &&
-    std::all_of(this->Force.begin(), this->Force.end(), finite);
+  return std::all_of(
+    this->BrickFinite.begin(), this->BrickFinite.end(), [](char finite) { return finite != 0; });
 }
 
 double FieldBricks::Bytes() const

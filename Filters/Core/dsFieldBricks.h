@@ -73,6 +73,7 @@ private:
   int Bricks[3] = { 0, 0, 0 }; ///< bricks along each axis
   std::vector<int> Slots;      ///< per brick (x fastest): its index in Potential, or -1
   std::vector<std::vector<float>> Potential, Force; ///< per computed brick, x fastest
+  std::vector<char> BrickFinite; ///< per computed brick: all its values are finite
   mutable std::atomic<long long> MissCount{ 0 };
 };
 } // namespace dsurf

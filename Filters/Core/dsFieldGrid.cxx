@@ -54,6 +54,40 @@ void AxisBlocks::Range(int I, int& begin, int& end) const
   end = I == this->Count - 1 ? this->Voxels : this->First + I * this->Factor + h + 1;
 }
 
+namespace
+{
+/// Adds each voxel of one row of the image to its block's sum along x, voxel by voxel in the
+/// row's order within each block (so every block's sum is the same double as a plain loop over
+/// its voxels gives). The blocks between the two end blocks all hold f voxels: they are added
+/// a voxel of every block at a time, so that their sums form independent chains of additions.
+template <typename T>
+void AddRowToBlocks(const T* line, const AxisBlocks& blocks, double* sum)
+{
+  const int f = blocks.Factor, m = blocks.Count;
+  for (int I = 0; I < m; I += std::max(1, m - 1)) // the end blocks
+  {
+    int b, e;
+    blocks.Range(I, b, e);
+    for (int i = b; i < e; ++i)
+    {
+      sum[I] += AsFloat(line[i]);
+    }
+  }
+  if (m <= 2)
+  {
+    return;
+  }
+  const T* first = line + blocks.First + f - f / 2; // block 1's first voxel
+  for (int t = 0; t < f; ++t)
+  {
+    for (int I = 1; I < m - 1; ++I)
+    {
+      sum[I] += AsFloat(first[(I - 1) * f + t]);
+    }
+  }
+}
+} // namespace
+
 void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
   ImageGeometry& coarseGeometry, int numberOfThreads)
 {
@@ -74,12 +108,12 @@ void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
   std::copy(geometry.Direction, geometry.Direction + 9, coarseGeometry.Direction);
 
   coarse.assign(static_cast<std::size_t>(m[0]) * m[1] * m[2], 0.0f);
-  std::vector<int> column(n[0]); // the coarse column of every voxel of a row
+  std::vector<int> width(m[0]); // voxels of each block along x
   for (int I = 0; I < m[0]; ++I)
   {
     int b, e;
     blocks[0].Range(I, b, e);
-    std::fill(column.begin() + b, column.begin() + e, I);
+    width[I] = e - b;
   }
   vtkSMPTools::LocalScope(
     vtkSMPTools::Config{ ResolveThreads(numberOfThreads), "STDThread", false },
@@ -92,7 +126,6 @@ void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
             [&](int kBegin, int kEnd)
             {
               std::vector<double> sum(m[0]);
-              std::vector<int> count(m[0]);
               for (int K = kBegin; K < kEnd; ++K)
               {
                 int k0, k1;
@@ -102,23 +135,18 @@ void BlockMeans(const ImageView& image, int f, std::vector<float>& coarse,
                   int j0, j1;
                   blocks[1].Range(J, j0, j1);
                   std::fill(sum.begin(), sum.end(), 0.0);
-                  std::fill(count.begin(), count.end(), 0);
                   for (int k = k0; k < k1; ++k)
                   {
                     for (int j = j0; j < j1; ++j)
                     {
-                      const auto* line = values + image.RowOffset(j, k);
-                      for (int i = 0; i < n[0]; ++i)
-                      {
-                        sum[column[i]] += AsFloat(line[i]);
-                        ++count[column[i]];
-                      }
+                      AddRowToBlocks(values + image.RowOffset(j, k), blocks[0], sum.data());
                     }
                   }
+                  const int rows = (k1 - k0) * (j1 - j0);
                   float* out = coarse.data() + (static_cast<std::size_t>(K) * m[1] + J) * m[0];
                   for (int I = 0; I < m[0]; ++I)
                   {
-                    out[I] = static_cast<float>(sum[I] / count[I]);
+                    out[I] = static_cast<float>(sum[I] / (rows * width[I]));
                   }
                 }
               }

@@ -7,7 +7,7 @@
 // - Coarse scales (a block size f > 1): each block of the layout BlockMeans gives the whole
 //   image (or the box the level is cut to) is averaged by the process counting its first
 //   voxel, in the serial order (it holds the block with 2 f ghost layers), and a sum over the
-//   processes gives every one of them the whole coarse grid (small: 25^3-103^3 points for the
+//   processes gives every one of them the whole coarse grid (small: 19^3-171^3 points for the
 //   first levels of 512^3), whose field they then compute alike: the serial field bit for bit.
 // - Fine scales (f = 1): each process computes the field on the voxels it owns plus
 //   PieceGhostVoxels() around them (within the level's box), normalised by the largest edge

@@ -3,7 +3,9 @@
 // GeodesicActiveContourLevelSetImageFilter (when CMake found ITK; the column is skipped with a
 // line saying so otherwise). Every case runs in a child process of its own (peak RSS per case);
 // a case is started only when its memory estimate fits, and stopped at the time limit.
-// Usage: BenchAccuracy [--time-limit CPU seconds (default 300)] [sizes... (default 128 256 512)]
+// Usage: BenchAccuracy [--time-limit CPU seconds (default 300)] [--only TEXT (only the rows whose
+//                      "phantom method" contains TEXT; repeatable, every TEXT must be in it)]
+//                      [sizes... (default 128 256 512)]
 #include "BenchRow.h"
 #ifdef DS_BENCH_WITH_ITK
 #include "ItkGeodesicActiveContour.h"
@@ -76,10 +78,13 @@ int main(int argc, char* argv[])
 {
   double timeLimit = 300;
   std::set<int> sizes;
+  std::vector<std::string> only;
   for (int i = 1; i < argc; ++i)
   {
     if (std::string(argv[i]) == "--time-limit" && i + 1 < argc)
       timeLimit = std::atof(argv[++i]);
+    else if (std::string(argv[i]) == "--only" && i + 1 < argc)
+      only.emplace_back(argv[++i]);
     else
       sizes.insert(std::atoi(argv[i]));
   }
@@ -95,6 +100,7 @@ int main(int argc, char* argv[])
   // measured: ours keeps a float copy, Potential and Force (4 floats); ITK's filter the speed
   // image, its advection vectors (3 floats), the float input, the start and the output.
   CaseRunner runner(2.0 * GiB, timeLimit);
+  runner.SetOnly(only);
   for (const Phantom& ph : GoalPhantoms())
   {
     if (!sizes.count(ph.N))

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dsbench
 {
@@ -86,9 +88,22 @@ public:
     , CpuLimit(cpuLimitSeconds)
   {
   }
-  /// `sizeCells`: append the input size and the memory estimate as two more cells.
+  /// Only the rows whose "phantom method" contains every one of `texts` run (all when empty).
+  void SetOnly(std::vector<std::string> texts) { this->Only = std::move(texts); }
+  bool Chosen(const Phantom& ph, const Method& m) const
+  {
+    const std::string row = ph.Name + " " + m.Name;
+    for (const std::string& text : this->Only)
+      if (row.find(text) == std::string::npos)
+        return false;
+    return true;
+  }
+  /// `sizeCells`: append the input size and the memory estimate as two more cells. A row not
+  /// chosen (SetOnly) is left out without a line.
   IsolatedResult Run(const Phantom& ph, const Method& m, bool sizeCells)
   {
+    if (!this->Chosen(ph, m))
+      return IsolatedResult();
     RowLimits limits;
     limits.EstimateBytes = this->Memory.Estimate(m.Name, ph.Voxels(), m.PriorBytesPerVoxel);
     limits.BudgetBytes = MemoryBudget(this->Reserve);
@@ -109,6 +124,7 @@ public:
 
 private:
   double Reserve, CpuLimit;
+  std::vector<std::string> Only;
   PerVoxelModel Memory, Time;
 };
 } // namespace dsbench

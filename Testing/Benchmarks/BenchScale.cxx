@@ -7,6 +7,8 @@
 // largest size of the same method measured in this run (or a prior per voxel); a case whose
 // estimate exceeds the memory available minus a reserve is skipped with the estimate printed.
 // Usage: BenchScale [--time-limit CPU seconds (default 600)] [--reserve-gib G (default 2)]
+//                   [--only TEXT (only the rows whose "phantom method" contains TEXT; repeat it
+//                   to ask for every TEXT: --only ball --only "2 threads")]
 //                   [sizes... (default 128 256 512 1024)]
 #include "BenchRow.h"
 
@@ -19,6 +21,7 @@ int main(int argc, char* argv[])
   using namespace dsbench;
   double timeLimit = 600, reserve = 2 * GiB;
   std::vector<int> sizes;
+  std::vector<std::string> only;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -26,6 +29,8 @@ int main(int argc, char* argv[])
       timeLimit = std::atof(argv[++i]);
     else if (a == "--reserve-gib" && i + 1 < argc)
       reserve = std::atof(argv[++i]) * GiB;
+    else if (a == "--only" && i + 1 < argc)
+      only.emplace_back(argv[++i]);
     else
       sizes.push_back(std::atoi(a.c_str()));
   }
@@ -37,6 +42,7 @@ int main(int argc, char* argv[])
   // uint16 input, read in place (docs/METHOD.md §9.6); the iso-surface the input and a byte of
   // edge cases per voxel.
   CaseRunner runner(reserve, timeLimit);
+  runner.SetOnly(only);
   for (int n : sizes)
   {
     for (Shape shape : { Shape::Sphere, Shape::Cube })
