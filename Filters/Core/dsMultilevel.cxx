@@ -1,6 +1,7 @@
 #include "dsMultilevel.h"
 
 #include "dsFieldBricks.h"
+#include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
 #include "dsUntangle.h"
 
@@ -72,8 +73,11 @@ bool MultilevelSolver::FirstSigma(
     // the start's distance would blur together.
     sigma = ConstantSigmaVoxels * geometry.MeanSpacing();
   }
-  else if (!ChooseInitialSigma(
-             image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+  else if (this->Distributed
+      ? !ChoosePieceInitialSigma(this->Piece, mesh, paper, P.Solver.NumberOfThreads, this->Reduce,
+          this->SigmaChoice, error)
+      : !ChooseInitialSigma(
+          image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
     return false;
   }
@@ -688,11 +692,6 @@ std::string MultilevelSolver::DistributionProblem(
 {
   const MultilevelParameters& P = this->Parameters;
   const bool spans = StartSpansImage(whole, mesh);
-  if (P.Sigma <= 0 && P.SigmaFraction <= 0 && P.HierarchicalSigma && !spans)
-  {
-    return "sigma_0 from the start's distance to its edges is not distributed yet: give Sigma "
-           "or SigmaFraction, or start around the whole volume";
-  }
   const bool estimate = !(P.IntensityRange[0] < P.IntensityRange[1]);
   if (P.RegionWeight > 0 && estimate && !spans && mesh.IsClosed())
   {
@@ -710,8 +709,10 @@ int MultilevelSolver::DistributedGhostVoxels(
     : p.HierarchicalSigma    ? whole.MeanExtent() / 6.0
                              : ConstantSigmaVoxels * whole.MeanSpacing();
   // The levels halve sigma down to half a voxel: the coarse ones need twice their block size
-  // (dsPieceField.h), the first on the image's own grid the most of the fine ones.
-  int ghost = 0;
+  // (dsPieceField.h), the first on the image's own grid the most of the fine ones. sigma_0
+  // from the start is at most extent / 6, and its probe needs ghosts of its own.
+  const bool fromStart = !(p.Sigma > 0) && !(p.SigmaFraction > 0) && p.HierarchicalSigma;
+  int ghost = fromStart ? InitialSigmaProbeGhostVoxels(whole, a) : 0;
   for (int level = 0; level <= std::max(0, p.MaxLevels); ++level)
   {
     const int f = DecimationFactor(sigma, whole);

@@ -208,11 +208,11 @@ public:
   /// are read only through the piece (piece.Image). Every process runs the same
   /// schedule on the same mesh (so every process ends with the same surface); each level's
   /// field is computed per piece (ComputePieceForce), the forces are exchanged per colour
-  /// (OwnerForceExchange) and the region force's voxel count is summed. An empty or invalid
-  /// piece on any process fails the run on all of them. Not distributed yet (refused with a
-  /// message on every process): sigma_0 from a start that does not span the image (give Sigma
-  /// or SigmaFraction) and an estimated intensity range (give IntensityRange, or RegionWeight
-  /// 0). No progress callback may abort one process alone.
+  /// (OwnerForceExchange), the region force's voxel count is summed and sigma_0 from the start
+  /// is chosen from the pieces (ChoosePieceInitialSigma). An empty or invalid piece on any
+  /// process fails the run on all of them. Not distributed yet (refused with a message on
+  /// every process): an estimated intensity range (give IntensityRange, or RegionWeight 0).
+  /// No progress callback may abort one process alone.
   void SetDistribution(const ImagePiece& piece, const PieceReductions& reduce)
   {
     this->Distributed = true;
@@ -221,7 +221,8 @@ public:
   }
   /// The ghost voxels along axis a that a distributed solve of `whole` with parameters p needs
   /// around each piece: those of the largest sigma computed on the image's own grid, with
-  /// sigma_0 as p gives it (or extent / 6 for a start spanning the image).
+  /// sigma_0 as p gives it (or extent / 6, the largest sigma_0 a start can give), and those of
+  /// the probe of sigma_0 from the start (InitialSigmaProbeGhostVoxels).
   static int DistributedGhostVoxels(
     const MultilevelParameters& p, const ImageGeometry& whole, int a);
 

@@ -9,10 +9,10 @@
 //   region force's exchange is TestForceExchange's): the serial surface bit for bit, and no rank
 //   holds the whole image.
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
-//   reduction: a hang would hit the ctest timeout); a start that would need sigma_0 from the
-//   image is refused on every rank.
+//   reduction: a hang would hit the ctest timeout); a start that would need the intensity range
+//   estimated is refused on every rank.
 #include "DSTestHelpers.h"
-#include "EmulatedRanks.h"
+#include "PieceSlabs.h"
 #include "TestSolverMeshes.h"
 
 #include "dsMultilevel.h"
@@ -74,28 +74,8 @@ TriangleMesh Box(const Vec3& c, const Vec3& h)
 ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, int ranks,
   const MultilevelParameters& p, std::vector<float>& held, bool empty = false)
 {
-  ImagePiece piece;
-  piece.Whole = g;
-  piece.Owned = VoxelBox::Whole(g);
-  const int cells = g.Dimensions[2] - 1;
-  piece.Owned.Begin[2] = cells * r / ranks;
-  piece.Owned.End[2] = empty ? piece.Owned.Begin[2] : cells * (r + 1) / ranks + 1;
-  piece.Held = piece.Owned;
-  for (int a = 0; a < 3 && !empty; ++a)
-  {
-    const int ghost = MultilevelSolver::DistributedGhostVoxels(p, g, a);
-    piece.Held.Begin[a] = std::max(0, piece.Held.Begin[a] - ghost);
-    piece.Held.End[a] = std::min(g.Dimensions[a], piece.Held.End[a] + ghost);
-  }
-  held.clear();
-  for (int k = piece.Held.Begin[2]; k < piece.Held.End[2]; ++k)
-    for (int j = piece.Held.Begin[1]; j < piece.Held.End[1]; ++j)
-      for (int i = piece.Held.Begin[0]; i < piece.Held.End[0]; ++i)
-      {
-        held.push_back(image[i + NX * (j + static_cast<std::size_t>(NY) * k)]);
-      }
-  piece.Image = ImageView::Of(held.empty() ? nullptr : held.data(), piece.HeldGeometry());
-  return piece;
+  return dstest::Slab<float>(g, image, r, ranks,
+    [&](int a) { return MultilevelSolver::DistributedGhostVoxels(p, g, a); }, held, empty);
 }
 
 struct Outcome
@@ -123,9 +103,7 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
     {
       std::vector<float> held;
       const ImagePiece piece = Slab(g, image, r, nRanks, p, held, r == emptyRank);
-      PieceReductions reduce;
-      reduce.Sum = [&emulated, r](std::vector<double>& v) { emulated.Sum(r, v); };
-      reduce.Max = [&emulated, r](double v) { return emulated.Max(r, v); };
+      const PieceReductions reduce = dstest::ReductionsOf(emulated, r);
       MultilevelSolver s;
       s.SetParameters(p);
       s.SetDistribution(piece, reduce);
@@ -195,15 +173,15 @@ void BadInput(const TriangleMesh& box, const TriangleMesh& near)
             << std::endl;
   DS_CHECK(failed == 3 && said == 3, "an empty piece on one rank fails every rank, saying why");
 
-  // A start near the object with every default needs sigma_0 from the image.
+  // A start near the object with every default needs the intensity range estimated.
   Solve(g, image, defaults, near, 2, -1, serial, ranks);
   failed = said = 0;
   for (const Outcome& o : ranks)
   {
     failed += !o.Ok;
-    said += o.Error.find("give Sigma or SigmaFraction") != std::string::npos;
+    said += o.Error.find("give IntensityRange") != std::string::npos;
   }
-  DS_CHECK(failed == 2 && said == 2, "sigma_0 from the start is refused on every rank, saying why");
+  DS_CHECK(failed == 2 && said == 2, "the range estimate is refused on every rank, saying why");
 }
 } // namespace
 
