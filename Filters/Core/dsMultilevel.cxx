@@ -114,7 +114,10 @@ bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& m
   {
     RangeEstimate estimate;
     std::string msg;
-    if (!EstimateIntensityRange(image, mesh, 1.0, estimate, &msg))
+    const bool estimated = this->Distributed
+      ? EstimatePieceIntensityRange(this->Piece, mesh, 1.0, this->Reduce, estimate, &msg)
+      : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg);
+    if (!estimated)
     {
       this->Warnings.push_back(
         "the region force is off: no intensity range was given and none could be "
@@ -399,12 +402,6 @@ bool MultilevelSolver::Start(
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
     return false;
   }
-  msg = this->Distributed ? this->DistributionProblem(geometry, mesh) : std::string();
-  if (!msg.empty())
-  {
-    *error = "distributed image: " + msg;
-    return false;
-  }
   if (!this->FirstSigma(image, mesh, state.Sigma, error))
   {
     return false;
@@ -685,20 +682,6 @@ bool MultilevelSolver::RunLevels(
     state.Sigma = nextSigma;
   }
   return true;
-}
-
-std::string MultilevelSolver::DistributionProblem(
-  const ImageGeometry& whole, const TriangleMesh& mesh) const
-{
-  const MultilevelParameters& P = this->Parameters;
-  const bool spans = StartSpansImage(whole, mesh);
-  const bool estimate = !(P.IntensityRange[0] < P.IntensityRange[1]);
-  if (P.RegionWeight > 0 && estimate && !spans && mesh.IsClosed())
-  {
-    return "the estimate of the intensity range is not distributed yet: give IntensityRange, "
-           "or set RegionWeight to 0";
-  }
-  return std::string();
 }
 
 int MultilevelSolver::DistributedGhostVoxels(

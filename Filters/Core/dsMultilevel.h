@@ -208,11 +208,11 @@ public:
   /// are read only through the piece (piece.Image). Every process runs the same
   /// schedule on the same mesh (so every process ends with the same surface); each level's
   /// field is computed per piece (ComputePieceForce), the forces are exchanged per colour
-  /// (OwnerForceExchange), the region force's voxel count is summed and sigma_0 from the start
-  /// is chosen from the pieces (ChoosePieceInitialSigma). An empty or invalid piece on any
-  /// process fails the run on all of them. Not distributed yet (refused with a message on
-  /// every process): an estimated intensity range (give IntensityRange, or RegionWeight 0).
-  /// No progress callback may abort one process alone.
+  /// (OwnerForceExchange), the region force's voxel count is summed, and sigma_0 from the
+  /// start and the estimated intensity range are made from the pieces
+  /// (ChoosePieceInitialSigma, EstimatePieceIntensityRange): every default is distributed. An
+  /// empty or invalid piece on any process fails the run on all of them. No progress callback
+  /// may abort one process alone.
   void SetDistribution(const ImagePiece& piece, const PieceReductions& reduce)
   {
     this->Distributed = true;
@@ -295,8 +295,6 @@ private:
   bool Distributed = false;       ///< SetDistribution was called
   ImagePiece Piece;
   PieceReductions Reduce;
-  /// What a distributed run cannot do yet (see SetDistribution); empty when it can.
-  std::string DistributionProblem(const ImageGeometry& whole, const TriangleMesh& mesh) const;
   struct RunState;
   // Run's steps, in order.
   void ClearResults();

@@ -1,11 +1,18 @@
-// sigma_0 from the start on a distributed image (ChoosePieceInitialSigma, dsPieceInitialSigma.h;
-// docs/METHOD.md §9.1, §9.8), the processes emulated by threads (EmulatedRanks.h): a 40 x 40 x
-// 120 image (anisotropic spacing, an origin off zero) of two soft balls and noise, split into 2
-// and 3 slabs along z, each rank holding its slab and InitialSigmaProbeGhostVoxels() around it.
+// What a distributed solve makes from its start (docs/METHOD.md §9.8): sigma_0 from the start
+// (ChoosePieceInitialSigma, dsPieceInitialSigma.h; §9.1) and the estimated intensity range
+// (EstimatePieceIntensityRange, dsRegion.h; §9.3), the processes emulated by threads
+// (EmulatedRanks.h): a 40 x 40 x 120 image (anisotropic spacing, an origin off zero) of two soft
+// balls and noise, split into 2 and 3 slabs along z, each rank holding its slab and
+// InitialSigmaProbeGhostVoxels() around it.
 // - Starts near the first ball and across the slabs' borders: every rank chooses the serial
 //   sigma_0 exactly (the same 90th-percentile distance, rays and rays that met an edge), and
 //   no rank holds the whole image; the same for the image as uint16, read in its own type.
 // - A start spanning the image keeps extent / 6 on every rank without a probe.
+// - The intensity range estimated from a start around the first ball (object against
+//   background), a click inside it (no contrast: median -+ 3 s), a start enclosing too few voxel
+//   centres (sampled at its vertices) and one across the slabs' borders: every rank's estimate
+//   (range, median, spread, separation, sample counts) equals the serial one exactly, float
+//   and uint16 images.
 // - Bad input: a rank holding no ghost layers fails every rank with a message (no rank waits in
 //   a reduction: a hang would hit the ctest timeout).
 #include "DSTestHelpers.h"
@@ -13,6 +20,7 @@
 #include "TestSolverMeshes.h"
 
 #include "dsPieceInitialSigma.h"
+#include "dsRegion.h"
 
 #include <cmath>
 #include <cstdint>
@@ -105,6 +113,53 @@ void SameAsSerial(const ImageGeometry& g, const std::vector<T>& image, const Tri
   }
 }
 
+bool SameEstimate(const RangeEstimate& a, const RangeEstimate& b)
+{
+  return a.Range[0] == b.Range[0] && a.Range[1] == b.Range[1] && a.Samples == b.Samples &&
+    a.OutsideSamples == b.OutsideSamples && a.Median == b.Median && a.Spread == b.Spread &&
+    a.Separation == b.Separation && a.ObjectMedian == b.ObjectMedian &&
+    a.BackgroundMedian == b.BackgroundMedian && a.FromVertices == b.FromVertices &&
+    a.Contrast == b.Contrast;
+}
+
+/// The serial range estimate against every rank's, on 2 and 3 slabs.
+template <typename T>
+void SameRange(const ImageGeometry& g, const std::vector<T>& image, const TriangleMesh& start,
+  const std::string& label)
+{
+  RangeEstimate serial;
+  std::string error;
+  DS_CHECK(EstimateIntensityRange(ImageView::Of(image.data(), g), start, 1.0, serial, &error),
+    label + ": serial: " + error);
+  for (int nRanks : { 2, 3 })
+  {
+    dstest::EmulatedRanks ranks(nRanks);
+    std::vector<RangeEstimate> estimates(nRanks);
+    std::vector<int> ok(nRanks, 0), same(nRanks, 0);
+    ranks.Run(
+      [&](int r)
+      {
+        std::vector<T> values;
+        const ImagePiece piece = dstest::Slab<T>(
+          g, image, r, nRanks, [&](int a) { return InitialSigmaProbeGhostVoxels(g, a); }, values);
+        std::string message;
+        ok[r] = EstimatePieceIntensityRange(
+          piece, start, 1.0, dstest::ReductionsOf(ranks, r), estimates[r], &message);
+        same[r] = SameEstimate(estimates[r], serial);
+      });
+    const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
+    std::cout << l << ": range [" << serial.Range[0] << ", " << serial.Range[1] << "] from "
+              << serial.Samples << (serial.FromVertices ? " vertices" : " voxels") << " inside, "
+              << serial.OutsideSamples << " outside, contrast " << serial.Contrast
+              << "; rank 0 [" << estimates[0].Range[0] << ", " << estimates[0].Range[1] << "]"
+              << std::endl;
+    DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, l + ": every rank estimated");
+    DS_CHECK(std::count(same.begin(), same.end(), 1) == nRanks,
+      l + ": every rank's estimate equals the serial one exactly");
+    DS_CHECK(ranks.Mismatches() == 0, l + ": the ranks reduced vectors of one size");
+  }
+}
+
 void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const TriangleMesh& start)
 {
   dstest::EmulatedRanks ranks(3);
@@ -130,7 +185,7 @@ void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const Tri
 }
 } // namespace
 
-int TestDistributedSigma(int, char*[])
+int TestDistributedStart(int, char*[])
 {
   const ImageGeometry g = dstest::AnisotropicGeometry(40, 40, 120);
   const std::vector<float> image = Image(g);
@@ -146,11 +201,16 @@ int TestDistributedSigma(int, char*[])
   }
   SameAsSerial(g, image16, nearBall, "uint16, a start near the first ball");
   SameAsSerial(g, image, Sphere(200.0, { 17.0, 24.0, 60.0 }), "a start spanning the image");
+  SameRange(g, image, nearBall, "the range from a start around the first ball");
+  SameRange(g, image, Sphere(4.0, { 17.0, 24.0, 30.0 }), "the range from a click in it");
+  SameRange(g, image, Sphere(1.2, { 17.3, 24.2, 30.1 }), "the range from a start around a voxel");
+  SameRange(g, image, across, "the range from a start across the slabs' borders");
+  SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
   BadPiece(g, image, nearBall);
-  return dstest::Result("TestDistributedSigma");
+  return dstest::Result("TestDistributedStart");
 }
 
 int main(int argc, char* argv[])
 {
-  return TestDistributedSigma(argc, argv);
+  return TestDistributedStart(argc, argv);
 }
