@@ -203,6 +203,12 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
   return true;
 }
 
+bool MultilevelSolver::GoOn(bool here) const
+{
+  // Distributed, every process answers the same: one stops, all stop (one maximum per batch).
+  return this->Distributed ? this->Reduce.Max(here ? 0.0 : 1.0) == 0.0 : here;
+}
+
 bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
@@ -271,8 +277,8 @@ bool MultilevelSolver::SolveLevel(
       }
     }
     if (!stop && !rec.Converged && this->Progress &&
-      !this->Progress(
-        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1)))
+      !this->GoOn(this->Progress(
+        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1))))
     {
       this->Aborted = true;
       this->Stop = StopReason::Aborted;

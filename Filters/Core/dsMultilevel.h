@@ -211,8 +211,9 @@ public:
   /// (OwnerForceExchange), the region force's voxel count is summed, and sigma_0 from the
   /// start and the estimated intensity range are made from the pieces
   /// (ChoosePieceInitialSigma, EstimatePieceIntensityRange): every default is distributed. An
-  /// empty or invalid piece on any process fails the run on all of them. No progress callback
-  /// may abort one process alone.
+  /// empty or invalid piece on any process fails the run on all of them. The progress
+  /// callback's answer is agreed by all processes (one maximum per batch of sweeps): when one
+  /// asks to stop, all stop after the same sweep. The sweep callback must not stop one alone.
   void SetDistribution(const ImagePiece& piece, const PieceReductions& reduce)
   {
     this->Distributed = true;
@@ -295,6 +296,9 @@ private:
   bool Distributed = false;       ///< SetDistribution was called
   ImagePiece Piece;
   PieceReductions Reduce;
+  /// Whether the run goes on after this process's progress callback answered `here`
+  /// (distributed: every process's answer combined, see SetDistribution).
+  bool GoOn(bool here) const;
   struct RunState;
   // Run's steps, in order.
   void ClearResults();

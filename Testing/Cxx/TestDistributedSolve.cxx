@@ -12,7 +12,8 @@
 //   both from the pieces): the serial surface bit for bit (its levels pass 3-12 voxels of sigma:
 //   each rank holds the whole image).
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
-//   reduction: a hang would hit the ctest timeout).
+//   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
+//   stops every rank after the same sweep, with the same surface.
 #include "DSTestHelpers.h"
 #include "PieceSlabs.h"
 #include "TestSolverMeshes.h"
@@ -175,6 +176,45 @@ void BadInput(const TriangleMesh& box)
             << std::endl;
   DS_CHECK(failed == 3 && said == 3, "an empty piece on one rank fails every rank, saying why");
 }
+/// Rank 1's progress callback asks to stop at its second call: every rank stops after the same
+/// sweep, with the same surface, none left waiting.
+void AgreedAbort(const TriangleMesh& near)
+{
+  const ImageGeometry g = Geometry();
+  const std::vector<float> image = Image();
+  MultilevelParameters p;
+  p.Solver.NumberOfThreads = 1;
+  p.Sigma = 2.5;
+  p.RegionWeight = 0.0;
+  const int nRanks = 3;
+  dstest::EmulatedRanks emulated(nRanks);
+  std::vector<Outcome> ranks(nRanks);
+  std::vector<int> aborted(nRanks, 0), sweeps(nRanks, 0);
+  emulated.Run(
+    [&](int r)
+    {
+      std::vector<float> held;
+      const ImagePiece piece = Slab(g, image, r, nRanks, p, held);
+      MultilevelSolver s;
+      s.SetParameters(p);
+      s.SetDistribution(piece, dstest::ReductionsOf(emulated, r));
+      int calls = 0;
+      s.SetProgressCallback([&calls, r](double) { return r != 1 || ++calls < 2; });
+      ranks[r].Mesh = near;
+      ImageView whole = piece.Image;
+      whole.Geometry = g;
+      ranks[r].Ok = s.Run(whole, ranks[r].Mesh, &ranks[r].Error);
+      aborted[r] = s.GetAborted() && s.GetStopReason() == StopReason::Aborted;
+      sweeps[r] = s.GetTotalSweeps();
+    });
+  std::cout << "rank 1 stops at its second progress report: sweeps per rank " << sweeps[0] << " "
+            << sweeps[1] << " " << sweeps[2] << std::endl;
+  DS_CHECK(std::count(aborted.begin(), aborted.end(), 1) == nRanks, "every rank stopped");
+  DS_CHECK(sweeps[0] == sweeps[1] && sweeps[1] == sweeps[2], "after the same sweep");
+  DS_CHECK(ranks[0].Mesh.Points == ranks[1].Mesh.Points &&
+      ranks[1].Mesh.Points == ranks[2].Mesh.Points,
+    "with the same surface");
+}
 } // namespace
 
 int TestDistributedSolve(int, char*[])
@@ -194,6 +234,7 @@ int TestDistributedSolve(int, char*[])
   // Every default from the near start: sigma_0 from the start, the intensity range estimated.
   SameAsSerial("every default from a start near the capsule", defaults, near, false);
   BadInput(around);
+  AgreedAbort(near);
   return dstest::Result("TestDistributedSolve");
 }
 
