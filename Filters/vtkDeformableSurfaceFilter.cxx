@@ -575,6 +575,8 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
     imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     // This process's piece and the ghost layers the levels' sigma need (docs/METHOD.md §9.8).
+    // The start is not known yet: sigma_0 from it is taken at its largest, extent / 6, and
+    // its probe's ghosts are added (MultilevelSolver::DistributedGhostVoxels).
     const int* whole = imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
     dsurf::ImageGeometry geometry;
     for (int a = 0; a < 3; ++a)
@@ -815,7 +817,8 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
     [this](double f)
     {
       this->UpdateProgress(0.02 + 0.96 * f);
-      return this->OnPieces || !this->GetAbortExecute(); // one process must not stop alone
+      // On pieces every process stops when one does (MultilevelSolver::SetDistribution).
+      return !this->GetAbortExecute();
     });
   ConvergenceColumns columns;
   solver.SetSweepCallback(
@@ -849,10 +852,25 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
 //------------------------------------------------------------------------------
 bool vtkDeformableSurfaceFilter::ImageInPieces()
 {
-  // sigma_0 and the intensity range must not need the whole image (dsMultilevel.h).
-  return vtkDSPolyDataGather::IsDistributed(this->Controller) &&
-    (this->Sigma > 0 || this->SigmaFraction > 0 || !this->HierarchicalSigma) &&
-    (this->RegionWeight <= 0 || this->IntensityRange[0] < this->IntensityRange[1]);
+  // Every default is distributed; the potential only in its default form (ComputePieceForce).
+  return vtkDSPolyDataGather::IsDistributed(this->Controller) && this->EdgeWeight > 0 &&
+    this->ImageWeight == 0 &&
+    this->EdgeNormalization == GLOBAL_MAXIMUM;
+}
+
+//------------------------------------------------------------------------------
+bool vtkDeformableSurfaceFilter::ImageOnProcessZeroOnly(vtkImageData* image, const int whole[6])
+{
+  // A reader that cannot split its file (NIfTI, MetaImage) answers a request for pieces with
+  // the whole image on process 0 and nothing on the others: then process 0 solves alone, as
+  // with the whole image requested. Collective: every process answers alike.
+  const bool empty = !image || image->GetNumberOfPoints() <= 0;
+  bool mine = empty;
+  if (this->Controller->GetLocalProcessId() == 0)
+  {
+    mine = !empty && std::equal(whole, whole + 6, image->GetExtent());
+  }
+  return dsurf::ControllerReductions(this->Controller).Max(mine ? 0.0 : 1.0) == 0.0;
 }
 
 //------------------------------------------------------------------------------
@@ -942,15 +960,15 @@ int vtkDeformableSurfaceFilter::RequestData(
   {
     const bool onZero = vtkDSPolyDataGather::GatherOnProcessZero(
       this->Controller, OwnedSurfacePiece(surface), gathered);
-    if (this->ImageInPieces())
+    int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 };
+    vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0);
+    if (imageInfo && imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+    }
+    if (this->ImageInPieces() && !this->ImageOnProcessZeroOnly(image, wholeExtent))
     {
       this->Controller->Broadcast(gathered, 0); // every process solves
-      int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 };
-      vtkInformation* imageInfo = inputVector[0]->GetInformationObject(0);
-      if (imageInfo && imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-      {
-        imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
-      }
       this->SolveOnPieces(
         image, this->GetInputArrayToProcess(0, inputVector), gathered, wholeExtent, output, table);
       return 1;

@@ -89,17 +89,23 @@
  * serial result on the same gathered surface; the vertex order follows the pieces, so
  * against a serial run on the undivided surface it agrees up to the convergence tolerance.
  *
- * The image in pieces (docs/METHOD.md §9.8): when the parameters need nothing of the image
- * beyond each process's piece -- Sigma or SigmaFraction given (or HierarchicalSigma off), and
- * RegionWeight 0 or IntensityRange given -- each process instead requests its piece of the image
- * with the ghost levels its levels' sigma need, the gathered surface is sent to every process,
- * and every process runs the same solve (the forces sampled by the owner of each vertex's voxel
- * cell and summed per colour); process 0 outputs the surface (equal to the serial result bit
- * for bit) with field data PieceVoxels (the voxels each process held) and ImageVoxels. An empty
- * or invalid piece on any process is an error on all of them. The sweeps then run on one thread
- * per process, and Abort is not answered.
+ * The image in pieces (docs/METHOD.md §9.8): with the default potential (EdgeWeight > 0,
+ * ImageWeight 0, the global maximum normalisation) -- whatever sigma_0 and the region force's
+ * range, which are made from the pieces -- each process instead requests its piece of the
+ * image with the ghost levels the largest sigma_0 its parameters allow needs (extent / 6 when
+ * sigma_0 comes from the start, which the request cannot know yet), the gathered surface is sent
+ * to every process, and every process runs the same solve (the forces sampled by the owner of
+ * each vertex's voxel cell and summed per colour); process 0 outputs the surface (equal to the
+ * serial result bit for bit) with field data PieceVoxels (the voxels each process held) and
+ * ImageVoxels. A level with sigma from 3 to 9 voxels uses the recursive Gaussian along whole
+ * axes, so for such schedules (every default, on images of more than ~36 voxels) the ghost
+ * levels reach across the image and each process holds all of it; with Sigma below 3 voxels
+ * each holds its piece and a few ghost layers. A reader that cannot split its file (NIfTI,
+ * MetaImage: the whole image on process 0, nothing on the others) leaves the solve to process 0
+ * alone. Otherwise an empty or invalid piece on any process is an error on all of them. The sweeps then run on one thread per process; Abort on one process
+ * stops all of them after the same sweep (agreed once per batch of sweeps).
  *
- * Caveats: the whole image is requested unless it goes in pieces (above). Abort stops after the
+ * Caveats: with another potential the whole image is requested (above). Abort stops after the
  * current sweep and outputs the (valid) surface reached so far. A weak boundary next to a strong
  * one needs HierarchicalSigma off, whose default sigma is one voxel (mean spacing).
  */
@@ -469,14 +475,17 @@ private:
     dsurf::MultilevelSolver& solver, vtkTable* table);
   /// The solver's warnings and debug lines.
   void Report(const dsurf::MultilevelSolver& solver);
-  /// Distributed, with parameters that need nothing of the image beyond each process's piece
-  /// (see the class comment): the image is requested in pieces and solved by every process.
+  /// Distributed, with the default potential (see the class comment): the image is requested
+  /// in pieces and solved by every process.
   bool ImageInPieces();
+  /// Whether the image requested in pieces came whole to process 0 and empty to the others (a
+  /// reader that cannot split its file): then process 0 solves alone. Collective.
+  bool ImageOnProcessZeroOnly(vtkImageData* image, const int wholeExtent[6]);
   /// That solve (docs/METHOD.md §9.8): the local input checks agreed by all processes first,
   /// then the core on this process's piece; process 0 delivers the surface.
   void SolveOnPieces(vtkImageData* image, vtkDataArray* array, vtkPolyData* surface,
     const int wholeExtent[6], vtkPolyData* output, vtkTable* table);
-  bool OnPieces = false; ///< SolveOnPieces is running: one solver thread, no abort
+  bool OnPieces = false; ///< SolveOnPieces is running: one solver thread
   /// The warm start's copy and the time steps' cache of this result (complete: not aborted,
   /// serial).
   void KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],

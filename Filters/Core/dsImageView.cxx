@@ -148,6 +148,20 @@ bool IsConstant(const ImageView& image, double& value)
   return constant && !first; // no number at all is not a constant image
 }
 
+double SampleCell(const ImageView& image, const TrilinearCell& cell)
+{
+  double v = 0.0;
+  VisitValues(image,
+    [&](const auto* values)
+    {
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        v += cell.Weight(corner) * AsFloat(values[cell.Corner(corner)]);
+      }
+    });
+  return v;
+}
+
 double SampleVolume(const ImageView& image, const double x[3], bool* inside)
 {
   TrilinearCell c;
@@ -157,18 +171,6 @@ double SampleVolume(const ImageView& image, const double x[3], bool* inside)
   {
     *inside = in;
   }
-  double v = 0.0;
-  if (in)
-  {
-    VisitValues(image,
-      [&](const auto* values)
-      {
-        for (int corner = 0; corner < 8; ++corner)
-        {
-          v += c.Weight(corner) * AsFloat(values[c.Corner(corner)]);
-        }
-      });
-  }
-  return v;
+  return in ? SampleCell(image, c) : 0.0;
 }
 } // namespace dsurf

@@ -204,6 +204,9 @@ inline bool LocateImageCell(const ImageGeometry& geometry, const double x[3], Tr
 /// loop runs with vtkSMPTools: the caller's SMP scope sets the threads.
 DEFORMABLESURFACEFILTERS_EXPORT void CopyToFloat(const ImageView& image, float* out);
 
+/// The trilinear sample of the view's values in `cell` (ids into the view's values).
+DEFORMABLESURFACEFILTERS_EXPORT double SampleCell(const ImageView& image, const TrilinearCell& cell);
+
 /// Trilinear sample of the view at world point x, reaching half a voxel past the outermost
 /// centres (there the border value is used); 0 and *inside = false further out.
 DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(

@@ -61,85 +61,102 @@ bool StartSpansImage(const ImageGeometry& g, const TriangleMesh& mesh)
 
 namespace
 {
-/// Edge strength -P (in [0, 1]) at x + t n; negative outside the image.
-double EdgeStrengthAt(const ForceField& probe, const Vec3& x, const Vec3& n, double t)
+/// The point x + t n of a ray.
+Vec3 RayPoint(const Vec3& x, const Vec3& n, double t)
 {
-  const double p[3] = { x[0] + t * n[0], x[1] + t * n[1], x[2] + t * n[2] };
-  bool inside = false;
-  const double g = -SampleVolume(probe.Potential.data(), probe.Geometry, p, &inside);
-  return inside ? g : -1.0;
+  return { x[0] + t * n[0], x[1] + t * n[1], x[2] + t * n[2] };
 }
 
-/// Distance along +-n from x to the nearest significant local maximum of the edge strength:
-/// 0 when x itself is one (an earlier result used as the start); else the first sample, going
-/// either way, that the strength rose to and falls after (a start on the flank of an edge
-/// has not reached it yet); `reach` when there is none within it.
-double DistanceToEdge(
-  const ForceField& probe, const Vec3& x, const Vec3& n, double step, double reach)
+/// One ray's walk to the nearest significant local maximum of the edge strength along +-n
+/// from x: 0 when x itself is one (an earlier result used as the start); else the first sample,
+/// going either way, that the strength rose to and falls after (a start on the flank of an
+/// edge has not reached it yet); `reach` when there is none within it. Fed the strengths one
+/// by one in the order of the steps (Next), so that all rays can be sampled together.
+struct RayWalk
 {
-  const double g0 = EdgeStrengthAt(probe, x, n, 0);
-  if (g0 >= EdgeSignificance && g0 >= EdgeStrengthAt(probe, x, n, step) &&
-    g0 >= EdgeStrengthAt(probe, x, n, -step))
+  Vec3 X, N;
+  double G0 = 0, Best = 0; ///< the strength at x; the distance found so far (reach: none)
+  double T = 0;            ///< the next step's distance along Sign * n
+  double Prev2 = 0, Prev1 = 0, StartMinus = 0;
+  int Sign = 1;
+  bool Done = false;
+
+  /// Starts from the strengths at x and one step either way.
+  void Begin(double g0, double plus, double minus, double step, double reach)
   {
-    return 0.0;
-  }
-  double best = reach;
-  for (double sign : { 1.0, -1.0 })
-  {
-    double prev2 = g0, prev1 = EdgeStrengthAt(probe, x, n, sign * step);
-    for (double t = 2 * step; t <= best + step && prev1 >= 0; t += step)
+    this->G0 = g0;
+    this->StartMinus = minus;
+    this->Best = reach;
+    if (g0 >= EdgeSignificance && g0 >= plus && g0 >= minus)
     {
-      const double g = EdgeStrengthAt(probe, x, n, sign * t);
-      if (prev1 >= EdgeSignificance && prev1 > prev2 && prev1 >= g)
-      {
-        best = std::min(best, t - step);
-        break;
-      }
-      prev2 = prev1;
-      prev1 = g;
+      this->Best = 0.0;
+      this->Done = true;
+      return;
+    }
+    this->Direction(1, plus, step);
+  }
+  /// Walks along sign * n from the first step's strength on (or ends when it cannot go on).
+  void Direction(int sign, double first, double step)
+  {
+    this->Sign = sign;
+    this->Prev2 = this->G0;
+    this->Prev1 = first;
+    this->T = 2 * step;
+    this->EndIfOver(step);
+  }
+  bool CanGoOn(double step) const { return this->T <= this->Best + step && this->Prev1 >= 0; }
+  void EndIfOver(double step)
+  {
+    if (!this->CanGoOn(step))
+    {
+      this->EndDirection(step);
     }
   }
-  return best;
-}
-} // namespace
+  void EndDirection(double step)
+  {
+    if (this->Sign > 0)
+    {
+      this->Direction(-1, this->StartMinus, step);
+    }
+    else
+    {
+      this->Done = true;
+    }
+  }
+  /// The strength at the step T.
+  void Next(double g, double step)
+  {
+    if (this->Prev1 >= EdgeSignificance && this->Prev1 > this->Prev2 && this->Prev1 >= g)
+    {
+      this->Best = std::min(this->Best, this->T - step);
+      this->EndDirection(step);
+      return;
+    }
+    this->Prev2 = this->Prev1;
+    this->Prev1 = g;
+    this->T += step;
+    this->EndIfOver(step);
+  }
+};
 
-bool ChooseInitialSigma(const ImageView& image, const TriangleMesh& mesh, double paperSigma,
-  int numberOfThreads, InitialSigmaChoice& choice, std::string* error)
+/// The rays: from the vertices (area-weighted normals) and the triangle centres (face
+/// normals); from every k-th of them on a start of more than MaxRays (a million-triangle
+/// iso-surface would cast two million rays, ~10 s, for a 90th percentile that a tenth of them
+/// fixes).
+std::vector<RayWalk> CastRays(const TriangleMesh& mesh)
 {
-  const ImageGeometry& geometry = image.Geometry;
-  choice = InitialSigmaChoice();
-  choice.Sigma = paperSigma;
-  if (StartSpansImage(geometry, mesh))
-  {
-    choice.SpansVolume = true;
-    return true;
-  }
-  const double voxel = geometry.MeanSpacing();
-  ScaleSpaceParameters probeParameters;
-  probeParameters.Sigma = voxel;
-  probeParameters.EdgeNormalization = EdgeNormalization::Local;
-  probeParameters.NumberOfThreads = numberOfThreads;
-  ForceField probe;
-  if (!ComputeScaleSpaceForce(image, probeParameters, probe, error))
-  {
-    return false;
-  }
-  probe.Force.clear(); // only the potential is sampled
-  probe.Force.shrink_to_fit();
-
-  // Rays from the vertices (area-weighted normals) and the triangle centres (face normals);
-  // from every k-th of them on a start of more than MaxRays (a million-triangle iso-surface
-  // would cast two million rays, ~10 s, for a 90th percentile that a tenth of them fixes).
-  const double reach = 2.0 * paperSigma, step = 0.5 * voxel;
   const std::size_t stride = 1 + (mesh.Points.size() + mesh.Triangles.size()) / MaxRays;
-  std::vector<double> distances;
-  distances.reserve((mesh.Points.size() + mesh.Triangles.size()) / stride + 2);
+  std::vector<RayWalk> rays;
+  rays.reserve((mesh.Points.size() + mesh.Triangles.size()) / stride + 2);
   auto cast = [&](const Vec3& x, const Vec3& n)
   {
     const double len = Norm(n);
     if (len > 0)
     {
-      distances.push_back(DistanceToEdge(probe, x, (1.0 / len) * n, step, reach));
+      RayWalk ray;
+      ray.X = x;
+      ray.N = (1.0 / len) * n;
+      rays.push_back(ray);
     }
   };
   for (std::size_t v = 0; v < mesh.Points.size(); v += stride)
@@ -152,9 +169,99 @@ bool ChooseInitialSigma(const ImageView& image, const TriangleMesh& mesh, double
     const Vec3 &a = mesh.Points[t[0]], &b = mesh.Points[t[1]], &c = mesh.Points[t[2]];
     cast((1.0 / 3.0) * (a + b + c), Cross(b - a, c - a));
   }
-  if (distances.empty())
+  return rays;
+}
+
+/// Walks every ray to its end, `batch` steps of each still walking per call of sample.
+void WalkRays(std::vector<RayWalk>& rays, const EdgeStrengthSampler& sample, int batch,
+  double step, double reach)
+{
+  std::vector<Vec3> points;
+  std::vector<double> g;
+  for (const RayWalk& ray : rays)
   {
-    return true;
+    for (double t : { 0.0, step, -step })
+    {
+      points.push_back(RayPoint(ray.X, ray.N, t));
+    }
+  }
+  sample(points, g);
+  for (std::size_t r = 0; r < rays.size(); ++r)
+  {
+    rays[r].Begin(g[3 * r], g[3 * r + 1], g[3 * r + 2], step, reach);
+  }
+  for (;;)
+  {
+    // Each walking ray's next `batch` steps (fewer where its reach ends).
+    std::vector<std::pair<std::size_t, int>> asked; // ray, steps asked
+    points.clear();
+    for (std::size_t r = 0; r < rays.size(); ++r)
+    {
+      const RayWalk& ray = rays[r];
+      int n = 0;
+      for (double t = ray.T; !ray.Done && n < batch && t <= ray.Best + step; t += step, ++n)
+      {
+        points.push_back(RayPoint(ray.X, ray.N, ray.Sign * t));
+      }
+      if (n > 0)
+      {
+        asked.emplace_back(r, n);
+      }
+    }
+    if (asked.empty())
+    {
+      return;
+    }
+    sample(points, g);
+    std::size_t next = 0;
+    for (const auto& a : asked)
+    {
+      RayWalk& ray = rays[a.first];
+      const int sign = ray.Sign;
+      for (int k = 0; k < a.second; ++k, ++next)
+      {
+        if (!ray.Done && ray.Sign == sign) // the rest of the batch is past the direction's end
+        {
+          ray.Next(g[next], step);
+        }
+      }
+    }
+  }
+}
+} // namespace
+
+ScaleSpaceParameters InitialSigmaProbeParameters(const ImageGeometry& geometry, int numberOfThreads)
+{
+  ScaleSpaceParameters probeParameters;
+  probeParameters.Sigma = geometry.MeanSpacing();
+  probeParameters.EdgeNormalization = EdgeNormalization::Local;
+  probeParameters.NumberOfThreads = numberOfThreads;
+  return probeParameters;
+}
+
+void ChooseInitialSigmaWith(const ImageGeometry& geometry, const TriangleMesh& mesh,
+  double paperSigma, const EdgeStrengthSampler& sample, int batch, InitialSigmaChoice& choice)
+{
+  choice = InitialSigmaChoice();
+  choice.Sigma = paperSigma;
+  if (StartSpansImage(geometry, mesh))
+  {
+    choice.SpansVolume = true;
+    return;
+  }
+  const double voxel = geometry.MeanSpacing();
+  const double reach = 2.0 * paperSigma, step = 0.5 * voxel;
+  std::vector<RayWalk> rays = CastRays(mesh);
+  if (rays.empty())
+  {
+    return;
+  }
+  WalkRays(rays, sample, std::max(1, batch), step, reach);
+  std::vector<double> distances;
+  distances.reserve(rays.size());
+  for (const RayWalk& ray : rays)
+  {
+    distances.push_back(ray.Best);
   }
   choice.Rays = static_cast<int>(distances.size());
   choice.RaysWithEdge = static_cast<int>(
@@ -163,6 +270,41 @@ bool ChooseInitialSigma(const ImageView& image, const TriangleMesh& mesh, double
   std::nth_element(distances.begin(), distances.begin() + k, distances.end());
   choice.StartDistance = distances[k];
   choice.Sigma = std::min(paperSigma, std::max(voxel, choice.StartDistance));
+}
+
+bool ChooseInitialSigma(const ImageView& image, const TriangleMesh& mesh, double paperSigma,
+  int numberOfThreads, InitialSigmaChoice& choice, std::string* error)
+{
+  const ImageGeometry& geometry = image.Geometry;
+  choice = InitialSigmaChoice();
+  choice.Sigma = paperSigma;
+  if (StartSpansImage(geometry, mesh))
+  {
+    choice.SpansVolume = true;
+    return true;
+  }
+  ForceField probe;
+  if (!ComputeScaleSpaceForce(
+        image, InitialSigmaProbeParameters(geometry, numberOfThreads), probe, error))
+  {
+    return false;
+  }
+  probe.Force.clear(); // only the potential is sampled
+  probe.Force.shrink_to_fit();
+  const EdgeStrengthSampler sample =
+    [&probe](const std::vector<Vec3>& points, std::vector<double>& strengths)
+  {
+    strengths.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      bool inside = false;
+      const double g =
+        -SampleVolume(probe.Potential.data(), probe.Geometry, points[i].data(), &inside);
+      strengths[i] = inside ? g : -1.0;
+    }
+  };
+  // One step at a time: the same samples as a walk ray by ray.
+  ChooseInitialSigmaWith(geometry, mesh, paperSigma, sample, 1, choice);
   return true;
 }
 } // namespace dsurf

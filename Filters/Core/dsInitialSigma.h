@@ -23,7 +23,9 @@
 #include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace dsurf
 {
@@ -41,12 +43,32 @@ struct DEFORMABLESURFACEFILTERS_EXPORT InitialSigmaChoice
 DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(
   const ImageGeometry& geometry, const TriangleMesh& mesh);
 
+/// The probe field's parameters: sigma one voxel (the mean spacing), locally normalised.
+DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters InitialSigmaProbeParameters(
+  const ImageGeometry& geometry, int numberOfThreads);
+
+/// The probe's edge strength -P at world points: strengths[i] for points[i], -1 outside the
+/// image. Serial, sampled from the probe field of the whole image; on a distributed image each
+/// process samples the points in its piece and one sum gives every process all of them
+/// (ChoosePieceInitialSigma, dsPieceReaders.h).
+using EdgeStrengthSampler =
+  std::function<void(const std::vector<Vec3>& points, std::vector<double>& strengths)>;
+
 /// Chooses sigma_0 for `mesh` (topology built) as described above; paperSigma is the paper's
 /// extent / 6 (or the fraction the caller uses). False with a message when the probe field
 /// cannot be computed.
 DEFORMABLESURFACEFILTERS_EXPORT bool ChooseInitialSigma(const ImageView& image,
   const TriangleMesh& mesh, double paperSigma, int numberOfThreads, InitialSigmaChoice& choice,
   std::string* error);
+
+/// The rays of ChooseInitialSigma walked with the strengths `sample` gives, all rays together,
+/// `batch` steps of each at a time (one call of sample per round, the same number of rounds
+/// on every process of a distributed image: the walk depends only on the strengths). The
+/// choice depends only on the strengths, not on the batch. sample is not called for a start
+/// that spans the image.
+DEFORMABLESURFACEFILTERS_EXPORT void ChooseInitialSigmaWith(const ImageGeometry& geometry,
+  const TriangleMesh& mesh, double paperSigma, const EdgeStrengthSampler& sample, int batch,
+  InitialSigmaChoice& choice);
 } // namespace dsurf
 
 #endif

@@ -1,6 +1,7 @@
 #include "dsMultilevel.h"
 
 #include "dsFieldBricks.h"
+#include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
 #include "dsUntangle.h"
 
@@ -72,8 +73,11 @@ bool MultilevelSolver::FirstSigma(
     // the start's distance would blur together.
     sigma = ConstantSigmaVoxels * geometry.MeanSpacing();
   }
-  else if (!ChooseInitialSigma(
-             image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+  else if (this->Distributed
+      ? !ChoosePieceInitialSigma(this->Piece, mesh, paper, P.Solver.NumberOfThreads, this->Reduce,
+          this->SigmaChoice, error)
+      : !ChooseInitialSigma(
+          image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
     return false;
   }
@@ -110,7 +114,10 @@ bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& m
   {
     RangeEstimate estimate;
     std::string msg;
-    if (!EstimateIntensityRange(image, mesh, 1.0, estimate, &msg))
+    const bool estimated = this->Distributed
+      ? EstimatePieceIntensityRange(this->Piece, mesh, 1.0, this->Reduce, estimate, &msg)
+      : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg);
+    if (!estimated)
     {
       this->Warnings.push_back(
         "the region force is off: no intensity range was given and none could be "
@@ -196,6 +203,12 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
   return true;
 }
 
+bool MultilevelSolver::GoOn(bool here) const
+{
+  // Distributed, every process answers the same: one stops, all stop (one maximum per batch).
+  return this->Distributed ? this->Reduce.Max(here ? 0.0 : 1.0) == 0.0 : here;
+}
+
 bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
@@ -264,8 +277,8 @@ bool MultilevelSolver::SolveLevel(
       }
     }
     if (!stop && !rec.Converged && this->Progress &&
-      !this->Progress(
-        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1)))
+      !this->GoOn(this->Progress(
+        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1))))
     {
       this->Aborted = true;
       this->Stop = StopReason::Aborted;
@@ -393,12 +406,6 @@ bool MultilevelSolver::Start(
   if (!state.Refiner.Initialize(mesh, &msg))
   {
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
-    return false;
-  }
-  msg = this->Distributed ? this->DistributionProblem(geometry, mesh) : std::string();
-  if (!msg.empty())
-  {
-    *error = "distributed image: " + msg;
     return false;
   }
   if (!this->FirstSigma(image, mesh, state.Sigma, error))
@@ -684,25 +691,6 @@ bool MultilevelSolver::RunLevels(
   return true;
 }
 
-std::string MultilevelSolver::DistributionProblem(
-  const ImageGeometry& whole, const TriangleMesh& mesh) const
-{
-  const MultilevelParameters& P = this->Parameters;
-  const bool spans = StartSpansImage(whole, mesh);
-  if (P.Sigma <= 0 && P.SigmaFraction <= 0 && P.HierarchicalSigma && !spans)
-  {
-    return "sigma_0 from the start's distance to its edges is not distributed yet: give Sigma "
-           "or SigmaFraction, or start around the whole volume";
-  }
-  const bool estimate = !(P.IntensityRange[0] < P.IntensityRange[1]);
-  if (P.RegionWeight > 0 && estimate && !spans && mesh.IsClosed())
-  {
-    return "the estimate of the intensity range is not distributed yet: give IntensityRange, "
-           "or set RegionWeight to 0";
-  }
-  return std::string();
-}
-
 int MultilevelSolver::DistributedGhostVoxels(
   const MultilevelParameters& p, const ImageGeometry& whole, int a)
 {
@@ -711,8 +699,10 @@ int MultilevelSolver::DistributedGhostVoxels(
     : p.HierarchicalSigma    ? whole.MeanExtent() / 6.0
                              : ConstantSigmaVoxels * whole.MeanSpacing();
   // The levels halve sigma down to its floor: the coarse ones need twice their block size
-  // (dsPieceField.h), the first on the image's own grid the most of the fine ones.
-  int ghost = 0;
+  // (dsPieceField.h), the first on the image's own grid the most of the fine ones. sigma_0
+  // from the start is at most extent / 6, and its probe needs ghosts of its own.
+  const bool fromStart = !(p.Sigma > 0) && !(p.SigmaFraction > 0) && p.HierarchicalSigma;
+  int ghost = fromStart ? InitialSigmaProbeGhostVoxels(whole, a) : 0;
   for (int level = 0; level <= std::max(0, p.MaxLevels); ++level)
   {
     const int f = DecimationFactor(sigma, whole);

@@ -217,11 +217,12 @@ public:
   /// are read only through the piece (piece.Image). Every process runs the same
   /// schedule on the same mesh (so every process ends with the same surface); each level's
   /// field is computed per piece (ComputePieceForce), the forces are exchanged per colour
-  /// (OwnerForceExchange) and the region force's voxel count is summed. An empty or invalid
-  /// piece on any process fails the run on all of them. Not distributed yet (refused with a
-  /// message on every process): sigma_0 from a start that does not span the image (give Sigma
-  /// or SigmaFraction) and an estimated intensity range (give IntensityRange, or RegionWeight
-  /// 0). No progress callback may abort one process alone.
+  /// (OwnerForceExchange), the region force's voxel count is summed, and sigma_0 from the
+  /// start and the estimated intensity range are made from the pieces
+  /// (ChoosePieceInitialSigma, EstimatePieceIntensityRange): every default is distributed. An
+  /// empty or invalid piece on any process fails the run on all of them. The progress
+  /// callback's answer is agreed by all processes (one maximum per batch of sweeps): when one
+  /// asks to stop, all stop after the same sweep. The sweep callback must not stop one alone.
   void SetDistribution(const ImagePiece& piece, const PieceReductions& reduce)
   {
     this->Distributed = true;
@@ -230,7 +231,8 @@ public:
   }
   /// The ghost voxels along axis a that a distributed solve of `whole` with parameters p needs
   /// around each piece: those of the largest sigma computed on the image's own grid, with
-  /// sigma_0 as p gives it (or extent / 6 for a start spanning the image).
+  /// sigma_0 as p gives it (or extent / 6, the largest sigma_0 a start can give), and those of
+  /// the probe of sigma_0 from the start (InitialSigmaProbeGhostVoxels).
   static int DistributedGhostVoxels(
     const MultilevelParameters& p, const ImageGeometry& whole, int a);
 
@@ -303,8 +305,9 @@ private:
   bool Distributed = false;       ///< SetDistribution was called
   ImagePiece Piece;
   PieceReductions Reduce;
-  /// What a distributed run cannot do yet (see SetDistribution); empty when it can.
-  std::string DistributionProblem(const ImageGeometry& whole, const TriangleMesh& mesh) const;
+  /// Whether the run goes on after this process's progress callback answered `here`
+  /// (distributed: every process's answer combined, see SetDistribution).
+  bool GoOn(bool here) const;
   struct RunState;
   // Run's steps, in order.
   void ClearResults();

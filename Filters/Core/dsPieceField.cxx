@@ -38,6 +38,45 @@ bool ImagePiece::OwnsCell(const double x[3]) const
   return true;
 }
 
+bool ImagePiece::LocateOwnedCell(const double x[3], const int begin[3],
+  const std::ptrdiff_t increments[3], TrilinearCell& cell) const
+{
+  if (!this->OwnsCell(x) || !LocateImageCell(this->Whole, x, cell, increments))
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    cell.Base -= static_cast<long long>(begin[a]) * increments[a];
+  }
+  return true;
+}
+
+double ImagePiece::SampleOwned(const double x[3], bool* owned) const
+{
+  TrilinearCell c;
+  const std::ptrdiff_t increments[3] = { 1, this->Image.RowStride, this->Image.SliceStride };
+  *owned = this->Image.Data && this->LocateOwnedCell(x, this->Held.Begin, increments, c);
+  return *owned ? SampleCell(this->Image, c) : 0.0;
+}
+
+PieceReductions SingleProcessReductions()
+{
+  PieceReductions reduce;
+  reduce.Sum = [](std::vector<double>&) {};
+  reduce.Max = [](double value) { return value; };
+  return reduce;
+}
+
+ImagePiece WholeImagePiece(const ImageView& image)
+{
+  ImagePiece piece;
+  piece.Whole = image.Geometry;
+  piece.Owned = piece.Held = VoxelBox::Whole(image.Geometry);
+  piece.Image = image;
+  return piece;
+}
+
 VoxelBox ImagePiece::CountedVoxels() const
 {
   VoxelBox counted = this->Owned;

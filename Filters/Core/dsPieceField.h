@@ -58,10 +58,25 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImagePiece
   /// clamped to the image): every cell of the image is owned by exactly one piece of a
   /// partition, and its owner holds the 8 voxels a sample there reads.
   bool OwnsCell(const double x[3]) const;
+  /// With OwnsCell(x), the trilinear cell of x located as in the whole image (the same
+  /// corners and weights as a serial sample) with ids into an array of the voxels from `begin`
+  /// on (whole-image indices) whose id steps per axis are `increments`: false when the piece
+  /// does not own the cell or x lies outside the image.
+  bool LocateOwnedCell(const double x[3], const int begin[3], const std::ptrdiff_t increments[3],
+    TrilinearCell& cell) const;
+  /// SampleVolume of the whole image at x, when this piece owns x's cell (*owned true); else 0.
+  double SampleOwned(const double x[3], bool* owned) const;
   /// The voxels this piece counts in sums: Owned without the far border voxels it shares with
   /// the next piece (so that every voxel of the image is counted by exactly one piece).
   VoxelBox CountedVoxels() const;
 };
+
+/// The reductions of a single process holding the whole image: Sum leaves the values, Max
+/// returns its argument (so that one code path serves a whole image and its pieces).
+DEFORMABLESURFACEFILTERS_EXPORT PieceReductions SingleProcessReductions();
+
+/// The whole image as the one piece of a single process.
+DEFORMABLESURFACEFILTERS_EXPORT ImagePiece WholeImagePiece(const ImageView& image);
 
 /// Ghost voxels a fine field (block size 1) at `sigma` (world units) needs around the owned
 /// ones along axis a for the serial field bit for bit: the sampled Gaussian's radius (4 sigma,

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -16,29 +18,110 @@ int ClampedIndex(double x, int n)
   return static_cast<int>(std::min(static_cast<double>(n), std::max(-1.0, x)));
 }
 
-/// Value at fraction q in [0, 1] of `v` (reorders v).
-double Quantile(std::vector<float>& v, double q)
+/// Calls row(j, k, values) for every row (j, k) of `box` (whole-image indices, held by the
+/// piece), values pointing at voxel (box.Begin[0], j, k) in the input's own type.
+template <typename Row>
+void ForEachCountedRow(const ImagePiece& piece, const VoxelBox& box, Row&& row)
 {
-  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
+  const int* h = piece.Held.Begin;
+  VisitValues(piece.Image,
+    [&](const auto* values)
+    {
+      for (int k = box.Begin[2]; k < box.End[2]; ++k)
+      {
+        for (int j = box.Begin[1]; j < box.End[1]; ++j)
+        {
+          row(j, k, values + piece.Image.RowOffset(j - h[1], k - h[2]) + (box.Begin[0] - h[0]));
+        }
+      }
+    });
 }
 
-/// The voxels whose centres lie inside the closed mesh. For every voxel row (j, k) the
-/// crossings of the row's line with the triangles are sorted and the centres between the
-/// 1st and 2nd, 3rd and 4th... crossing are inside (parity). Works in continuous index space,
-/// so spacing and direction are honoured.
-std::vector<float> ValuesInside(const ImageView& image, const TriangleMesh& mesh)
+/// A float's key in the order of the values (-0 as +0): a value's bits, the sign flipped for
+/// positive values and all bits for negative ones.
+std::uint32_t OrderKey(float value)
 {
-  const ImageGeometry& g = image.Geometry;
+  std::uint32_t u;
+  const float v = value == 0.0f ? 0.0f : value;
+  std::memcpy(&u, &v, sizeof u);
+  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+
+float KeyValue(std::uint32_t key)
+{
+  const std::uint32_t u = (key & 0x80000000u) ? (key & 0x7fffffffu) : ~key;
+  float v;
+  std::memcpy(&v, &u, sizeof v);
+  return v;
+}
+
+/// This process's share of values sampled by all processes, and the count of all of them.
+struct SharedValues
+{
+  const std::vector<float>& Values;
+  long long Count;
+};
+
+long long CountOfAll(const std::vector<float>& values, const PieceReductions& reduce)
+{
+  std::vector<double> n{ static_cast<double>(values.size()) };
+  reduce.Sum(n);
+  return static_cast<long long>(n[0]);
+}
+
+/// The value at fraction q in [0, 1] of all processes' values (Count > 0): the k-th smallest,
+/// k = q (n - 1) rounded, found digit by digit of OrderKey (11, 11 and 10 bits) from the
+/// summed histograms of each share: every process gets the value a sort of all of them gives.
+double Quantile(const SharedValues& all, double q, const PieceReductions& reduce)
+{
+  const long long n = all.Count;
+  long long k = std::min(n - 1, static_cast<long long>(q * (n - 1) + 0.5));
+  std::uint32_t prefix = 0, known = 0; // the key's bits found so far, and which
+  for (const int shift : { 21, 10, 0 })
+  {
+    const int digits = shift == 0 ? 1 << 10 : 1 << 11;
+    std::vector<double> histogram(digits, 0.0);
+    for (float v : all.Values)
+    {
+      const std::uint32_t key = OrderKey(v);
+      if ((key & known) == prefix)
+      {
+        histogram[(key >> shift) & (digits - 1)] += 1.0;
+      }
+    }
+    reduce.Sum(histogram);
+    int d = 0;
+    for (; d + 1 < digits && k >= static_cast<long long>(histogram[d]); ++d)
+    {
+      k -= static_cast<long long>(histogram[d]);
+    }
+    prefix |= static_cast<std::uint32_t>(d) << shift;
+    known |= static_cast<std::uint32_t>(digits - 1) << shift;
+  }
+  return KeyValue(prefix);
+}
+
+/// The voxels whose centres lie inside the closed mesh, of those the piece counts
+/// (ImagePiece::CountedVoxels: each voxel by one process). For every voxel row (j, k) the
+/// crossings of the row's line with the triangles are sorted and the centres between the
+/// 1st and 2nd, 3rd and 4th... crossing are inside (parity). Works in continuous index space
+/// of the whole image, so spacing and direction are honoured and every process finds the same
+/// crossings for a row.
+std::vector<float> ValuesInside(const ImagePiece& piece, const TriangleMesh& mesh)
+{
+  const ImageGeometry& g = piece.Whole;
   const int nx = g.Dimensions[0], ny = g.Dimensions[1], nz = g.Dimensions[2];
+  const VoxelBox rows = piece.CountedVoxels();
+  const std::size_t rowsY = static_cast<std::size_t>(rows.End[1] - rows.Begin[1]);
+  const auto rowIndex = [&](int j, int k)
+  { return (j - rows.Begin[1]) + rowsY * static_cast<std::size_t>(k - rows.Begin[2]); };
   std::vector<Vec3> ijk(mesh.Points.size());
   for (std::size_t i = 0; i < ijk.size(); ++i)
   {
     g.WorldToIndex(mesh.Points[i].data(), ijk[i].data());
   }
-  // Crossings per row, rows indexed j + ny * k.
-  std::vector<std::vector<double>> crossings(static_cast<std::size_t>(ny) * nz);
+  // Crossings per counted row.
+  std::vector<std::vector<double>> crossings(rowsY * (rows.End[2] - rows.Begin[2]));
   for (const auto& t : mesh.Triangles)
   {
     const Vec3 &a = ijk[t[0]], &b = ijk[t[1]], &c = ijk[t[2]];
@@ -53,9 +136,9 @@ std::vector<float> ValuesInside(const ImageView& image, const TriangleMesh& mesh
     {
       continue; // edge-on: the row lines graze it, the neighbours count the crossing
     }
-    for (int k = k0; k <= k1; ++k)
+    for (int k = std::max(k0, rows.Begin[2]); k <= std::min(k1, rows.End[2] - 1); ++k)
     {
-      for (int j = j0; j <= j1; ++j)
+      for (int j = std::max(j0, rows.Begin[1]); j <= std::min(j1, rows.End[1] - 1); ++j)
       {
         // The row's line is moved by a tiny irrational offset, so it never passes exactly
         // through a vertex or an edge (picked points often lie on whole voxel indices): every
@@ -65,57 +148,61 @@ std::vector<float> ValuesInside(const ImageView& image, const TriangleMesh& mesh
         const double v = ((b[1] - a[1]) * (z - a[2]) - (y - a[1]) * (b[2] - a[2])) / det;
         if (u >= 0 && v >= 0 && u + v <= 1)
         {
-          crossings[j + static_cast<std::size_t>(ny) * k].push_back(
-            a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]));
+          crossings[rowIndex(j, k)].push_back(a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]));
         }
       }
     }
   }
   std::vector<float> values;
-  ForEachRow(image,
+  ForEachCountedRow(piece, rows,
     [&](int j, int k, const auto* row)
     {
-      std::vector<double>& xs = crossings[j + static_cast<std::size_t>(ny) * k];
+      std::vector<double>& xs = crossings[rowIndex(j, k)];
       std::sort(xs.begin(), xs.end());
       for (std::size_t p = 0; p + 1 < xs.size(); p += 2)
       {
         const int i0 = std::max(0, ClampedIndex(std::ceil(xs[p]), nx));
         const int i1 = std::min(nx - 1, ClampedIndex(std::floor(xs[p + 1]), nx));
-        for (int i = i0; i <= i1; ++i)
+        for (int i = std::max(i0, rows.Begin[0]); i <= std::min(i1, rows.End[0] - 1); ++i)
         {
-          values.push_back(AsFloat(row[i]));
+          values.push_back(AsFloat(row[i - rows.Begin[0]]));
         }
       }
     });
   return values;
 }
 
-/// The image's 1st-99th percentile span, from every 7th voxel (x fastest).
-double RobustSpan(const ImageView& image)
+/// The image's 1st-99th percentile span, from every 7th voxel (x fastest) of all pieces.
+double RobustSpan(const ImagePiece& piece, const PieceReductions& reduce)
 {
   std::vector<float> sample;
-  const long long n = image.Geometry.NumberOfVoxels();
-  const int nx = image.Geometry.Dimensions[0], ny = image.Geometry.Dimensions[1];
-  sample.reserve(static_cast<std::size_t>(n / 7 + 1));
-  ForEachRow(image,
+  const VoxelBox counted = piece.CountedVoxels();
+  const int nx = piece.Whole.Dimensions[0], ny = piece.Whole.Dimensions[1];
+  sample.reserve(static_cast<std::size_t>(counted.NumberOfVoxels() / 7 + 1));
+  ForEachCountedRow(piece, counted,
     [&](int j, int k, const auto* row)
     {
       const long long first = (static_cast<long long>(k) * ny + j) * nx; // id of (0, j, k)
-      for (long long i = (7 - first % 7) % 7; i < nx; i += 7)
+      for (long long i = (7 - first % 7) % 7; i < counted.End[0]; i += 7)
       {
-        sample.push_back(AsFloat(row[i]));
+        if (i >= counted.Begin[0])
+        {
+          sample.push_back(AsFloat(row[i - counted.Begin[0]]));
+        }
       }
     });
-  const double lo = Quantile(sample, 0.01), hi = Quantile(sample, 0.99);
+  const SharedValues all{ sample, CountOfAll(sample, reduce) };
+  const double lo = Quantile(all, 0.01, reduce), hi = Quantile(all, 0.99, reduce);
   return hi - lo;
 }
 
 /// The image 1, 2 and 3 voxels outside the surface along the face normals, at about one
-/// sample point per voxel of area (at least the triangle's centre).
+/// sample point per voxel of area (at least the triangle's centre): the points whose cell the
+/// piece owns.
 std::vector<float> ValuesOutside(
-  const ImageView& image, const TriangleMesh& mesh, double outwardSign)
+  const ImagePiece& piece, const TriangleMesh& mesh, double outwardSign)
 {
-  const ImageGeometry& g = image.Geometry;
+  const ImageGeometry& g = piece.Whole;
   const double voxel = g.MeanSpacing();
   std::vector<float> values;
   for (const auto& t : mesh.Triangles)
@@ -139,9 +226,9 @@ std::vector<float> ValuesOutside(
         for (int k = 1; k <= 3; ++k)
         {
           const Vec3 p = x + (k * voxel) * n;
-          bool inside = false;
-          const double value = SampleVolume(image, p.data(), &inside);
-          if (inside)
+          bool owned = false;
+          const double value = piece.SampleOwned(p.data(), &owned);
+          if (owned)
           {
             values.push_back(static_cast<float>(value));
           }
@@ -239,12 +326,12 @@ int OtsuSplit(const std::vector<double>& w)
 /// share that differs by less than 0.1 between inside and outside, or levels within 2 s_obj of
 /// each other, mean both sides look alike (a click inside one region): the estimate then
 /// keeps m -+ 3 s.
-void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<float>& out,
-  double floor, RangeEstimate& estimate)
+void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, double floor,
+  const PieceReductions& reduce, RangeEstimate& estimate)
 {
   constexpr int B = 256;
   float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-  for (const auto* v : { &in, &out })
+  for (const auto* v : { &in.Values, &out.Values })
   {
     for (float x : *v)
     {
@@ -252,21 +339,37 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
       hi = std::max(hi, x);
     }
   }
+  lo = static_cast<float>(-reduce.Max(-static_cast<double>(lo)));
+  hi = static_cast<float>(reduce.Max(hi));
   if (!(hi > lo))
   {
     return;
   }
   const double width = (static_cast<double>(hi) - lo) / B;
-  const auto histogram = [&](const std::vector<float>& values)
+  // Each share's bin counts, summed; then 1 / n added once per value as a pass over all the
+  // values adds it (so the histogram does not depend on how the values were split).
+  std::vector<double> counts(2 * B, 0.0);
+  for (int side = 0; side < 2; ++side)
+  {
+    for (float x : side == 0 ? in.Values : out.Values)
+    {
+      counts[side * B + std::min(B - 1, static_cast<int>((x - lo) / width))] += 1.0;
+    }
+  }
+  reduce.Sum(counts);
+  const auto histogram = [&](int side, long long n)
   {
     std::vector<double> h(B, 0.0);
-    for (float x : values)
+    for (int b = 0; b < B; ++b)
     {
-      h[std::min(B - 1, static_cast<int>((x - lo) / width))] += 1.0 / values.size();
+      for (long long c = static_cast<long long>(counts[side * B + b]); c > 0; --c)
+      {
+        h[b] += 1.0 / n;
+      }
     }
     return h;
   };
-  const std::vector<double> pIn = histogram(in), pOut = histogram(out);
+  const std::vector<double> pIn = histogram(0, in.Count), pOut = histogram(1, out.Count);
   std::vector<double> pooled(B);
   for (int b = 0; b < B; ++b)
   {
@@ -318,23 +421,32 @@ void ObjectAgainstBackground(const std::vector<float>& in, const std::vector<flo
 bool EstimateIntensityRange(const ImageView& image, const TriangleMesh& mesh, double outwardSign,
   RangeEstimate& estimate, std::string* error)
 {
+  return EstimatePieceIntensityRange(
+    WholeImagePiece(image), mesh, outwardSign, SingleProcessReductions(), estimate, error);
+}
+
+bool EstimatePieceIntensityRange(const ImagePiece& piece, const TriangleMesh& mesh,
+  double outwardSign, const PieceReductions& reduce, RangeEstimate& estimate, std::string* error)
+{
   estimate = RangeEstimate();
-  std::vector<float> values = ValuesInside(image, mesh);
-  if (values.size() < 16)
+  std::vector<float> values = ValuesInside(piece, mesh);
+  long long count = CountOfAll(values, reduce);
+  if (count < 16)
   {
     estimate.FromVertices = true;
     values.clear();
     for (const Vec3& p : mesh.Points)
     {
-      bool inside = false;
-      const double v = SampleVolume(image, p.data(), &inside);
-      if (inside)
+      bool owned = false;
+      const double v = piece.SampleOwned(p.data(), &owned);
+      if (owned)
       {
         values.push_back(static_cast<float>(v));
       }
     }
+    count = CountOfAll(values, reduce);
   }
-  if (values.empty())
+  if (count == 0)
   {
     if (error)
     {
@@ -343,15 +455,15 @@ bool EstimateIntensityRange(const ImageView& image, const TriangleMesh& mesh, do
     }
     return false;
   }
-  estimate.Samples = static_cast<long long>(values.size());
+  estimate.Samples = count;
   const std::vector<float> insideValues = values;
-  estimate.Median = Quantile(values, 0.5);
+  estimate.Median = Quantile({ values, count }, 0.5, reduce);
   for (float& v : values)
   {
     v = static_cast<float>(std::abs(v - estimate.Median));
   }
-  const double mad = Quantile(values, 0.5);
-  const double floor = 0.05 * RobustSpan(image);
+  const double mad = Quantile({ values, count }, 0.5, reduce);
+  const double floor = 0.05 * RobustSpan(piece, reduce);
   estimate.Spread = std::max(1.4826 * mad, floor);
   if (!(estimate.Spread > 0))
   {
@@ -361,11 +473,12 @@ bool EstimateIntensityRange(const ImageView& image, const TriangleMesh& mesh, do
   estimate.Range[0] = m - 3.0 * s;
   estimate.Range[1] = m + 3.0 * s;
 
-  std::vector<float> outside = ValuesOutside(image, mesh, outwardSign);
-  estimate.OutsideSamples = static_cast<long long>(outside.size());
-  if (outside.size() >= 16)
+  const std::vector<float> outside = ValuesOutside(piece, mesh, outwardSign);
+  estimate.OutsideSamples = CountOfAll(outside, reduce);
+  if (estimate.OutsideSamples >= 16)
   {
-    ObjectAgainstBackground(insideValues, outside, floor, estimate);
+    ObjectAgainstBackground(
+      { insideValues, count }, { outside, estimate.OutsideSamples }, floor, reduce, estimate);
   }
   return true;
 }

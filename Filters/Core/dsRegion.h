@@ -14,6 +14,7 @@
 #define dsRegion_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsPieceField.h"
 #include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
@@ -63,6 +64,16 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 /// Returns false (with a message) when there is nothing to sample.
 DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const ImageView& image,
   const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error);
+
+/// EstimateIntensityRange of the whole image whose piece this process holds (docs/METHOD.md
+/// §9.8): each process samples the inside voxels it counts (ImagePiece::CountedVoxels) and the
+/// points whose cell it owns, and the counts, extremes, histograms and quantiles (found digit
+/// by digit from summed histograms) are reduced, so every process gets the serial estimate
+/// exactly. Collective: every process calls it with the same mesh (its piece checked first,
+/// CheckPieces). EstimateIntensityRange is this with the whole image as the one piece.
+DEFORMABLESURFACEFILTERS_EXPORT bool EstimatePieceIntensityRange(const ImagePiece& piece,
+  const TriangleMesh& mesh, double outwardSign, const PieceReductions& reduce,
+  RangeEstimate& estimate, std::string* error);
 
 /// Voxels whose value lies in [lo, hi].
 DEFORMABLESURFACEFILTERS_EXPORT long long CountVoxelsInRange(

@@ -218,30 +218,42 @@ void ForEachVoxelSlice(const int dims[3], Body&& body)
 namespace
 {
 // g <- g / (G_2sigma * g + floor) in place (EdgeNormalization::Local); `scratch` holds one
-// volume. Returns the new maximum. A Gaussian-weighted local mean, not a local maximum: it is
-// smooth, so dividing by it adds no steps (spurious forces) to the potential. For an isolated
-// edge of any contrast the ratio peaks at ~sqrt(5) (a Gaussian ridge of width sigma over its
-// own blur at 2 sigma), so every isolated boundary ends up equally strong.
-double NormalizeEdgesLocally(
-  float* g, float* scratch, const int dims[3], const double sigmaVoxels[3], double floor)
+// volume. Returns the new maximum (on a piece of a distributed image, that of every piece:
+// ScaleSpaceParameters::GradientMaximum with the largest ratio over the piece's own voxels). A
+// Gaussian-weighted local mean, not a local maximum: it is smooth, so dividing by it adds no
+// steps (spurious forces) to the potential. For an isolated edge of any contrast the ratio
+// peaks at ~sqrt(5) (a Gaussian ridge of width sigma over its own blur at 2 sigma), so every
+// isolated boundary ends up equally strong.
+double NormalizeEdgesLocally(float* g, float* scratch, const int dims[3],
+  const double sigmaVoxels[3], double floor, const ScaleSpaceParameters& parameters)
 {
   const double wide[3] = { 2 * sigmaVoxels[0], 2 * sigmaVoxels[1], 2 * sigmaVoxels[2] };
   SmoothGaussianSeparable(g, scratch, dims, wide);
-  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
-  std::vector<double> maxima(dims[2], 0.0);
+  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
+  const int* b = parameters.MaximumBegin;
+  const int* e = parameters.MaximumEnd;
+  std::vector<double> maxima(dims[2], 0.0), boxMaxima(dims[2], 0.0);
   ForEachVoxelSlice(dims,
     [&](int k)
     {
-      double m = 0.0;
-      for (std::ptrdiff_t v = k * sz, e = v + sz; v < e; ++v)
+      double m = 0.0, mb = 0.0;
+      for (int j = 0; j < dims[1]; ++j)
       {
-        const double r = g[v] / (std::max(0.0, static_cast<double>(scratch[v])) + floor);
-        g[v] = static_cast<float>(r);
-        m = std::max(m, r);
+        const bool rowInBox = k >= b[2] && k < e[2] && j >= b[1] && j < e[1];
+        for (std::ptrdiff_t i = 0, v = k * sz + j * nx; i < nx; ++i, ++v)
+        {
+          const double r = g[v] / (std::max(0.0, static_cast<double>(scratch[v])) + floor);
+          g[v] = static_cast<float>(r);
+          m = std::max(m, r);
+          mb = rowInBox && i >= b[0] && i < e[0] ? std::max(mb, r) : mb;
+        }
       }
       maxima[k] = m;
+      boxMaxima[k] = mb;
     });
-  return *std::max_element(maxima.begin(), maxima.end());
+  return parameters.GradientMaximum
+    ? parameters.GradientMaximum(*std::max_element(boxMaxima.begin(), boxMaxima.end()))
+    : *std::max_element(maxima.begin(), maxima.end());
 }
 
 /// The world gradient of `values` at the voxel v points at, grid position p of a grid of n
@@ -539,8 +551,8 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
   if (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local &&
     stats.GradientMax > 0.0)
   {
-    gNorm = NormalizeEdgesLocally(
-      potential, scratch, dims, sigmaVoxels, parameters.LocalEdgeFloor * stats.GradientMax);
+    gNorm = NormalizeEdgesLocally(potential, scratch, dims, sigmaVoxels,
+      parameters.LocalEdgeFloor * stats.GradientMax, parameters);
   }
   const PotentialGains gains = GainsOf(stats, gNorm, parameters);
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];

@@ -58,11 +58,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
   double LocalEdgeFloor = 0.05; ///< Local: the denominator's floor, a fraction of max g
   int NumberOfThreads = 0;      ///< 0 = all the machine has (vtkSMPTools STDThread)
-  /// A piece of a distributed image (dsPieceField.h): with the global maximum normalisation,
-  /// called once with the largest edge strength g over the voxels [MaximumBegin, MaximumEnd)
-  /// of the field (its own indices; the voxels the piece owns), computed as the normalisation
-  /// computes it; it returns the maximum to normalise with (that of the whole image, over every
-  /// process). Empty: the field's own maximum.
+  /// A piece of a distributed image (dsPieceField.h): called with the largest edge strength g
+  /// over the voxels [MaximumBegin, MaximumEnd) of the field (its own indices; the voxels the
+  /// piece owns), computed as the normalisation computes it; it returns the maximum to
+  /// normalise with (that of the whole image, over every process). With the local
+  /// normalisation it is called a second time, with the largest locally normalised g there.
+  /// Empty: the field's own maxima.
   std::function<double(double boxMaximum)> GradientMaximum;
   int MaximumBegin[3] = { 0, 0, 0 };
   int MaximumEnd[3] = { 0, 0, 0 };

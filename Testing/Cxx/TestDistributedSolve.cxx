@@ -8,11 +8,14 @@
 // - A start near the object with Sigma 2.5 voxels and the edge force alone (RegionWeight 0; the
 //   region force's exchange is TestForceExchange's): the serial surface bit for bit, and no rank
 //   holds the whole image.
+// - Every default from the near start (sigma_0 from the start, the intensity range estimated,
+//   both from the pieces), 3 slabs: the serial surface bit for bit (its levels pass 3-12 voxels of sigma:
+//   each rank holds the whole image).
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
-//   reduction: a hang would hit the ctest timeout); a start that would need sigma_0 from the
-//   image is refused on every rank.
+//   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
+//   stops every rank after the same sweep, with the same surface.
 #include "DSTestHelpers.h"
-#include "EmulatedRanks.h"
+#include "PieceSlabs.h"
 #include "TestSolverMeshes.h"
 
 #include "dsMultilevel.h"
@@ -74,28 +77,8 @@ TriangleMesh Box(const Vec3& c, const Vec3& h)
 ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, int ranks,
   const MultilevelParameters& p, std::vector<float>& held, bool empty = false)
 {
-  ImagePiece piece;
-  piece.Whole = g;
-  piece.Owned = VoxelBox::Whole(g);
-  const int cells = g.Dimensions[2] - 1;
-  piece.Owned.Begin[2] = cells * r / ranks;
-  piece.Owned.End[2] = empty ? piece.Owned.Begin[2] : cells * (r + 1) / ranks + 1;
-  piece.Held = piece.Owned;
-  for (int a = 0; a < 3 && !empty; ++a)
-  {
-    const int ghost = MultilevelSolver::DistributedGhostVoxels(p, g, a);
-    piece.Held.Begin[a] = std::max(0, piece.Held.Begin[a] - ghost);
-    piece.Held.End[a] = std::min(g.Dimensions[a], piece.Held.End[a] + ghost);
-  }
-  held.clear();
-  for (int k = piece.Held.Begin[2]; k < piece.Held.End[2]; ++k)
-    for (int j = piece.Held.Begin[1]; j < piece.Held.End[1]; ++j)
-      for (int i = piece.Held.Begin[0]; i < piece.Held.End[0]; ++i)
-      {
-        held.push_back(image[i + NX * (j + static_cast<std::size_t>(NY) * k)]);
-      }
-  piece.Image = ImageView::Of(held.empty() ? nullptr : held.data(), piece.HeldGeometry());
-  return piece;
+  return dstest::Slab<float>(g, image, r, ranks,
+    [&](int a) { return MultilevelSolver::DistributedGhostVoxels(p, g, a); }, held, empty);
 }
 
 struct Outcome
@@ -123,9 +106,7 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
     {
       std::vector<float> held;
       const ImagePiece piece = Slab(g, image, r, nRanks, p, held, r == emptyRank);
-      PieceReductions reduce;
-      reduce.Sum = [&emulated, r](std::vector<double>& v) { emulated.Sum(r, v); };
-      reduce.Max = [&emulated, r](double v) { return emulated.Max(r, v); };
+      const PieceReductions reduce = dstest::ReductionsOf(emulated, r);
       MultilevelSolver s;
       s.SetParameters(p);
       s.SetDistribution(piece, reduce);
@@ -139,11 +120,11 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
 }
 
 void SameAsSerial(const std::string& label, const MultilevelParameters& p,
-  const TriangleMesh& start, bool pieceSmaller)
+  const TriangleMesh& start, bool pieceSmaller, const std::vector<int>& rankCounts = { 2, 3 })
 {
   const ImageGeometry g = Geometry();
   const std::vector<float> image = Image();
-  for (int nRanks : { 2, 3 })
+  for (int nRanks : rankCounts)
   {
     Outcome serial;
     std::vector<Outcome> ranks;
@@ -177,7 +158,7 @@ void SameAsSerial(const std::string& label, const MultilevelParameters& p,
   }
 }
 
-void BadInput(const TriangleMesh& box, const TriangleMesh& near)
+void BadInput(const TriangleMesh& box)
 {
   const ImageGeometry g = Geometry();
   const std::vector<float> image = Image();
@@ -194,16 +175,45 @@ void BadInput(const TriangleMesh& box, const TriangleMesh& near)
   std::cout << "an empty piece on rank 1: " << ranks[1].Error << " / rank 0: " << ranks[0].Error
             << std::endl;
   DS_CHECK(failed == 3 && said == 3, "an empty piece on one rank fails every rank, saying why");
-
-  // A start near the object with every default needs sigma_0 from the image.
-  Solve(g, image, defaults, near, 2, -1, serial, ranks);
-  failed = said = 0;
-  for (const Outcome& o : ranks)
-  {
-    failed += !o.Ok;
-    said += o.Error.find("give Sigma or SigmaFraction") != std::string::npos;
-  }
-  DS_CHECK(failed == 2 && said == 2, "sigma_0 from the start is refused on every rank, saying why");
+}
+/// Rank 1's progress callback asks to stop at its second call: every rank stops after the same
+/// sweep, with the same surface, none left waiting.
+void AgreedAbort(const TriangleMesh& near)
+{
+  const ImageGeometry g = Geometry();
+  const std::vector<float> image = Image();
+  MultilevelParameters p;
+  p.Solver.NumberOfThreads = 1;
+  p.Sigma = 2.5;
+  p.RegionWeight = 0.0;
+  const int nRanks = 3;
+  dstest::EmulatedRanks emulated(nRanks);
+  std::vector<Outcome> ranks(nRanks);
+  std::vector<int> aborted(nRanks, 0), sweeps(nRanks, 0);
+  emulated.Run(
+    [&](int r)
+    {
+      std::vector<float> held;
+      const ImagePiece piece = Slab(g, image, r, nRanks, p, held);
+      MultilevelSolver s;
+      s.SetParameters(p);
+      s.SetDistribution(piece, dstest::ReductionsOf(emulated, r));
+      int calls = 0;
+      s.SetProgressCallback([&calls, r](double) { return r != 1 || ++calls < 2; });
+      ranks[r].Mesh = near;
+      ImageView whole = piece.Image;
+      whole.Geometry = g;
+      ranks[r].Ok = s.Run(whole, ranks[r].Mesh, &ranks[r].Error);
+      aborted[r] = s.GetAborted() && s.GetStopReason() == StopReason::Aborted;
+      sweeps[r] = s.GetTotalSweeps();
+    });
+  std::cout << "rank 1 stops at its second progress report: sweeps per rank " << sweeps[0] << " "
+            << sweeps[1] << " " << sweeps[2] << std::endl;
+  DS_CHECK(std::count(aborted.begin(), aborted.end(), 1) == nRanks, "every rank stopped");
+  DS_CHECK(sweeps[0] == sweeps[1] && sweeps[1] == sweeps[2], "after the same sweep");
+  DS_CHECK(ranks[0].Mesh.Points == ranks[1].Mesh.Points &&
+      ranks[1].Mesh.Points == ranks[2].Mesh.Points,
+    "with the same surface");
 }
 } // namespace
 
@@ -221,7 +231,11 @@ int TestDistributedSolve(int, char*[])
   small.Sigma = 2.5;
   small.RegionWeight = 0.0;
   SameAsSerial("a start near the capsule, Sigma 2.5, RegionWeight 0", small, near, true);
-  BadInput(around, near);
+  // Every default from the near start: sigma_0 from the start, the intensity range estimated
+  // (3 ranks only, to keep the sanitized run short; mpi_image_pieces.py runs 2 and 3).
+  SameAsSerial("every default from a start near the capsule", defaults, near, false, { 3 });
+  BadInput(around);
+  AgreedAbort(near);
   return dstest::Result("TestDistributedSolve");
 }
 

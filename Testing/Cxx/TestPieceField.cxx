@@ -14,7 +14,7 @@
 //   waiting in a reduction (a hang would hit the ctest timeout); a non-default potential is
 //   refused on every rank.
 #include "DSTestHelpers.h"
-#include "EmulatedRanks.h"
+#include "PieceSlabs.h"
 #include "TestSolverMeshes.h"
 
 #include "dsFieldGrid.h"
@@ -31,21 +31,6 @@ using namespace dsurf;
 
 namespace
 {
-ImageGeometry Geometry()
-{
-  ImageGeometry g;
-  g.Dimensions[0] = 49;
-  g.Dimensions[1] = 47;
-  g.Dimensions[2] = 160;
-  g.Spacing[0] = 1.0;
-  g.Spacing[1] = 1.1;
-  g.Spacing[2] = 0.9;
-  g.Origin[0] = -3;
-  g.Origin[1] = 2;
-  g.Origin[2] = 5;
-  return g;
-}
-
 /// A soft ball and a dimmer soft cube, with deterministic noise.
 std::vector<float> Image(const ImageGeometry& g)
 {
@@ -68,48 +53,22 @@ std::vector<float> Image(const ImageGeometry& g)
   return v;
 }
 
-/// Rank r's piece of `ranks` slabs along z with the ghosts sigma needs (the holding itself is a
-/// copy of those voxels, in the image's own type: what a parallel reader gives the rank).
+/// Rank r's slab of `ranks` with the ghosts sigma needs: twice the block size on coarse grids,
+/// PieceGhostVoxels on the image's own (or ghostOverride layers).
 template <typename T>
 ImagePiece Slab(const ImageGeometry& g, const std::vector<T>& image, int r, int ranks, double sigma,
   std::vector<T>& held, int ghostOverride = -1)
 {
-  ImagePiece piece;
-  piece.Whole = g;
-  piece.Owned = VoxelBox::Whole(g);
-  const int cells = g.Dimensions[2] - 1;
-  piece.Owned.Begin[2] = cells * r / ranks;
-  piece.Owned.End[2] = cells * (r + 1) / ranks + 1; // the shared border voxel included
-  piece.Held = piece.Owned;
-  for (int a = 0; a < 3; ++a)
-  {
-    // Coarse fields need twice the block size.
-    const int f = DecimationFactor(sigma, g);
-    const int ghost = ghostOverride >= 0 ? ghostOverride
-      : f > 1                            ? 2 * f
-                                         : PieceGhostVoxels(sigma, g, a);
-    piece.Held.Begin[a] = std::max(0, piece.Held.Begin[a] - ghost);
-    piece.Held.End[a] = std::min(g.Dimensions[a], piece.Held.End[a] + ghost);
-  }
-  held.clear();
-  const int nx = g.Dimensions[0], ny = g.Dimensions[1];
-  for (int k = piece.Held.Begin[2]; k < piece.Held.End[2]; ++k)
-    for (int j = piece.Held.Begin[1]; j < piece.Held.End[1]; ++j)
-      for (int i = piece.Held.Begin[0]; i < piece.Held.End[0]; ++i)
-      {
-        held.push_back(image[i + nx * (j + static_cast<std::size_t>(ny) * k)]);
-      }
-  piece.Image = ImageView::Of(held.data(), piece.HeldGeometry());
-  return piece;
+  const int f = DecimationFactor(sigma, g);
+  return dstest::Slab<T>(g, image, r, ranks,
+    [&](int a)
+    {
+      return ghostOverride >= 0 ? ghostOverride : f > 1 ? 2 * f : PieceGhostVoxels(sigma, g, a);
+    },
+    held);
 }
 
-PieceReductions ReductionsOf(dstest::EmulatedRanks& ranks, int r)
-{
-  PieceReductions reduce;
-  reduce.Sum = [&ranks, r](std::vector<double>& v) { ranks.Sum(r, v); };
-  reduce.Max = [&ranks, r](double v) { return ranks.Max(r, v); };
-  return reduce;
-}
+using dstest::ReductionsOf;
 
 /// Largest |F_piece - F_whole| over the world points of the piece's owned voxels in `box`,
 /// sampled in both fields, and the largest |F_whole| there.
@@ -287,7 +246,7 @@ void BadPieces(const ImageGeometry& g, const std::vector<float>& image)
 
 int TestPieceField(int, char*[])
 {
-  const ImageGeometry g = Geometry();
+  const ImageGeometry g = dstest::AnisotropicGeometry(49, 47, 160);
   const std::vector<float> image = Image(g);
   VoxelBox box; // a later level's neighbourhood: less than half the image
   box.Begin[0] = 4;

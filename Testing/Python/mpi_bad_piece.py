@@ -4,9 +4,10 @@ Rank 1 alone gets a bad piece (a NaN point, nothing, points without polygons, a 
 fin; an image without scalars; NaN seed points) while rank 0's piece is good. Every collective
 call must be reached on every rank: each case must return on all ranks (the ctest TIMEOUT of
 this test is the hang guard, and each case's per-rank report is itself a collective update), the
-error must be reported (on rank 0, which alone solves), and the outputs must be empty on every
-rank, or, where the bad piece adds nothing (an empty piece, points without polygons, an image
-rank 0 does not use), rank 0's surface must keep the invariants of ds_invariants.py. A good run
+error must be reported (on rank 0, which delivers the surface; a bad piece of the image, which
+every rank reads in pieces, fails every rank), and the outputs must be empty on every rank, or,
+where the bad piece adds nothing (an empty piece of the surface, points without polygons),
+rank 0's surface must keep the invariants of ds_invariants.py. A good run
 afterwards must still work: no rank is left out of step."""
 import os
 import sys
@@ -172,8 +173,9 @@ deform("a NaN point in rank 1's piece", "nan", "non-finite point coordinate", Fa
 deform("a non-manifold fin as rank 1's piece", "non-manifold", "not a manifold triangle mesh", False)
 deform("an empty piece on rank 1", "empty", None, True)
 deform("points without polygons on rank 1", "points only", None, True)
-# Only rank 0's image is used (every rank is asked for the whole image; rank 0 alone solves).
-deform("an image without scalars on rank 1 only", "empty", None, True, strip_ranks=[1])
+# The image goes in pieces (every rank solves): rank 1's bad piece fails every rank.
+deform("an image without scalars on rank 1 only", "empty", "another process's piece of the image",
+       False, strip_ranks=[1])
 deform("an image without scalars on every rank", "empty", "no point arrays", False, strip_ranks=[0, 1])
 seed("seed: NaN points on rank 1, cube corners on rank 0", False, None, True)
 seed("seed: NaN points on rank 1, nothing on rank 0", True, "No point with finite coordinates", False)

@@ -1,0 +1,216 @@
+// What a distributed solve makes from its start (docs/METHOD.md §9.8): sigma_0 from the start
+// (ChoosePieceInitialSigma, dsPieceInitialSigma.h; §9.1) and the estimated intensity range
+// (EstimatePieceIntensityRange, dsRegion.h; §9.3), the processes emulated by threads
+// (EmulatedRanks.h): a 40 x 40 x 120 image (anisotropic spacing, an origin off zero) of two soft
+// balls and noise, split into 2 and 3 slabs along z, each rank holding its slab and
+// InitialSigmaProbeGhostVoxels() around it.
+// - Starts near the first ball and across the slabs' borders: every rank chooses the serial
+//   sigma_0 exactly (the same 90th-percentile distance, rays and rays that met an edge), and
+//   no rank holds the whole image; the same for the image as uint16, read in its own type.
+// - A start spanning the image keeps extent / 6 on every rank without a probe.
+// - The intensity range estimated from a start around the first ball (object against
+//   background), a click inside it (no contrast: median -+ 3 s), a start enclosing too few voxel
+//   centres (sampled at its vertices) and one across the slabs' borders: every rank's estimate
+//   (range, median, spread, separation, sample counts) equals the serial one exactly, float
+//   and uint16 images.
+// - Bad input: a rank holding no ghost layers fails every rank with a message (no rank waits in
+//   a reduction: a hang would hit the ctest timeout).
+#include "DSTestHelpers.h"
+#include "PieceSlabs.h"
+#include "TestSolverMeshes.h"
+
+#include "dsPieceInitialSigma.h"
+#include "dsRegion.h"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+using namespace dsurf;
+
+namespace
+{
+/// Soft balls of radius 10 at world (17, 24, 30) and (17, 24, 80), the second dimmer, and noise.
+std::vector<float> Image(const ImageGeometry& g)
+{
+  std::vector<float> v;
+  unsigned state = 777;
+  for (int k = 0; k < g.Dimensions[2]; ++k)
+    for (int j = 0; j < g.Dimensions[1]; ++j)
+      for (int i = 0; i < g.Dimensions[0]; ++i)
+      {
+        const double x = -3.0 + i - 17.0, y = 2.0 + 1.1 * j - 24.0, z = 5.0 + 0.9 * k;
+        const double a = std::sqrt(x * x + y * y + (z - 30) * (z - 30));
+        const double b = std::sqrt(x * x + y * y + (z - 80) * (z - 80));
+        state = state * 1664525u + 1013904223u;
+        v.push_back(static_cast<float>(100.0 / (1.0 + std::exp(a - 10.0)) +
+          60.0 / (1.0 + std::exp(b - 10.0)) + 8.0 * (state >> 8) / 16777216.0));
+      }
+  return v;
+}
+
+TriangleMesh Sphere(double radius, const Vec3& centre)
+{
+  TriangleMesh m = dstest::MakeIcosphere(3, radius, centre);
+  std::string err;
+  DS_CHECK(m.BuildTopology(&err), err);
+  return m;
+}
+
+bool SameChoice(const InitialSigmaChoice& a, const InitialSigmaChoice& b)
+{
+  return a.Sigma == b.Sigma && a.StartDistance == b.StartDistance && a.Rays == b.Rays &&
+    a.RaysWithEdge == b.RaysWithEdge && a.SpansVolume == b.SpansVolume;
+}
+
+/// The serial choice against every rank's, on 2 and 3 slabs.
+template <typename T>
+void SameAsSerial(const ImageGeometry& g, const std::vector<T>& image, const TriangleMesh& start,
+  const std::string& label, int ghostOverride = -1)
+{
+  const double paper = g.MeanExtent() / 6.0;
+  InitialSigmaChoice serial;
+  std::string error;
+  DS_CHECK(ChooseInitialSigma(ImageView::Of(image.data(), g), start, paper, 1, serial, &error),
+    label + ": serial: " + error);
+  for (int nRanks : { 2, 3 })
+  {
+    dstest::EmulatedRanks ranks(nRanks);
+    std::vector<InitialSigmaChoice> choices(nRanks);
+    std::vector<int> ok(nRanks, 0), same(nRanks, 0);
+    std::vector<long long> held(nRanks, 0);
+    ranks.Run(
+      [&](int r)
+      {
+        std::vector<T> values;
+        const ImagePiece piece = dstest::Slab<T>(
+          g, image, r, nRanks, [&](int a) { return InitialSigmaProbeGhostVoxels(g, a); }, values);
+        held[r] = piece.Held.NumberOfVoxels();
+        std::string message;
+        ok[r] = ChoosePieceInitialSigma(
+          piece, start, paper, 1, dstest::ReductionsOf(ranks, r), choices[r], &message);
+        same[r] = SameChoice(choices[r], serial);
+      });
+    const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
+    std::cout << l << ": sigma_0 " << serial.Sigma << " (distance " << serial.StartDistance
+              << ", " << serial.RaysWithEdge << " of " << serial.Rays
+              << " rays met an edge); rank 0 " << choices[0].Sigma << "; held voxels";
+    for (long long h : held)
+    {
+      std::cout << " " << h;
+    }
+    std::cout << " of " << g.NumberOfVoxels() << std::endl;
+    DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, l + ": every rank chose");
+    DS_CHECK(std::count(same.begin(), same.end(), 1) == nRanks,
+      l + ": every rank's choice equals the serial one exactly");
+    DS_CHECK(ranks.Mismatches() == 0, l + ": the ranks reduced vectors of one size");
+    if (!serial.SpansVolume)
+    {
+      DS_CHECK_LE(*std::max_element(held.begin(), held.end()), g.NumberOfVoxels() - 1,
+        l + ": voxels held by the largest piece");
+    }
+  }
+}
+
+bool SameEstimate(const RangeEstimate& a, const RangeEstimate& b)
+{
+  return a.Range[0] == b.Range[0] && a.Range[1] == b.Range[1] && a.Samples == b.Samples &&
+    a.OutsideSamples == b.OutsideSamples && a.Median == b.Median && a.Spread == b.Spread &&
+    a.Separation == b.Separation && a.ObjectMedian == b.ObjectMedian &&
+    a.BackgroundMedian == b.BackgroundMedian && a.FromVertices == b.FromVertices &&
+    a.Contrast == b.Contrast;
+}
+
+/// The serial range estimate against every rank's, on 2 and 3 slabs.
+template <typename T>
+void SameRange(const ImageGeometry& g, const std::vector<T>& image, const TriangleMesh& start,
+  const std::string& label)
+{
+  RangeEstimate serial;
+  std::string error;
+  DS_CHECK(EstimateIntensityRange(ImageView::Of(image.data(), g), start, 1.0, serial, &error),
+    label + ": serial: " + error);
+  for (int nRanks : { 2, 3 })
+  {
+    dstest::EmulatedRanks ranks(nRanks);
+    std::vector<RangeEstimate> estimates(nRanks);
+    std::vector<int> ok(nRanks, 0), same(nRanks, 0);
+    ranks.Run(
+      [&](int r)
+      {
+        std::vector<T> values;
+        const ImagePiece piece = dstest::Slab<T>(
+          g, image, r, nRanks, [&](int a) { return InitialSigmaProbeGhostVoxels(g, a); }, values);
+        std::string message;
+        ok[r] = EstimatePieceIntensityRange(
+          piece, start, 1.0, dstest::ReductionsOf(ranks, r), estimates[r], &message);
+        same[r] = SameEstimate(estimates[r], serial);
+      });
+    const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
+    std::cout << l << ": range [" << serial.Range[0] << ", " << serial.Range[1] << "] from "
+              << serial.Samples << (serial.FromVertices ? " vertices" : " voxels") << " inside, "
+              << serial.OutsideSamples << " outside, contrast " << serial.Contrast
+              << "; rank 0 [" << estimates[0].Range[0] << ", " << estimates[0].Range[1] << "]"
+              << std::endl;
+    DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, l + ": every rank estimated");
+    DS_CHECK(std::count(same.begin(), same.end(), 1) == nRanks,
+      l + ": every rank's estimate equals the serial one exactly");
+    DS_CHECK(ranks.Mismatches() == 0, l + ": the ranks reduced vectors of one size");
+  }
+}
+
+void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const TriangleMesh& start)
+{
+  dstest::EmulatedRanks ranks(3);
+  std::vector<int> failed(3, 0), said(3, 0);
+  std::vector<std::string> messages(3);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<float> values;
+      const ImagePiece piece = dstest::Slab<float>(g, image, r, 3,
+        [&](int a) { return r == 1 ? 0 : InitialSigmaProbeGhostVoxels(g, a); }, values);
+      InitialSigmaChoice choice;
+      failed[r] = !ChoosePieceInitialSigma(piece, start, g.MeanExtent() / 6.0, 1,
+        dstest::ReductionsOf(ranks, r), choice, &messages[r]);
+      said[r] = messages[r].find(r == 1 ? "too few ghost layers" : "another process") !=
+        std::string::npos;
+    });
+  std::cout << "rank 1 without ghosts: " << messages[1] << " / rank 0: " << messages[0]
+            << std::endl;
+  DS_CHECK(std::count(failed.begin(), failed.end(), 1) == 3,
+    "a piece without ghosts fails every rank");
+  DS_CHECK(std::count(said.begin(), said.end(), 1) == 3, "each rank says why");
+}
+} // namespace
+
+int TestDistributedStart(int, char*[])
+{
+  const ImageGeometry g = dstest::AnisotropicGeometry(40, 40, 120);
+  const std::vector<float> image = Image(g);
+  // 3 voxels outside the first ball; across both slab borders (z 49-83 of 120), between the balls.
+  const TriangleMesh nearBall = Sphere(13.0, { 17.0, 24.0, 30.0 });
+  const TriangleMesh across = Sphere(15.0, { 17.0, 24.0, 64.4 });
+  SameAsSerial(g, image, nearBall, "a start near the first ball");
+  SameAsSerial(g, image, across, "a start across the slabs' borders");
+  std::vector<std::uint16_t> image16;
+  for (float v : image)
+  {
+    image16.push_back(static_cast<std::uint16_t>(std::lround(100.0 * v)));
+  }
+  SameAsSerial(g, image16, nearBall, "uint16, a start near the first ball");
+  SameAsSerial(g, image, Sphere(200.0, { 17.0, 24.0, 60.0 }), "a start spanning the image");
+  SameRange(g, image, nearBall, "the range from a start around the first ball");
+  SameRange(g, image, Sphere(4.0, { 17.0, 24.0, 30.0 }), "the range from a click in it");
+  SameRange(g, image, Sphere(1.2, { 17.3, 24.2, 30.1 }), "the range from a start around a voxel");
+  SameRange(g, image, across, "the range from a start across the slabs' borders");
+  SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
+  BadPiece(g, image, nearBall);
+  return dstest::Result("TestDistributedStart");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestDistributedStart(argc, argv);
+}
