@@ -175,8 +175,9 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     // Elongated triangles first (a long box's faces: 12 x 84 voxels, 3 x 21 after the splits
     // below): at their creases the umbrella points along the crease, §5's rule turns the
     // region force into a slide along it, and the faces overtake the crease until they fold
-    // (docs/METHOD.md §9.3). Their edges longer than the target and twice a neighbour's
-    // shortest are halved; a start of about isotropic triangles is left as it is.
+    // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
+    // edge of a triangle they border are halved; a start of about isotropic triangles is left
+    // as it is.
     const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, &msg);
     if (split < 0)
     {
