@@ -178,7 +178,7 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
     // edge of a triangle they border are halved; a start of about isotropic triangles is left
     // as it is.
-    const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, &msg);
+    const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, P.MaxVertices, &msg);
     if (split < 0)
     {
       *error = "splitting the initial surface's elongated triangles failed: " + msg;

@@ -528,9 +528,8 @@ void BisectAtSplitEdges(const std::array<int, 3>& t, const std::vector<Vec3>& po
   BisectAtSplitEdges({ m, b, c }, points, midpoints, out);
 }
 
-/// The midpoints (new points appended) of the edges longer than `minLength` and twice the
-/// shortest edge of a triangle they border.
-std::unordered_map<unsigned long long, int> ElongatedEdgeMidpoints(TriangleMesh& m, double minLength)
+/// The edges longer than `minLength` and twice the shortest edge of a triangle they border.
+std::vector<int> ElongatedEdges(const TriangleMesh& m, double minLength)
 {
   std::vector<double> shortest(m.Triangles.size());
   for (std::size_t t = 0; t < m.Triangles.size(); ++t)
@@ -539,7 +538,7 @@ std::unordered_map<unsigned long long, int> ElongatedEdgeMidpoints(TriangleMesh&
     shortest[t] = std::min({ Norm(m.Points[v[1]] - m.Points[v[0]]),
       Norm(m.Points[v[2]] - m.Points[v[1]]), Norm(m.Points[v[0]] - m.Points[v[2]]) });
   }
-  std::unordered_map<unsigned long long, int> midpoints;
+  std::vector<int> edges;
   for (std::size_t e = 0; e < m.Edges.size(); ++e)
   {
     const auto& ends = m.Edges[e];
@@ -551,15 +550,14 @@ std::unordered_map<unsigned long long, int> ElongatedEdgeMidpoints(TriangleMesh&
     }
     if (l > minLength && l > 2.0 * reference)
     {
-      midpoints[EdgeKey(ends[0], ends[1])] = m.NumberOfPoints();
-      m.Points.push_back(0.5 * (m.Points[ends[0]] + m.Points[ends[1]]));
+      edges.push_back(static_cast<int>(e));
     }
   }
-  return midpoints;
+  return edges;
 }
 } // namespace
 
-int TriangleMesh::SplitElongatedEdges(double minLength, std::string* error)
+int TriangleMesh::SplitElongatedEdges(double minLength, long long maxPoints, std::string* error)
 {
   int split = 0;
   for (int round = 0; round < 16; ++round) // each round halves the long edges: a bound
@@ -568,12 +566,20 @@ int TriangleMesh::SplitElongatedEdges(double minLength, std::string* error)
     {
       return -1;
     }
-    const auto midpoints = ElongatedEdgeMidpoints(*this, minLength);
-    if (midpoints.empty())
+    const std::vector<int> edges = ElongatedEdges(*this, minLength);
+    if (edges.empty() ||
+      static_cast<long long>(this->Points.size() + edges.size()) > maxPoints)
     {
       break;
     }
-    split += static_cast<int>(midpoints.size());
+    std::unordered_map<unsigned long long, int> midpoints;
+    for (int e : edges)
+    {
+      const auto& ends = this->Edges[e];
+      midpoints[EdgeKey(ends[0], ends[1])] = this->NumberOfPoints();
+      this->Points.push_back(0.5 * (this->Points[ends[0]] + this->Points[ends[1]]));
+    }
+    split += static_cast<int>(edges.size());
     std::vector<std::array<int, 3>> finer;
     for (const auto& t : this->Triangles)
     {
