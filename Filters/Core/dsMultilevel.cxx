@@ -179,7 +179,19 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     // either way) is taken: stopping at the first below it would quadruple the start's
     // triangles for a sigma_0 a little smaller.
     const double target = std::max(InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
-    bool subdivided = false;
+    // Elongated triangles first (a long box's faces: 12 x 84 voxels, 3 x 21 after the splits
+    // below): at their creases the umbrella points along the crease, §5's rule turns the
+    // region force into a slide along it, and the faces overtake the crease until they fold
+    // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
+    // edge of a triangle they border are halved; a start of about isotropic triangles is left
+    // as it is.
+    const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, P.MaxVertices, &msg);
+    if (split < 0)
+    {
+      *error = "splitting the initial surface's elongated triangles failed: " + msg;
+      return false;
+    }
+    bool subdivided = split > 0;
     while (mesh.MeanEdgeLength() > std::sqrt(2.0) * target &&
       4LL * mesh.NumberOfPoints() <= P.MaxVertices)
     {

@@ -1,6 +1,7 @@
 #include "dsTriangleMesh.h"
 
 #include <algorithm>
+#include <unordered_map>
 
 namespace dsurf
 {
@@ -494,5 +495,104 @@ bool TriangleMesh::SubdivideUniformly(std::string* error)
   this->Labels.assign(this->Points.size(), LabelN);
   this->Levels.assign(this->Points.size(), 0);
   return this->BuildTopology(error);
+}
+namespace
+{
+/// Bisects triangle t at the midpoint (from `midpoints`) of its longest edge found there, and
+/// each half again at its own, until no edge of a piece is in `midpoints`: the conforming
+/// split of a triangle whose neighbours split the same edges.
+void BisectAtSplitEdges(const std::array<int, 3>& t, const std::vector<Vec3>& points,
+  const std::unordered_map<unsigned long long, int>& midpoints,
+  std::vector<std::array<int, 3>>& out)
+{
+  int longest = -1;
+  double length = -1;
+  for (int k = 0; k < 3; ++k)
+  {
+    const int a = t[k], b = t[(k + 1) % 3];
+    const double l = Norm(points[b] - points[a]);
+    if (midpoints.count(EdgeKey(a, b)) && l > length)
+    {
+      longest = k;
+      length = l;
+    }
+  }
+  if (longest < 0)
+  {
+    out.push_back(t);
+    return;
+  }
+  const int a = t[longest], b = t[(longest + 1) % 3], c = t[(longest + 2) % 3];
+  const int m = midpoints.at(EdgeKey(a, b));
+  BisectAtSplitEdges({ a, m, c }, points, midpoints, out);
+  BisectAtSplitEdges({ m, b, c }, points, midpoints, out);
+}
+
+/// The edges longer than `minLength` and twice the shortest edge of a triangle they border.
+std::vector<int> ElongatedEdges(const TriangleMesh& m, double minLength)
+{
+  std::vector<double> shortest(m.Triangles.size());
+  for (std::size_t t = 0; t < m.Triangles.size(); ++t)
+  {
+    const auto& v = m.Triangles[t];
+    shortest[t] = std::min({ Norm(m.Points[v[1]] - m.Points[v[0]]),
+      Norm(m.Points[v[2]] - m.Points[v[1]]), Norm(m.Points[v[0]] - m.Points[v[2]]) });
+  }
+  std::vector<int> edges;
+  for (std::size_t e = 0; e < m.Edges.size(); ++e)
+  {
+    const auto& ends = m.Edges[e];
+    const double l = Norm(m.Points[ends[1]] - m.Points[ends[0]]);
+    double reference = l;
+    for (int t : m.EdgeTriangles[e])
+    {
+      reference = t >= 0 ? std::min(reference, shortest[t]) : reference;
+    }
+    if (l > minLength && l > 2.0 * reference)
+    {
+      edges.push_back(static_cast<int>(e));
+    }
+  }
+  return edges;
+}
+} // namespace
+
+int TriangleMesh::SplitElongatedEdges(double minLength, long long maxPoints, std::string* error)
+{
+  int split = 0;
+  for (int round = 0; round < 16; ++round) // each round halves the long edges: a bound
+  {
+    if (this->TriangleEdges.size() != this->Triangles.size() && !this->BuildTopology(error))
+    {
+      return -1;
+    }
+    const std::vector<int> edges = ElongatedEdges(*this, minLength);
+    if (edges.empty() ||
+      static_cast<long long>(this->Points.size() + edges.size()) > maxPoints)
+    {
+      break;
+    }
+    std::unordered_map<unsigned long long, int> midpoints;
+    for (int e : edges)
+    {
+      const auto& ends = this->Edges[e];
+      midpoints[EdgeKey(ends[0], ends[1])] = this->NumberOfPoints();
+      this->Points.push_back(0.5 * (this->Points[ends[0]] + this->Points[ends[1]]));
+    }
+    split += static_cast<int>(edges.size());
+    std::vector<std::array<int, 3>> finer;
+    for (const auto& t : this->Triangles)
+    {
+      BisectAtSplitEdges(t, this->Points, midpoints, finer);
+    }
+    this->Triangles.swap(finer);
+    this->Labels.assign(this->Points.size(), LabelN);
+    this->Levels.assign(this->Points.size(), 0);
+    if (!this->BuildTopology(error))
+    {
+      return -1;
+    }
+  }
+  return split;
 }
 } // namespace dsurf

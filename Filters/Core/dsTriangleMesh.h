@@ -185,6 +185,16 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   /// none) and rebuilds it after the split; false with BuildTopology()'s message on failure.
   bool SubdivideUniformly(std::string* error);
 
+  /// Splits at its midpoint every edge longer than both `minLength` and twice the shortest
+  /// edge of a triangle it borders, conformingly (a triangle is bisected at its longest split
+  /// edge, its halves again at theirs), and repeats on the result (at most 16 rounds, none that
+  /// would take the mesh past `maxPoints` points): the long edges of elongated triangles come
+  /// down to about minLength. The shape is kept exactly and
+  /// the mesh stays closed, manifold and oriented; every point is then labelled N, level 0.
+  /// Returns the number of edges split (0: the mesh is untouched); -1 with BuildTopology()'s
+  /// message on failure.
+  int SplitElongatedEdges(double minLength, long long maxPoints, std::string* error);
+
 private:
   /// The steps of BuildTopology(); the first two return why the mesh is invalid, or "".
   std::string BuildVertexTriangles(); ///< VertexTriangleOffsets / VertexTriangles

@@ -9,11 +9,12 @@
 //   region force's exchange is TestForceExchange's): the serial surface bit for bit, and no rank
 //   holds the whole image.
 // - Every default from the near start (sigma_0 from the start, the intensity range estimated,
-//   both from the pieces), 3 slabs: the serial surface bit for bit (its levels pass 3-12 voxels of sigma:
+//   both from the pieces), 3 slabs: the serial surface bit for bit (its levels pass 3-9 voxels of sigma:
 //   each rank holds the whole image).
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
 //   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
 //   stops every rank after the same sweep, with the same surface.
+#include "CapsulePhantom.h"
 #include "DSTestHelpers.h"
 #include "PieceSlabs.h"
 #include "TestSolverMeshes.h"
@@ -30,49 +31,7 @@ using namespace dsurf;
 
 namespace
 {
-constexpr int NX = 32, NY = 32, NZ = 240;
-
-ImageGeometry Geometry()
-{
-  ImageGeometry g;
-  g.Dimensions[0] = NX;
-  g.Dimensions[1] = NY;
-  g.Dimensions[2] = NZ;
-  return g;
-}
-
-/// A capsule of radius 9 around the segment x = y = 15.5, z in [50, 190], soft edged, with
-/// noise of a tenth of the contrast.
-std::vector<float> Image()
-{
-  std::vector<float> v;
-  unsigned state = 4711;
-  for (int k = 0; k < NZ; ++k)
-    for (int j = 0; j < NY; ++j)
-      for (int i = 0; i < NX; ++i)
-      {
-        const double z = std::min(190.0, std::max(50.0, double(k)));
-        const double d =
-          std::sqrt((i - 15.5) * (i - 15.5) + (j - 15.5) * (j - 15.5) + (k - z) * (k - z));
-        state = state * 1664525u + 1013904223u;
-        const double noise = 10.0 * ((state >> 8) / 16777216.0 - 0.5);
-        v.push_back(static_cast<float>(100.0 / (1.0 + std::exp(2.0 * (d - 9.0))) + noise));
-      }
-  return v;
-}
-
-/// A closed box mesh around centre c with half sides h, 2 triangles per face subdivided.
-TriangleMesh Box(const Vec3& c, const Vec3& h)
-{
-  TriangleMesh m = dstest::MakeCubeSurface(1, 1.0, { 0, 0, 0 });
-  for (Vec3& p : m.Points)
-  {
-    p = { c[0] + h[0] * p[0], c[1] + h[1] * p[1], c[2] + h[2] * p[2] };
-  }
-  std::string err;
-  DS_CHECK(m.BuildTopology(&err), err);
-  return m;
-}
+constexpr int NX = dstest::CapsuleNX, NY = dstest::CapsuleNY, NZ = dstest::CapsuleNZ;
 
 ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, int ranks,
   const MultilevelParameters& p, std::vector<float>& held, bool empty = false)
@@ -122,8 +81,8 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
 void SameAsSerial(const std::string& label, const MultilevelParameters& p,
   const TriangleMesh& start, bool pieceSmaller, const std::vector<int>& rankCounts = { 2, 3 })
 {
-  const ImageGeometry g = Geometry();
-  const std::vector<float> image = Image();
+  const ImageGeometry g = dstest::CapsuleGeometry();
+  const std::vector<float> image = dstest::CapsuleImage();
   for (int nRanks : rankCounts)
   {
     Outcome serial;
@@ -160,8 +119,8 @@ void SameAsSerial(const std::string& label, const MultilevelParameters& p,
 
 void BadInput(const TriangleMesh& box)
 {
-  const ImageGeometry g = Geometry();
-  const std::vector<float> image = Image();
+  const ImageGeometry g = dstest::CapsuleGeometry();
+  const std::vector<float> image = dstest::CapsuleImage();
   const MultilevelParameters defaults;
   Outcome serial;
   std::vector<Outcome> ranks;
@@ -180,8 +139,8 @@ void BadInput(const TriangleMesh& box)
 /// sweep, with the same surface, none left waiting.
 void AgreedAbort(const TriangleMesh& near)
 {
-  const ImageGeometry g = Geometry();
-  const std::vector<float> image = Image();
+  const ImageGeometry g = dstest::CapsuleGeometry();
+  const std::vector<float> image = dstest::CapsuleImage();
   MultilevelParameters p;
   p.Solver.NumberOfThreads = 1;
   p.Sigma = 2.5;
@@ -219,8 +178,8 @@ void AgreedAbort(const TriangleMesh& near)
 
 int TestDistributedSolve(int, char*[])
 {
-  const TriangleMesh around = Box({ 15.5, 15.5, 119.5 }, { 15.0, 15.0, 119.0 });
-  const TriangleMesh near = Box({ 15.5, 15.5, 119.5 }, { 12.0, 12.0, 84.0 });
+  const TriangleMesh around = dstest::CapsuleBox({ 15.5, 15.5, 119.5 }, { 15.0, 15.0, 119.0 });
+  const TriangleMesh near = dstest::CapsuleBox({ 15.5, 15.5, 119.5 }, { 12.0, 12.0, 84.0 });
   MultilevelParameters defaults;
   defaults.Solver.NumberOfThreads = 1;
   // sigma_0 = extent / 6 = 16.9 voxels: two levels on block means, then 8.4 voxels on the
