@@ -54,7 +54,8 @@
  *
  * Start surface: with SubdivideInitialSurface (default on) a coarse start is first
  * split 1 -> 4 at edge midpoints to the mean edge length nearest 4 sigma_0 (within a factor
- * sqrt 2; the target never below two voxels), so a
+ * sqrt 2; the target never below two voxels; before that, the long edges of elongated
+ * triangles are halved, TriangleMesh::SplitElongatedEdges), so a
  * Box of 12 triangles around the whole volume is pulled in evenly (field data
  * InitialSubdivisions).
  *
@@ -98,7 +99,7 @@
  * each vertex's voxel cell and summed per colour); process 0 outputs the surface (equal to the
  * serial result bit for bit) with field data PieceVoxels (the voxels each process held) and
  * ImageVoxels. A level with sigma from 3 to 9 voxels uses the recursive Gaussian along whole
- * axes, so for such schedules (every default, on images of more than ~36 voxels) the ghost
+ * axes, so for such schedules (every default, on images whose mean extent is 18 voxels or more) the ghost
  * levels reach across the image and each process holds all of it; with Sigma below 3 voxels
  * each holds its piece and a few ghost layers. A reader that cannot split its file (NIfTI,
  * MetaImage: the whole image on process 0, nothing on the others) leaves the solve to process 0

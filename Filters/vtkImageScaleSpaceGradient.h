@@ -33,6 +33,7 @@
  *   (with the gains of the normalisation below), H the Hessian of s = G_sigma * f from
  *   second differences [1, -2, 1] and mixed central differences: central differences of
  *   the sampled P would widen an edge by about a voxel (docs/METHOD.md section 6.1).
+ *   With the local edge normalisation the force stays the central differences of P.
  * - NormalizePotential (default on) makes the defaults work on CT in HU, MRI in
  *   uint8 and float phantoms alike:
  *     P = -( w_edge * g / max(g) + w_image * (s - min s) / (max s - min s) ),

@@ -288,9 +288,12 @@ bool MultilevelSolver::SolveLevel(
         break;
       }
     }
-    if (!stop && !rec.Converged && this->Progress &&
-      !this->GoOn(this->Progress(
-        (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1))))
+    // Every process of a distributed solve reaches GoOn's reduction here, with or without a
+    // progress callback of its own (a process without one votes to go on).
+    if (!stop && !rec.Converged && (this->Progress || this->Distributed) &&
+      !this->GoOn(!this->Progress ||
+        this->Progress(
+          (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1))))
     {
       this->Aborted = true;
       this->Stop = StopReason::Aborted;

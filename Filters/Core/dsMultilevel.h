@@ -37,7 +37,7 @@
 // or the next step over MaxVertices: a warning, once) still goes on to the next, smaller
 // sigma with the same mesh, so the surface always ends at the fine scale rather than on
 // the blurred edge of a coarse sigma. The run ends (GetStopReason) after the level solved at
-// sigma's floor (half a voxel; hierarchical sigma only), when a level would change neither the
+// sigma's floor (2/3 of a voxel, SigmaFloorVoxels; hierarchical sigma only), when a level would change neither the
 // mesh nor sigma (constant sigma, nothing marked), at the cap of MaxLevels levels past the
 // first, after MaxSweeps sweeps, or when a callback asks to abort (the surface is valid at
 // every moment).
@@ -153,7 +153,7 @@ DEFORMABLESURFACEFILTERS_EXPORT double PotentialEdgeWidth(double sigma, double v
 enum class StopReason
 {
   None,       ///< no run yet, or it failed
-  SigmaFloor, ///< the level at sigma's floor (half a voxel, hierarchical sigma) was solved
+  SigmaFloor, ///< the level at sigma's floor (2/3 voxel, hierarchical sigma) was solved
   NoDetail,   ///< nothing left to refine and sigma cannot shrink (constant sigma)
   MaxLevels,  ///< the cap on levels was reached first
   MaxSweeps,  ///< the sweep budget of the whole run was used up

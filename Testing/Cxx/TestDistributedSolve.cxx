@@ -31,8 +31,6 @@ using namespace dsurf;
 
 namespace
 {
-constexpr int NX = dstest::CapsuleNX, NY = dstest::CapsuleNY, NZ = dstest::CapsuleNZ;
-
 ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, int ranks,
   const MultilevelParameters& p, std::vector<float>& held, bool empty = false)
 {
@@ -182,7 +180,7 @@ int TestDistributedSolve(int, char*[])
   const TriangleMesh near = dstest::CapsuleBox({ 15.5, 15.5, 119.5 }, { 12.0, 12.0, 84.0 });
   MultilevelParameters defaults;
   defaults.Solver.NumberOfThreads = 1;
-  // sigma_0 = extent / 6 = 16.9 voxels: two levels on block means, then 8.4 voxels on the
+  // sigma_0 = extent / 6 = 16.9 voxels: one level on block means of 5, then 8.4 voxels on the
   // image's grid, with the recursive Gaussian: every rank holds the whole axis.
   SameAsSerial("every default from the box", defaults, around, false);
   // sigma_0 = 2.5 voxels: the sampled Gaussian only, a dozen ghost layers.
@@ -191,7 +189,7 @@ int TestDistributedSolve(int, char*[])
   small.RegionWeight = 0.0;
   SameAsSerial("a start near the capsule, Sigma 2.5, RegionWeight 0", small, near, true);
   // Every default from the near start: sigma_0 from the start, the intensity range estimated
-  // (3 ranks only, to keep the sanitized run short; mpi_image_pieces.py runs 2 and 3).
+  // (3 ranks here; mpi_image_pieces.py runs 2 and 3 under MPI).
   SameAsSerial("every default from a start near the capsule", defaults, near, false, { 3 });
   BadInput(around);
   AgreedAbort(near);
