@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 
 namespace dsurf
 {
@@ -163,30 +162,6 @@ bool FieldBricks::SampleForce(const double x[3], double f[3]) const
   }
   AddTrilinearVector(this->Force[slot].data(), c, f);
   return true;
-}
-
-void FieldBricks::PrefetchForce(const double x[3]) const
-{
-  int slot = -1;
-  TrilinearCell c;
-  if (!this->Locate(x, slot, c) || slot < 0)
-  {
-    return;
-  }
-  // The cell's four rows of two samples (24 bytes each): their first line, and the next one
-  // when the row crosses into it.
-  const float* base = this->Force[slot].data() + 3 * c.Base;
-  for (int corner = 0; corner < 8; corner += 2)
-  {
-    const float* row = base + 3 * (c.Corner(corner) - c.Base);
-    __builtin_prefetch(row);
-    const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(row);
-    const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(row + 5);
-    if ((first >> 6) != (last >> 6)) // 64-byte lines
-    {
-      __builtin_prefetch(row + 5);
-    }
-  }
 }
 
 double FieldBricks::SamplePotential(const double x[3]) const

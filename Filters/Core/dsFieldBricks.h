@@ -48,10 +48,6 @@ public:
   /// ForceField::SampleForce); inside it but in a brick not computed, f = 0 and a miss is
   /// counted (Misses).
   bool SampleForce(const double x[3], double f[3]) const;
-  /// Asks the memory system for the force values SampleForce(x) will read (no effect on any
-  /// result): the solver calls it a few vertices ahead, so the brick's cache lines arrive
-  /// while it still works on earlier vertices.
-  void PrefetchForce(const double x[3]) const;
   /// Trilinear sample of the potential (0 outside or in a brick not computed).
   double SamplePotential(const double x[3]) const;
   /// Samples that fell in a brick not computed, since Initialize.

@@ -1,6 +1,5 @@
 #include "dsSolver.h"
 
-#include "dsFieldBricks.h"
 #include "dsRegion.h"
 #include "dsSelfIntersectionRule.h"
 #include "dsStepScheduler.h"
@@ -452,49 +451,6 @@ void Solver::UpdateVertex(int v)
   this->CorrectVertex(v, external, force, outside, haveNormal ? &normal : nullptr);
 }
 
-void Solver::PrefetchVertex(int v) const
-{
-  const double* x = this->LocalPoints[v].data();
-  if (this->Field && this->Sampler && this->Field->Bricks)
-  {
-    this->Field->Bricks->PrefetchForce(x);
-  }
-  TrilinearCell c;
-  const ImageView& image = this->RegionImage;
-  const std::ptrdiff_t increments[3] = { 1, image.RowStride, image.SliceStride };
-  if (image.Data && LocateImageCell(image.Geometry, x, c, increments))
-  {
-    VisitValues(image,
-      [&c](const auto* values)
-      {
-        for (int corner = 0; corner < 8; corner += 2)
-        {
-          __builtin_prefetch(values + c.Corner(corner));
-        }
-      });
-  }
-}
-
-void Solver::UpdateRange(int first, int last)
-{
-  // A vertex's samples miss the cache (its colour's vertices lie all over the surface), so
-  // they are requested this many vertices ahead; the order of the updates is unchanged.
-  constexpr int Ahead = 4;
-  const int* vertices = this->LocalColors.Vertices.data();
-  for (int k = first; k < std::min(first + Ahead, last); ++k)
-  {
-    this->PrefetchVertex(vertices[k]);
-  }
-  for (int k = first; k < last; ++k)
-  {
-    if (k + Ahead < last)
-    {
-      this->PrefetchVertex(vertices[k + Ahead]);
-    }
-    this->UpdateVertex(vertices[k]);
-  }
-}
-
 void Solver::SampleVertexForce(int v, VertexForce& out) const
 {
   Vec3 normal;
@@ -710,7 +666,10 @@ int Solver::SerialSweeps(
     }
     else
     {
-      this->UpdateRange(0, total);
+      for (int k = 0; k < total; ++k)
+      {
+        this->UpdateVertex(this->LocalColors.Vertices[k]);
+      }
     }
     for (int c = 0; c < numChunks; ++c)
     {
@@ -771,7 +730,10 @@ public:
       this->S.LocalColors.Offsets[color + 1] - cBegin, block, this->Blocks, first, last);
     if (this->PhasesPerColor == 1)
     {
-      this->S.UpdateRange(cBegin + first, cBegin + last);
+      for (int k = cBegin + first; k < cBegin + last; ++k)
+      {
+        this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
+      }
     }
     else if (phase % 2 == 0)
     {

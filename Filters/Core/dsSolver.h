@@ -181,12 +181,6 @@ private:
   /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
   /// mesh; records the per-vertex values under the mesh's id.
   void UpdateVertex(int v);
-  /// UpdateVertex on LocalColors.Vertices[first, last) in order, each vertex's field and
-  /// image values prefetched a few vertices ahead (PrefetchVertex).
-  void UpdateRange(int first, int last);
-  /// Asks the memory system for the force and region-image values that vertex v's external
-  /// force will read; changes no result.
-  void PrefetchVertex(int v) const;
   /// Phase (a) of a colour with a force exchange: v's force into `out`.
   void SampleVertexForce(int v, VertexForce& out) const;
   /// Phase (c), and the second half of UpdateVertex: correct v with the external force
