@@ -112,7 +112,8 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
   return static_cast<int>(fresh.size());
 }
 
-bool FieldBricks::Locate(const double x[3], int& slot, TrilinearCell& cell) const
+// inline: an exported member is otherwise called through the PLT from SampleForce.
+inline bool FieldBricks::Locate(const double x[3], int& slot, TrilinearCell& cell) const
 {
   // The cell as LocateTrilinearCell finds it on the whole box (same clamping, same fractions),
   // then its place in its brick.
@@ -127,8 +128,8 @@ bool FieldBricks::Locate(const double x[3], int& slot, TrilinearCell& cell) cons
       return false;
     }
     const double v = std::min(std::max(ijk[a], 0.0), static_cast<double>(n - 1));
-    const int i0 = static_cast<int>(
-      std::min(static_cast<long long>(std::floor(v)), static_cast<long long>(n - 2)));
+    // v >= 0 (NaN failed the test above), so truncation is floor, without a libm call.
+    const int i0 = std::min(static_cast<int>(v), n - 2);
     cell.T[a] = v - static_cast<double>(i0);
     brick[a] = i0 / BrickSize;
     local[a] = i0 - brick[a] * BrickSize;
