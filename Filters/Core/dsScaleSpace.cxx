@@ -738,7 +738,7 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
 }
 
 void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
-  const PotentialGains& gains, float* potential, float* force)
+  const VoxelBox& part, const PotentialGains& gains, float* potential, float* force)
 {
   // Each value as ComputeScaleSpaceForceInto computes it (PotentialAndForceAt on the image's
   // grid), so the box's values equal the whole field's bit for bit.
@@ -746,9 +746,9 @@ void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, 
   const GradientToWorld toWorld(geometry);
   const std::ptrdiff_t step[3] = { 1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1] };
   const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
-  for (int k = box.Begin[2]; k < box.End[2]; ++k)
-    for (int j = box.Begin[1]; j < box.End[1]; ++j)
-      for (int i = box.Begin[0]; i < box.End[0]; ++i)
+  for (int k = part.Begin[2]; k < part.End[2]; ++k)
+    for (int j = part.Begin[1]; j < part.End[1]; ++j)
+      for (int i = part.Begin[0]; i < part.End[0]; ++i)
       {
         const int p[3] = { i, j, k };
         const std::ptrdiff_t o = (i - box.Begin[0]) + (j - box.Begin[1]) * bx +
