@@ -19,10 +19,11 @@ bool FieldBricks::Initialize(
   this->Force.clear();
   this->BrickFinite.clear();
   this->MissCount = 0;
-  this->Smooth.assign(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()), 0.0f);
+  this->Smooth.clear(); // resized without values: SmoothForPotential writes every one
+  this->Smooth.resize(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()));
   if (!SmoothForPotential(image, parameters, this->Smooth.data(), this->Gains, error))
   {
-    std::vector<float>().swap(this->Smooth);
+    decltype(this->Smooth)().swap(this->Smooth);
     return false;
   }
   // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
