@@ -19,10 +19,11 @@ bool FieldBricks::Initialize(
   this->Force.clear();
   this->BrickFinite.clear();
   this->MissCount = 0;
-  this->Smooth.assign(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()), 0.0f);
+  this->Smooth.clear(); // resized without values: SmoothForPotential writes every one
+  this->Smooth.resize(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()));
   if (!SmoothForPotential(image, parameters, this->Smooth.data(), this->Gains, error))
   {
-    std::vector<float>().swap(this->Smooth);
+    decltype(this->Smooth)().swap(this->Smooth);
     return false;
   }
   // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
@@ -35,7 +36,7 @@ bool FieldBricks::Initialize(
   return true;
 }
 
-void FieldBricks::ComputeBrick(const int b[3], int slot)
+VoxelBox FieldBricks::BrickBox(const int b[3]) const
 {
   VoxelBox box;
   for (int a = 0; a < 3; ++a)
@@ -43,11 +44,71 @@ void FieldBricks::ComputeBrick(const int b[3], int slot)
     box.Begin[a] = b[a] * BrickSize;
     box.End[a] = std::min(box.Begin[a] + BrickSize, this->Grid.Dimensions[a] - 1) + 1;
   }
+  return box;
+}
+
+VoxelBox FieldBricks::OwnBox(const int b[3]) const
+{
+  VoxelBox own = this->BrickBox(b);
+  for (int a = 0; a < 3; ++a)
+  {
+    own.End[a] -= b[a] + 1 < this->Bricks[a] ? 1 : 0;
+  }
+  return own;
+}
+
+void FieldBricks::ComputeBrick(const int b[3], int slot)
+{
+  const VoxelBox box = this->BrickBox(b);
   const std::size_t n = static_cast<std::size_t>(box.NumberOfVoxels());
   this->Potential[slot].resize(n);
   this->Force[slot].resize(3 * n);
-  PotentialAndForceInBox(this->Smooth.data(), this->Grid, box, this->Gains,
+  PotentialAndForceInBox(this->Smooth.data(), this->Grid, box, this->OwnBox(b), this->Gains,
     this->Potential[slot].data(), this->Force[slot].data());
+}
+
+void FieldBricks::CompleteBrick(const int b[3], int slot)
+{
+  const VoxelBox box = this->BrickBox(b), own = this->OwnBox(b);
+  float* potential = this->Potential[slot].data();
+  float* force = this->Force[slot].data();
+  const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
+  for (int k = box.Begin[2]; k < box.End[2]; ++k)
+    for (int j = box.Begin[1]; j < box.End[1]; ++j)
+      for (int i = box.Begin[0]; i < box.End[0]; ++i)
+      {
+        const int p[3] = { i, j, k };
+        int owner[3];
+        bool mine = true;
+        for (int a = 0; a < 3; ++a)
+        {
+          mine = mine && p[a] < own.End[a];
+          owner[a] = b[a] + (p[a] < own.End[a] ? 0 : 1);
+        }
+        if (mine)
+        {
+          continue;
+        }
+        const std::ptrdiff_t o =
+          (i - box.Begin[0]) + (j - box.Begin[1]) * bx + (k - box.Begin[2]) * bx * by;
+        const int from =
+          this->Slots[(static_cast<std::size_t>(owner[2]) * this->Bricks[1] + owner[1]) *
+              this->Bricks[0] +
+            owner[0]];
+        if (from < 0)
+        {
+          const VoxelBox voxel{ { i, j, k }, { i + 1, j + 1, k + 1 } };
+          PotentialAndForceInBox(
+            this->Smooth.data(), this->Grid, box, voxel, this->Gains, potential, force);
+          continue;
+        }
+        const VoxelBox ob = this->BrickBox(owner);
+        const std::ptrdiff_t ox = ob.End[0] - ob.Begin[0], oy = ob.End[1] - ob.Begin[1];
+        const std::ptrdiff_t q =
+          (i - ob.Begin[0]) + (j - ob.Begin[1]) * ox + (k - ob.Begin[2]) * ox * oy;
+        potential[o] = this->Potential[from][q];
+        std::copy_n(this->Force[from].data() + 3 * q, 3, force + 3 * o);
+      }
   // Checked here, in the parallel loop, while the brick is in cache.
   const auto finite = [](const std::vector<float>& v)
   { return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); }); };
@@ -97,17 +158,24 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
     vtkSMPTools::Config{ ResolveThreads(this->Parameters.NumberOfThreads), "STDThread", false },
     [&]
     {
-      vtkSMPTools::For(0, static_cast<int>(fresh.size()),
-        [&](int begin, int end)
-        {
-          for (int f = begin; f < end; ++f)
+      // Two passes: a brick copies the layer it shares with the next one from it, so every
+      // fresh brick's own voxels are computed first.
+      const auto forEachFresh = [&](void (FieldBricks::*step)(const int[3], int))
+      {
+        vtkSMPTools::For(0, static_cast<int>(fresh.size()),
+          [&](int begin, int end)
           {
-            const int id = fresh[f];
-            const int b[3] = { id % this->Bricks[0], (id / this->Bricks[0]) % this->Bricks[1],
-              id / (this->Bricks[0] * this->Bricks[1]) };
-            this->ComputeBrick(b, this->Slots[id]);
-          }
-        });
+            for (int f = begin; f < end; ++f)
+            {
+              const int id = fresh[f];
+              const int b[3] = { id % this->Bricks[0], (id / this->Bricks[0]) % this->Bricks[1],
+                id / (this->Bricks[0] * this->Bricks[1]) };
+              (this->*step)(b, this->Slots[id]);
+            }
+          });
+      };
+      forEachFresh(&FieldBricks::ComputeBrick);
+      forEachFresh(&FieldBricks::CompleteBrick);
     });
   return static_cast<int>(fresh.size());
 }

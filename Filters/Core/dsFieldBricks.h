@@ -4,7 +4,8 @@
 // G_sigma * f (4 bytes a voxel) stays over the level's whole box, because the recursive
 // Gaussian runs along whole lines and the potential is normalised by the strongest edge in the
 // box. A brick's values are computed from it exactly as the whole box's would be
-// (PotentialAndForceInBox), so a vertex in a brick samples bit for bit today's whole-box field.
+// (PotentialAndForceInBox), so a vertex in a brick samples bit for bit today's whole-box field;
+// a voxel two bricks share is computed once and copied.
 // Bricks are computed when the surface first comes within reach of them and kept for the
 // level. Plain C++.
 #ifndef dsFieldBricks_h
@@ -16,7 +17,10 @@
 #include "dsTriangleMesh.h"
 
 #include <atomic>
+#include <memory>
+#include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dsurf
@@ -25,6 +29,33 @@ namespace dsurf
 /// move in a level (NeighbourhoodSigmas less the Gaussian's support, which G_sigma * f over the
 /// box already holds).
 constexpr double BrickReachSigmas = 2.0;
+
+/// An allocator whose resize leaves new floats unset: G_sigma * f overwrites the whole box, so
+/// filling it with zeros first is a pass over the box for nothing.
+template <typename T>
+struct UnsetAllocator : std::allocator<T>
+{
+  template <typename U>
+  struct rebind
+  {
+    using other = UnsetAllocator<U>;
+  };
+  UnsetAllocator() = default;
+  template <typename U>
+  UnsetAllocator(const UnsetAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 class DEFORMABLESURFACEFILTERS_EXPORT FieldBricks
 {
@@ -62,14 +93,22 @@ private:
   /// The brick of the trilinear cell of world point x and the cell within it; false outside
   /// the box. slot: the brick's storage, -1 when it is not computed.
   bool Locate(const double x[3], int& slot, TrilinearCell& cell) const;
-  /// Computes brick b (its index along each axis) into its slot.
+  /// The voxels of brick b (its index along each axis): its cells' corners.
+  VoxelBox BrickBox(const int b[3]) const;
+  /// The voxels brick b computes itself: all but the layer it shares with the next brick
+  /// along each axis (that brick's first), which the last brick along the axis has alone.
+  VoxelBox OwnBox(const int b[3]) const;
+  /// Computes brick b's own voxels (OwnBox) into its slot.
   void ComputeBrick(const int b[3], int slot);
+  /// Fills the rest of brick b's voxels, once every fresh brick's own ones are computed: copied
+  /// from the brick that owns them when it is computed, else computed. Then checks the brick.
+  void CompleteBrick(const int b[3], int slot);
 
   ImageGeometry Grid;
   ScaleSpaceParameters Parameters;
   PotentialGains Gains;
   double Reach = 0;
-  std::vector<float> Smooth;   ///< G_sigma * f over the box
+  std::vector<float, UnsetAllocator<float>> Smooth; ///< G_sigma * f over the box
   int Bricks[3] = { 0, 0, 0 }; ///< bricks along each axis
   std::vector<int> Slots;      ///< per brick (x fastest): its index in Potential, or -1
   std::vector<std::vector<float>> Potential, Force; ///< per computed brick, x fastest

@@ -352,20 +352,22 @@ EdgeStatistics EdgeMagnitude(
   ForEachVoxelSlice(dims,
     [&](int k)
     {
-      double gm = 0.0, lo = sMin[k], hi = sMax[k];
+      // The largest g^2, rooted once: the root is correctly rounded and monotonic, so the root
+      // of the largest square is the largest root bit for bit.
+      double gm2 = 0.0, lo = sMin[k], hi = sMax[k];
       ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
         [&](std::ptrdiff_t v, const double gw[3])
         {
-          const double g = std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
+          const double g2 = gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
           if (edges)
           {
-            edges[v] = static_cast<float>(g);
+            edges[v] = static_cast<float>(std::sqrt(g2));
           }
-          gm = std::max(gm, g);
+          gm2 = std::max(gm2, g2);
           lo = std::min(lo, static_cast<double>(smooth[v]));
           hi = std::max(hi, static_cast<double>(smooth[v]));
         });
-      gMax[k] = gm;
+      gMax[k] = std::sqrt(gm2);
       sMin[k] = lo;
       sMax[k] = hi;
     });
@@ -384,7 +386,7 @@ double BoxGradientMaximum(const float* smooth, const int dims[3], const Gradient
   const int* b = parameters.MaximumBegin;
   const int* e = parameters.MaximumEnd;
   const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
-  double gm = 0.0;
+  double gm2 = 0.0; // the largest g^2, rooted once (as in EdgeMagnitude)
   for (int k = std::max(0, b[2]); k < std::min(dims[2], e[2]); ++k)
   {
     ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
@@ -393,11 +395,11 @@ double BoxGradientMaximum(const float* smooth, const int dims[3], const Gradient
         const std::ptrdiff_t j = (v - k * sz) / nx, i = v - k * sz - j * nx;
         if (j >= b[1] && j < e[1] && i >= b[0] && i < e[0])
         {
-          gm = std::max(gm, std::sqrt(gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]));
+          gm2 = std::max(gm2, gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
         }
       });
   }
-  return gm;
+  return std::sqrt(gm2);
 }
 
 /// The edge statistics of G_sigma*f (EdgeMagnitude, g into `g` when given) with, on a piece of a
@@ -736,7 +738,7 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
 }
 
 void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
-  const PotentialGains& gains, float* potential, float* force)
+  const VoxelBox& part, const PotentialGains& gains, float* potential, float* force)
 {
   // Each value as ComputeScaleSpaceForceInto computes it (PotentialAndForceAt on the image's
   // grid), so the box's values equal the whole field's bit for bit.
@@ -744,9 +746,9 @@ void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, 
   const GradientToWorld toWorld(geometry);
   const std::ptrdiff_t step[3] = { 1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1] };
   const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
-  for (int k = box.Begin[2]; k < box.End[2]; ++k)
-    for (int j = box.Begin[1]; j < box.End[1]; ++j)
-      for (int i = box.Begin[0]; i < box.End[0]; ++i)
+  for (int k = part.Begin[2]; k < part.End[2]; ++k)
+    for (int j = part.Begin[1]; j < part.End[1]; ++j)
+      for (int i = part.Begin[0]; i < part.End[0]; ++i)
       {
         const int p[3] = { i, j, k };
         const std::ptrdiff_t o = (i - box.Begin[0]) + (j - box.Begin[1]) * bx +

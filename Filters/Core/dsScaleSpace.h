@@ -146,12 +146,13 @@ struct DEFORMABLESURFACEFILTERS_EXPORT PotentialGains
 /// g over the image) is not staged: parameters must not ask for it.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
   const ScaleSpaceParameters& parameters, float* smooth, PotentialGains& gains, std::string* error);
-/// Then P and -grad P at the voxels of `box` (x fastest) of the image of `geometry` whose
-/// G_sigma * f is `smooth`: bit for bit what ComputeScaleSpaceForceInto gives there. potential
-/// holds box.NumberOfVoxels() floats, force three times as many. Runs serially.
+/// Then P and -grad P at the voxels of `part` (a box within `box`) of the image of `geometry`
+/// whose G_sigma * f is `smooth`, stored where they lie in `box` (x fastest): bit for bit what
+/// ComputeScaleSpaceForceInto gives there. potential holds box.NumberOfVoxels() floats, force
+/// three times as many; the values outside `part` are left alone. Runs serially.
 DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
-  const ImageGeometry& geometry, const VoxelBox& box, const PotentialGains& gains, float* potential,
-  float* force);
+  const ImageGeometry& geometry, const VoxelBox& box, const VoxelBox& part,
+  const PotentialGains& gains, float* potential, float* force);
 
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.
