@@ -19,11 +19,10 @@ bool FieldBricks::Initialize(
   this->Force.clear();
   this->BrickFinite.clear();
   this->MissCount = 0;
-  this->Smooth.clear(); // resized without values: SmoothForPotential writes every one
-  this->Smooth.resize(static_cast<std::size_t>(image.Geometry.NumberOfVoxels()));
-  if (!SmoothForPotential(image, parameters, this->Smooth.data(), this->Gains, error))
+  this->Smooth.reset(new float[static_cast<std::size_t>(image.Geometry.NumberOfVoxels())]);
+  if (!SmoothForPotential(image, parameters, this->Smooth.get(), this->Gains, error))
   {
-    decltype(this->Smooth)().swap(this->Smooth);
+    this->Smooth.reset();
     return false;
   }
   // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
@@ -63,7 +62,7 @@ void FieldBricks::ComputeBrick(const int b[3], int slot)
   const std::size_t n = static_cast<std::size_t>(box.NumberOfVoxels());
   this->Potential[slot].resize(n);
   this->Force[slot].resize(3 * n);
-  PotentialAndForceInBox(this->Smooth.data(), this->Grid, box, this->OwnBox(b), this->Gains,
+  PotentialAndForceInBox(this->Smooth.get(), this->Grid, box, this->OwnBox(b), this->Gains,
     this->Potential[slot].data(), this->Force[slot].data());
 }
 
@@ -75,19 +74,15 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
   const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
   for (int k = box.Begin[2]; k < box.End[2]; ++k)
     for (int j = box.Begin[1]; j < box.End[1]; ++j)
-      for (int i = box.Begin[0]; i < box.End[0]; ++i)
+      // Within the own box along y and z, only the x layer past it is another brick's.
+      for (int i = (j < own.End[1] && k < own.End[2]) ? own.End[0] : box.Begin[0];
+           i < box.End[0]; ++i)
       {
         const int p[3] = { i, j, k };
         int owner[3];
-        bool mine = true;
         for (int a = 0; a < 3; ++a)
         {
-          mine = mine && p[a] < own.End[a];
           owner[a] = b[a] + (p[a] < own.End[a] ? 0 : 1);
-        }
-        if (mine)
-        {
-          continue;
         }
         const std::ptrdiff_t o =
           (i - box.Begin[0]) + (j - box.Begin[1]) * bx + (k - box.Begin[2]) * bx * by;
@@ -99,7 +94,7 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
         {
           const VoxelBox voxel{ { i, j, k }, { i + 1, j + 1, k + 1 } };
           PotentialAndForceInBox(
-            this->Smooth.data(), this->Grid, box, voxel, this->Gains, potential, force);
+            this->Smooth.get(), this->Grid, box, voxel, this->Gains, potential, force);
           continue;
         }
         const VoxelBox ob = this->BrickBox(owner);
@@ -255,7 +250,8 @@ bool FieldBricks::Finite() const
 
 double FieldBricks::Bytes() const
 {
-  double bytes = sizeof(float) * static_cast<double>(this->Smooth.size());
+  double bytes =
+    this->Smooth ? sizeof(float) * static_cast<double>(this->Grid.NumberOfVoxels()) : 0.0;
   for (const auto& p : this->Potential)
   {
     bytes += 4.0 * sizeof(float) * static_cast<double>(p.size());

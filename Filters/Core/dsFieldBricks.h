@@ -18,9 +18,7 @@
 
 #include <atomic>
 #include <memory>
-#include <new>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace dsurf
@@ -29,33 +27,6 @@ namespace dsurf
 /// move in a level (NeighbourhoodSigmas less the Gaussian's support, which G_sigma * f over the
 /// box already holds).
 constexpr double BrickReachSigmas = 2.0;
-
-/// An allocator whose resize leaves new floats unset: G_sigma * f overwrites the whole box, so
-/// filling it with zeros first is a pass over the box for nothing.
-template <typename T>
-struct UnsetAllocator : std::allocator<T>
-{
-  template <typename U>
-  struct rebind
-  {
-    using other = UnsetAllocator<U>;
-  };
-  UnsetAllocator() = default;
-  template <typename U>
-  UnsetAllocator(const UnsetAllocator<U>&) noexcept
-  {
-  }
-  template <typename U>
-  void construct(U* p) noexcept
-  {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
 
 class DEFORMABLESURFACEFILTERS_EXPORT FieldBricks
 {
@@ -108,7 +79,9 @@ private:
   ScaleSpaceParameters Parameters;
   PotentialGains Gains;
   double Reach = 0;
-  std::vector<float, UnsetAllocator<float>> Smooth; ///< G_sigma * f over the box
+  /// G_sigma * f over the box; new float[] leaves it unset (SmoothForPotential writes every
+  /// voxel: a zero fill first would be a pass over the box for nothing).
+  std::unique_ptr<float[]> Smooth;
   int Bricks[3] = { 0, 0, 0 }; ///< bricks along each axis
   std::vector<int> Slots;      ///< per brick (x fastest): its index in Potential, or -1
   std::vector<std::vector<float>> Potential, Force; ///< per computed brick, x fastest
