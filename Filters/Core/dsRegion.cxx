@@ -238,7 +238,6 @@ std::vector<float> ValuesOutside(
   }
   return values;
 }
-} // namespace
 
 /// Quantile q of the bin centres weighted by w (bins of `width` from `lo`).
 double WeightedQuantile(const std::vector<double>& w, double q, double lo, double width)
@@ -313,6 +312,50 @@ int OtsuSplit(const std::vector<double>& w)
   return split;
 }
 
+/// The histograms (bins of equal width over the values' common span) of the inside and outside
+/// shares, each normalised to 1. False when all the values are equal.
+bool ShareHistograms(const SharedValues& in, const SharedValues& out,
+  const PieceReductions& reduce, int bins, double& lo, double& width, std::vector<double>& pIn,
+  std::vector<double>& pOut)
+{
+  float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
+  for (const auto* v : { &in.Values, &out.Values })
+  {
+    for (float x : *v)
+    {
+      low = std::min(low, x);
+      high = std::max(high, x);
+    }
+  }
+  low = static_cast<float>(-reduce.Max(-static_cast<double>(low)));
+  high = static_cast<float>(reduce.Max(high));
+  if (!(high > low))
+  {
+    return false;
+  }
+  lo = low;
+  width = (static_cast<double>(high) - low) / bins;
+  // Each share's bin counts, summed over the processes, then divided by the share's size: the
+  // histogram does not depend on how the values were split.
+  std::vector<double> counts(2 * bins, 0.0);
+  for (int side = 0; side < 2; ++side)
+  {
+    for (float x : side == 0 ? in.Values : out.Values)
+    {
+      counts[side * bins + std::min(bins - 1, static_cast<int>((x - low) / width))] += 1.0;
+    }
+  }
+  reduce.Sum(counts);
+  pIn.assign(bins, 0.0);
+  pOut.assign(bins, 0.0);
+  for (int b = 0; b < bins; ++b)
+  {
+    pIn[b] = counts[b] / static_cast<double>(in.Count);
+    pOut[b] = counts[bins + b] / static_cast<double>(out.Count);
+  }
+  return true;
+}
+
 /// The object against its background, from the histograms (256 bins) of the image inside the
 /// start and just outside it. Otsu's threshold of the two pooled (each weighted equally) splits
 /// the intensities into two classes; the one more frequent inside than outside is the object's.
@@ -330,46 +373,12 @@ void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, do
   const PieceReductions& reduce, RangeEstimate& estimate)
 {
   constexpr int B = 256;
-  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-  for (const auto* v : { &in.Values, &out.Values })
-  {
-    for (float x : *v)
-    {
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-    }
-  }
-  lo = static_cast<float>(-reduce.Max(-static_cast<double>(lo)));
-  hi = static_cast<float>(reduce.Max(hi));
-  if (!(hi > lo))
+  double lo = 0, width = 0;
+  std::vector<double> pIn, pOut;
+  if (!ShareHistograms(in, out, reduce, B, lo, width, pIn, pOut))
   {
     return;
   }
-  const double width = (static_cast<double>(hi) - lo) / B;
-  // Each share's bin counts, summed; then 1 / n added once per value as a pass over all the
-  // values adds it (so the histogram does not depend on how the values were split).
-  std::vector<double> counts(2 * B, 0.0);
-  for (int side = 0; side < 2; ++side)
-  {
-    for (float x : side == 0 ? in.Values : out.Values)
-    {
-      counts[side * B + std::min(B - 1, static_cast<int>((x - lo) / width))] += 1.0;
-    }
-  }
-  reduce.Sum(counts);
-  const auto histogram = [&](int side, long long n)
-  {
-    std::vector<double> h(B, 0.0);
-    for (int b = 0; b < B; ++b)
-    {
-      for (long long c = static_cast<long long>(counts[side * B + b]); c > 0; --c)
-      {
-        h[b] += 1.0 / n;
-      }
-    }
-    return h;
-  };
-  const std::vector<double> pIn = histogram(0, in.Count), pOut = histogram(1, out.Count);
   std::vector<double> pooled(B);
   for (int b = 0; b < B; ++b)
   {
@@ -417,6 +426,7 @@ void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, do
   estimate.Range[0] = bright ? mid : bottom;
   estimate.Range[1] = bright ? top : mid;
 }
+} // namespace
 
 bool EstimateIntensityRange(const ImageView& image, const TriangleMesh& mesh, double outwardSign,
   RangeEstimate& estimate, std::string* error)
