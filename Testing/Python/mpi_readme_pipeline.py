@@ -1,6 +1,8 @@
 # The README's pvpython pipeline under `mpiexec -n 2 pvbatch`: readers not yet run, Scalars
 # empty; the result gathered on rank 0 must equal a serial run of the same filter (the VTK class
-# with no controller, on the same file and the same Box) in points and distance.
+# with no controller, on the same file and the same Box) in points and distance. The .vti is read
+# in pieces and solved by every rank (field data PieceVoxels, one count per rank); the NIfTI and
+# MetaImage readers cannot split a file, so rank 0 solves alone there (no PieceVoxels).
 import os
 import sys
 
@@ -16,7 +18,8 @@ rp.load_plugin()
 n_ranks = vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
 assert n_ranks >= 2, "run this test under mpiexec with at least 2 processes"
 out = os.path.join(os.environ.get("DS_TEST_OUTPUT", "."), "readme_pipeline_mpi")
-results = rp.run_all(out)
+held = {}
+results = rp.run_all(out, held)
 
 # The serial reference: the same filter in this process alone, on the NIfTI phantom.
 reader = vtkDSNIFTIImageReader()
@@ -43,6 +46,12 @@ for name, (scalars, n, mean) in sorted(results.items()):
     elif n != n_ref or abs(mean - mean_ref) > 1e-6 * max(1.0, mean_ref):
         failures.append("%s under MPI: %d points, mean %.6f; serial: %d points, mean %.6f"
                         % (name, n, mean, n_ref, mean_ref))
+    in_pieces = name.endswith(".vti")
+    if in_pieces and (held[name] is None or len(held[name]) != n_ranks or min(held[name]) <= 0):
+        failures.append("%s: solved in pieces by every rank, but PieceVoxels is %s" % (name, held[name]))
+    if not in_pieces and held[name] is not None:
+        failures.append("%s: rank 0 should solve alone, but the ranks held %s" % (name, held[name]))
+    print("%-9s PieceVoxels %s" % (name, held[name]))
 # Asserting (not sys.exit) lets pvbatch finalise MPI on every rank when all is well.
 assert not failures, "; ".join(failures)
 print("mpi_readme_pipeline: all checks passed")

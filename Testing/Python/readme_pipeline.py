@@ -88,11 +88,17 @@ def score(polydata):
     return n, total / n
 
 
-def run_all(directory):
-    """Runs the pipeline on every format; returns {file name: (scalars property, points, mean)}."""
+def run_all(directory, piece_voxels=None):
+    """Runs the pipeline on every format; returns {file name: (scalars property, points, mean)}.
+    A dict given as piece_voxels receives {file name: the output's PieceVoxels field data (the
+    voxels each process held when the image was solved in pieces), or None without it}."""
     results = {}
     for path in write_phantoms(directory):
         surface = readme_pipeline(path)
         data = servermanager.Fetch(surface, arg1=0)
         results[os.path.basename(path)] = (list(surface.Scalars),) + score(data)
+        if piece_voxels is not None:
+            held = data.GetFieldData().GetArray("PieceVoxels")
+            piece_voxels[os.path.basename(path)] = (
+                None if held is None else [held.GetValue(r) for r in range(held.GetNumberOfTuples())])
     return results
