@@ -1,5 +1,7 @@
 #include "dsInitialSigma.h"
 
+#include "dsPieceInitialSigma.h"
+
 #include <algorithm>
 #include <limits>
 #include <vector>
@@ -275,36 +277,8 @@ void ChooseInitialSigmaWith(const ImageGeometry& geometry, const TriangleMesh& m
 bool ChooseInitialSigma(const ImageView& image, const TriangleMesh& mesh, double paperSigma,
   int numberOfThreads, InitialSigmaChoice& choice, std::string* error)
 {
-  const ImageGeometry& geometry = image.Geometry;
-  choice = InitialSigmaChoice();
-  choice.Sigma = paperSigma;
-  if (StartSpansImage(geometry, mesh))
-  {
-    choice.SpansVolume = true;
-    return true;
-  }
-  ForceField probe;
-  if (!ComputeScaleSpaceForce(
-        image, InitialSigmaProbeParameters(geometry, numberOfThreads), probe, error))
-  {
-    return false;
-  }
-  probe.Force.clear(); // only the potential is sampled
-  probe.Force.shrink_to_fit();
-  const EdgeStrengthSampler sample =
-    [&probe](const std::vector<Vec3>& points, std::vector<double>& strengths)
-  {
-    strengths.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
-    {
-      bool inside = false;
-      const double g =
-        -SampleVolume(probe.Potential.data(), probe.Geometry, points[i].data(), &inside);
-      strengths[i] = inside ? g : -1.0;
-    }
-  };
-  // One step at a time: the same samples as a walk ray by ray.
-  ChooseInitialSigmaWith(geometry, mesh, paperSigma, sample, 1, choice);
-  return true;
+  // The whole image is one piece that owns every cell: the distributed choice on one process.
+  return ChoosePieceInitialSigma(WholeImagePiece(image), mesh, paperSigma, numberOfThreads,
+    SingleProcessReductions(), choice, error);
 }
 } // namespace dsurf
