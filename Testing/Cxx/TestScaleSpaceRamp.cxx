@@ -2,7 +2,8 @@
 // ImageWeight 1 and no normalisation, Force = grad(G_sigma * f), which must equal
 // (a, b, c) in the interior to 1e-4 relative (2.5e-4 at 6 sigma), at a recursive (IIR) and
 // a sampled (FIR) sigma, on an axis-aligned unit grid and on an anisotropic rotated one.
-// With EdgeWeight 1 the edge term is constant on a ramp, so Force must vanish (to 2e-4).
+// With EdgeWeight 1 the edge term is constant on a ramp, so Force must vanish (to twice the
+// ramp's limit: 2e-4, 5e-4 at 6 sigma).
 // "Interior" = at least ~6 sigma from every face: replicated borders bend a ramp,
 // and the recursive Gaussian's tail holds ~3.4e-4 of its mass beyond 6 sigma (9e-5
 // beyond 7; a sampled Gaussian cut at 4 sigma holds none).
