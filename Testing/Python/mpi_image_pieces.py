@@ -5,9 +5,11 @@ and read by ParaView's XML readers; the start is a box near the capsule, with Si
 and RegionWeight 0 (every other property default), and for the .pvti also with every default
 (sigma_0 from the start and the intensity range estimated, both from the pieces).
 Asserted, for each file:
-- every rank held at least its share (field data PieceVoxels), and with Sigma 2.5 less than the
-  whole image (with every default the levels between 3 and 9 voxels of sigma use the recursive
-  Gaussian along whole axes, so each rank's ghosts reach across the image: printed, not asserted);
+- every rank held at least its share (field data PieceVoxels) and less than the whole image: its
+  slab and the ghost layers the request allows for (11 with Sigma 2.5; 13 with every default,
+  the sampled Gaussian's largest radius and one, as sigma_0 from the start is not known when
+  the pieces are asked for); with every default the levels include sigma between 3 and 9
+  voxels, the recursive Gaussian passed from piece to piece;
 - the surface equals the serial filter's on the whole image and the same gathered start: same
   vertex count, coordinates to 1e-6 relative; it is delivered once (rank 0; the others and their
   convergence tables are empty); it lies on the capsule (mean distance below 0.2 voxel);
@@ -106,7 +108,8 @@ def serial(start, settings):
     for key, value in settings.items():
         getattr(f, "Set" + key)(value)
     f.Update()
-    return f.GetOutput()
+    sigmas = f.GetOutputDataObject(1).GetColumnByName("Sigma")
+    return f.GetOutput(), sorted({sigmas.GetValue(i) for i in range(sigmas.GetNumberOfTuples())})
 
 
 def check_file(path, settings):
@@ -119,7 +122,7 @@ def check_file(path, settings):
     table_ranks = per_rank(ds, 1)
     distributed = servermanager.Fetch(ds)
     start = servermanager.Fetch(box)
-    reference = serial(start, settings)
+    reference, sigmas = serial(start, settings)
     fd = distributed.GetFieldData()
     held = [fd.GetArray("PieceVoxels").GetValue(r) for r in range(n_ranks)]
     whole = fd.GetArray("ImageVoxels").GetValue(0)
@@ -144,7 +147,14 @@ def check_file(path, settings):
     assert not errors.errors, name + ": no error"
     assert whole == NX * NY * NZ
     assert builtins.all(whole / n_ranks <= h <= whole for h in held), name + ": every rank held its share"
-    assert not settings or builtins.all(h < whole for h in held), name + ": less than the whole image"
+    ghosts = 13 if not settings else 11
+    slab = NX * NY * (NZ - 1) / n_ranks  # a rank's share of the cells along z
+    print("%s: levels' sigma %s voxels" % (name, ["%.2f" % s for s in sigmas]))
+    assert builtins.all(h <= slab + NX * NY * (2 * ghosts + 2) for h in held), \
+        name + ": each rank held its slab and %d ghost layers at most" % ghosts
+    assert builtins.max(held) < whole, name + ": less than the whole image"
+    assert settings or builtins.any(3.0 <= s < 9.0 for s in sigmas), \
+        name + ": a level with the recursive Gaussian, in pieces"
     assert n == reference.GetNumberOfPoints() > 0, name + ": the serial vertex count"
     assert distributed.GetNumberOfPolys() == reference.GetNumberOfPolys()
     assert worst <= 1e-6, name + ": the serial coordinates to 1e-6 relative"
