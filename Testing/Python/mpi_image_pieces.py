@@ -13,6 +13,8 @@ Asserted, for each file:
 - the surface equals the serial filter's on the whole image and the same gathered start: same
   vertex count, coordinates to 1e-6 relative; it is delivered once (rank 0; the others and their
   convergence tables are empty); it lies on the capsule (mean distance below 0.2 voxel);
+- a ball in a 44 x 46 x 48 image (bricks on 3 ranks) with every default: the serial surface
+  exactly, no rank holding the whole image;
 - a rank whose piece of the image has no scalars makes every rank fail with an error, none left
   waiting (the ctest timeout is the hang guard), and a good run afterwards still works."""
 import builtins
@@ -97,9 +99,9 @@ class Errors:
         self.errors.append(text)
 
 
-def serial(start, settings):
+def serial(start, settings, path=None):
     reader = vtkXMLImageDataReader()
-    reader.SetFileName(vti)
+    reader.SetFileName(path or vti)
     reader.Update()
     f = vtkDeformableSurfaceFilter()
     f.SetController(None)
@@ -167,6 +169,44 @@ def check_file(path, settings):
         simple.Delete(p)
 
 
+def check_bricks():
+    """A ball in a 44 x 46 x 48 image with every default: on 3 ranks VTK's block mode cuts z,
+    then y (bricks), so the recursive Gaussian passes its state along two axes."""
+    k, j, i = numpy.mgrid[0:48, 0:46, 0:44].astype(float)
+    d = numpy.sqrt((i - 21.5) ** 2 + (j - 22.5) ** 2 + (k - 23.5) ** 2)
+    noise = numpy.random.default_rng(4712).uniform(-5.0, 5.0, d.shape)
+    ball = vtkImageData()
+    ball.SetDimensions(44, 46, 48)
+    array = numpy_to_vtk((100.0 / (1.0 + numpy.exp(2.0 * (d - 12.0))) + noise).astype(numpy.float32).ravel(), deep=1)
+    array.SetName("ball")
+    ball.GetPointData().SetScalars(array)
+    path = os.path.join(out_dir, "mpi_image_pieces_ball_%d.vti" % n_ranks)
+    w = vtkXMLImageDataWriter()
+    w.SetInputData(ball)
+    w.SetFileName(path)
+    w.Write()
+    reader = simple.OpenDataFile(path)
+    box = simple.Box(XLength=32.0, YLength=32.0, ZLength=32.0, Center=[21.5, 22.5, 23.5])
+    ds = simple.DeformableSurface(Input=reader, InitialSurface=box)
+    ds.Scalars = ["POINTS", "ball"]
+    errors = Errors(ds)
+    distributed = servermanager.Fetch(ds)
+    reference, sigmas = serial(servermanager.Fetch(box), {}, path)
+    held = [distributed.GetFieldData().GetArray("PieceVoxels").GetValue(r) for r in range(n_ranks)]
+    n = distributed.GetNumberOfPoints()
+    same = n == reference.GetNumberOfPoints() > 0 and builtins.all(
+        distributed.GetPoint(v) == reference.GetPoint(v) for v in range(n))
+    print("ball (every default, levels' sigma %s voxels): %d ranks held %s of %d voxels; %d vertices"
+          " (serial %d), identical %s; errors %s"
+          % (["%.2f" % s for s in sigmas], n_ranks, held, 44 * 46 * 48, n,
+             reference.GetNumberOfPoints(), same, errors.errors))
+    assert not errors.errors and same, "ball: the serial surface exactly"
+    assert builtins.max(held) < 44 * 46 * 48, "ball: no rank held the whole image"
+    assert builtins.any(3.0 <= s < 9.0 for s in sigmas), "ball: a level with the recursive Gaussian"
+    for p in (ds, box, reader):
+        simple.Delete(p)
+
+
 def bad_piece(strip):
     reader = simple.OpenDataFile(vti)
     stripped = simple.ProgrammableFilter(Input=reader, Script="STRIP = %r\n" % strip + STRIP)
@@ -189,6 +229,7 @@ def bad_piece(strip):
 check_file(vti, SETTINGS)
 check_file(pvti, SETTINGS)
 check_file(pvti, {})
+check_bricks()
 bad_piece(True)
 bad_piece(False)  # the ranks are still in step
 print("mpi_image_pieces: all checks passed")
