@@ -715,22 +715,23 @@ int MultilevelSolver::DistributedGhostVoxels(
     : p.SigmaFraction > 0    ? p.SigmaFraction * whole.MeanExtent()
     : p.HierarchicalSigma    ? whole.MeanExtent() / 6.0
                              : ConstantSigmaVoxels * whole.MeanSpacing();
-  // Every level's sigma lies in (0, sigma]: the levels halve it, and sigma_0 from the start is
-  // at most extent / 6. The coarse levels need twice their block size (dsPieceField.h), at most
-  // that of sigma; the fine ones one layer with the recursive Gaussian, whose state passes
-  // from piece to piece (dsPieceGaussian.h), and the sampled one's radius and one below 3
-  // voxels, at most that of just under 3 voxels (or of sigma). So the ghosts are bounded without
-  // knowing sigma_0. The probe of sigma_0 from the start needs ghosts of its own.
+  // Every level's sigma lies in (0, sigma] (hierarchical: the levels halve it, and sigma_0 from
+  // the start is at most extent / 6; else sigma alone). The coarse levels need twice their
+  // block size (dsPieceField.h), at most that of sigma; the fine ones one layer with the
+  // recursive Gaussian, whose state passes from piece to piece (dsPieceGaussian.h), and the
+  // sampled one's radius and one below 3 voxels, at most that of just under 3 voxels (or of
+  // sigma). So the ghosts are bounded without knowing sigma_0. The probe of sigma_0 from the
+  // start needs ghosts of its own.
   const bool fromStart = !(p.Sigma > 0) && !(p.SigmaFraction > 0) && p.HierarchicalSigma;
   int ghost = fromStart ? InitialSigmaProbeGhostVoxels(whole, a) : 0;
   const int f = DecimationFactor(sigma, whole);
-  if (f > 1)
+  ghost = std::max(ghost, f > 1 ? 2 * f : PieceGhostVoxels(sigma, whole, a));
+  if (p.HierarchicalSigma)
   {
-    ghost = std::max(ghost, 2 * f);
+    const double sampled =
+      std::min(sigma, std::nextafter(GaussianRecursiveFromSigmaVoxels * whole.Spacing[a], 0.0));
+    ghost = std::max(ghost, PieceGhostVoxels(sampled, whole, a));
   }
-  const double sampled =
-    std::min(sigma, std::nextafter(GaussianRecursiveFromSigmaVoxels * whole.Spacing[a], 0.0));
-  ghost = std::max({ ghost, PieceGhostVoxels(sampled, whole, a), PieceGhostVoxels(sigma, whole, a) });
   return std::min(ghost, whole.Dimensions[a]);
 }
 

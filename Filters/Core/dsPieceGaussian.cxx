@@ -186,7 +186,8 @@ void SmoothPieceGaussian(const ImagePiece& piece, const VoxelBox& cut, const Vox
   const RegionEnds ends = recursive ? GatherEnds(cut, region, volume != nullptr, reduce) : RegionEnds();
   for (int a = 0; a < 3; ++a)
   {
-    if (!IsRecursive(sigmaVoxels[a]))
+    // A sampled axis, or a recursive one no piece is cut along: the serial pass itself.
+    if (!IsRecursive(sigmaVoxels[a]) || (ends.Firsts[a].size() <= 1 && ends.Lasts[a].size() <= 1))
     {
       if (volume)
       {
