@@ -78,7 +78,8 @@ std::vector<double> ExchangePlane(const ImagePiece& piece, const VoxelBox& cut,
   CrossAxes(a, b0, b1);
   const long long cu = cut.End[b0] - cut.Begin[b0], cv = cut.End[b1] - cut.Begin[b1];
   const long long ru = region.End[b0] - region.Begin[b0];
-  const auto cutIndex = [&](int u, int v) { return (u - cut.Begin[b0]) + cu * (v - cut.Begin[b1]); };
+  const auto cutIndex = [&](int u, int v)
+  { return (u - cut.Begin[b0]) + cu * (v - cut.Begin[b1]); };
   const auto lineIndex = [&](int u, int v)
   { return (u - region.Begin[b0]) + ru * (v - region.Begin[b1]); };
   std::vector<double> plane(static_cast<std::size_t>(K * cu * cv), -0.0);
@@ -110,8 +111,8 @@ std::vector<double> ExchangePlane(const ImagePiece& piece, const VoxelBox& cut,
 /// slots RecursiveAxisPass records them in on this region (-1: not in the region).
 struct Records
 {
-  std::vector<int> Local;                      // positions in the region, for the pass
-  std::vector<std::vector<double>> States;     // filled by the pass
+  std::vector<int> Local;                  // positions in the region, for the pass
+  std::vector<std::vector<double>> States; // filled by the pass
   int SlotOf(int localPosition) const
   {
     const auto it = std::find(this->Local.begin(), this->Local.end(), localPosition);
@@ -161,8 +162,8 @@ void RecursiveRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBo
     {
       const int p = starts[t] + (forward ? -1 : 1);
       const int slot = ran ? records.SlotOf(p - region.Begin[a]) : -1;
-      const std::vector<double> lines = ExchangePlane(piece, cut, region, a, p,
-        slot >= 0 ? &records.States[slot] : nullptr, reduce);
+      const std::vector<double> lines = ExchangePlane(
+        piece, cut, region, a, p, slot >= 0 ? &records.States[slot] : nullptr, reduce);
       if (pass && mine == starts[t] && mine != cutEnd)
       {
         run(lines.data());
@@ -183,7 +184,8 @@ void SmoothPieceGaussian(const ImagePiece& piece, const VoxelBox& cut, const Vox
   }
   // The axes in the serial order (x, y, z), each pass reading the previous one's floats.
   const bool recursive = std::any_of(sigmaVoxels, sigmaVoxels + 3, IsRecursive);
-  const RegionEnds ends = recursive ? GatherEnds(cut, region, volume != nullptr, reduce) : RegionEnds();
+  const RegionEnds ends =
+    recursive ? GatherEnds(cut, region, volume != nullptr, reduce) : RegionEnds();
   for (int a = 0; a < 3; ++a)
   {
     // A sampled axis, or a recursive one no piece is cut along: the serial pass itself.

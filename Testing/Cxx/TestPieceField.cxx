@@ -175,7 +175,8 @@ long long DifferingValues(const ForceField& whole, const ForceField& piece, cons
   {
     const int* n = f.Geometry.Dimensions;
     return (i - firstVoxel(f, 0)) +
-      static_cast<long long>(n[0]) * ((j - firstVoxel(f, 1)) + static_cast<long long>(n[1]) * (k - firstVoxel(f, 2)));
+      static_cast<long long>(n[0]) *
+      ((j - firstVoxel(f, 1)) + static_cast<long long>(n[1]) * (k - firstVoxel(f, 2)));
   };
   long long differing = 0;
   for (int k = voxels.Begin[2]; k < voxels.End[2]; ++k)
@@ -222,14 +223,14 @@ void RecursiveFieldsExact(const ImageGeometry& g, const std::vector<T>& image, d
     [&](int r)
     {
       std::vector<T> values;
-      const ImagePiece piece =
-        dstest::PieceOf<T>(g, image, ownedOf(r), [](int) { return 1; }, values);
+      const ImagePiece piece = dstest::PieceOf<T>(
+        g, image, ownedOf(r), [](int) { return 1; }, values);
       held[r] = piece.Held.NumberOfVoxels();
       expected[r] = 1;
       for (int a = 0; a < 3; ++a)
       {
-        expected[r] *= std::min(g.Dimensions[a], piece.Owned.End[a] + 1) -
-          std::max(0, piece.Owned.Begin[a] - 1);
+        expected[r] *=
+          std::min(g.Dimensions[a], piece.Owned.End[a] + 1) - std::max(0, piece.Owned.Begin[a] - 1);
       }
       ForceField field;
       std::string message;
@@ -391,10 +392,15 @@ int TestPieceField(int, char*[])
   }
   // The recursive Gaussian passed from piece to piece: 2 and 3 slabs along z, and 3 bricks
   // as VTK's block mode cuts an image longest along z (then y) or along x (then z).
-  const auto slabs = [&](int n) { return [&g, n](int r) {
-    VoxelBox owned = VoxelBox::Whole(g);
-    dstest::SplitAxis(owned, 2, r, n);
-    return owned; }; };
+  const auto slabs = [&](int n)
+  {
+    return [&g, n](int r)
+    {
+      VoxelBox owned = VoxelBox::Whole(g);
+      dstest::SplitAxis(owned, 2, r, n);
+      return owned;
+    };
+  };
   for (double sigma : { 3.5, 5.5, 8.0 })
   {
     const std::string s = ", sigma " + std::to_string(sigma).substr(0, 3);
@@ -402,14 +408,17 @@ int TestPieceField(int, char*[])
     RecursiveFieldsExact(g, image, sigma, VoxelBox::Whole(g), slabs(3), 3, "3 slabs" + s);
   }
   RecursiveFieldsExact(g, image, 5.5, box, slabs(3), 3, "3 slabs, sigma 5.5 on a box");
-  RecursiveFieldsExact(g, image, 5.5, VoxelBox::Whole(g),
-    [&g](int r) { return Brick(g, r, 2, 1); }, 3, "3 bricks z then y, sigma 5.5");
-  RecursiveFieldsExact(g, image, 5.5, box, [&g](int r) { return Brick(g, r, 2, 1); }, 3,
+  RecursiveFieldsExact(
+    g, image, 5.5, VoxelBox::Whole(g), [&g](int r) { return Brick(g, r, 2, 1); }, 3,
+    "3 bricks z then y, sigma 5.5");
+  RecursiveFieldsExact(
+    g, image, 5.5, box, [&g](int r) { return Brick(g, r, 2, 1); }, 3,
     "3 bricks z then y, sigma 5.5 on a box");
   const ImageGeometry wide = dstest::AnisotropicGeometry(160, 47, 49);
   const std::vector<float> wideImage = Image(wide);
-  RecursiveFieldsExact(wide, wideImage, 5.5, VoxelBox::Whole(wide),
-    [&wide](int r) { return Brick(wide, r, 0, 2); }, 3, "3 bricks x then z, sigma 5.5");
+  RecursiveFieldsExact(
+    wide, wideImage, 5.5, VoxelBox::Whole(wide), [&wide](int r) { return Brick(wide, r, 0, 2); }, 3,
+    "3 bricks x then z, sigma 5.5");
 
   // The pieces read in the input's own type (no float copy): a uint16 image's piece fields
   // equal its whole field as the float image's do.
