@@ -14,7 +14,8 @@
 // - The ghost layers the request allows for (DistributedGhostVoxels): 13 with every default on
 //   this image (the sampled Gaussian's largest radius and one, or the sigma_0 probe's), twice the
 //   coarsest block for sigma_0 = extent / 6 at 512^3 and 1024^3 (54, 110), 11 with Sigma 2.5
-//   voxels, one for a single level at 5 voxels (the recursive Gaussian).
+//   voxels, one for a single level at 5 voxels (the recursive Gaussian); the whole axis for the
+//   sigma_0 probe along an axis 3.7 times finer than the mean spacing.
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
 //   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
 //   stops every rank after the same sweep, with the same surface.
@@ -135,6 +136,13 @@ void GhostLayers(const MultilevelParameters& defaults)
   p.Sigma = 5.0;
   p.HierarchicalSigma = false;
   DS_CHECK(ghost(p, cube) == 1, "a single level at 5 voxels: 1");
+  // The sigma_0 probe smooths each piece on its own: along an axis 3.7 times finer than the mean
+  // spacing its Gaussian is recursive, and it asks for that whole axis.
+  ImageGeometry fine = dstest::CapsuleGeometry();
+  fine.Spacing[2] = 0.3;
+  fine.Spacing[0] = fine.Spacing[1] = 1.5;
+  DS_CHECK(ghost(defaults, fine) == fine.Dimensions[2],
+    "every default, z 3.7 times finer than the mean: whole z");
 }
 
 void BadInput(const TriangleMesh& box)
