@@ -575,8 +575,8 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
     imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     // This process's piece and the ghost layers the levels' sigma need (docs/METHOD.md §9.8).
-    // The start is not known yet: sigma_0 from it is taken at its largest, extent / 6, and
-    // its probe's ghosts are added (MultilevelSolver::DistributedGhostVoxels).
+    // The start is not known yet: the ghosts allow for any sigma_0 up to its largest, extent
+    // / 6, and for its probe (MultilevelSolver::DistributedGhostVoxels): a bounded number.
     const int* whole = imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
     dsurf::ImageGeometry geometry;
     for (int a = 0; a < 3; ++a)

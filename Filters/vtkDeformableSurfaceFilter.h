@@ -98,10 +98,10 @@
  * to every process, and every process runs the same solve (the forces sampled by the owner of
  * each vertex's voxel cell and summed per colour); process 0 outputs the surface (equal to the
  * serial result bit for bit) with field data PieceVoxels (the voxels each process held) and
- * ImageVoxels. A level with sigma from 3 to 9 voxels uses the recursive Gaussian along whole
- * axes, so for such schedules (every default, on images whose mean extent is 18 voxels or more) the ghost
- * levels reach across the image and each process holds all of it; with Sigma below 3 voxels
- * each holds its piece and a few ghost layers. A reader that cannot split its file (NIfTI,
+ * ImageVoxels. Each process holds its piece and a bounded number of ghost layers: one for a
+ * level with the recursive Gaussian (sigma from 3 voxels, its state passed from piece to
+ * piece), 13 at most for the sampled one, twice the block size for coarse levels (54 at 512^3
+ * with every default, which allows for sigma_0 up to extent / 6). A reader that cannot split its file (NIfTI,
  * MetaImage: the whole image on process 0, nothing on the others) leaves the solve to process 0
  * alone. Otherwise an empty or invalid piece on any process is an error on all of them. The sweeps then run on one thread per process; Abort on one process
  * stops all of them after the same sweep (agreed once per batch of sweeps).

@@ -419,6 +419,252 @@ void SmoothRows(float* dst, const AxisSmoother& s, long long count, int N, std::
 }
 } // namespace
 
+void SmoothGaussianAxis(float* volume, const int dims[3], int a, double sigmaVoxels)
+{
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(nx) * ny;
+  const AxisSmoother s = MakeSmoother(sigmaVoxels);
+  if (a == 0)
+  {
+    SmoothX(volume, volume, dims, s);
+  }
+  else if (a == 1)
+  {
+    SmoothRows(volume, s, nz, ny, slice, nx, nx);
+  }
+  else
+  {
+    SmoothRows(volume, s, ny, nz, nx, slice, nx);
+  }
+}
+
+//------------------------------------------------------------------------------
+struct RecursiveAxisPass::Filter
+{
+  AxisSmoother S;
+};
+
+RecursiveAxisPass::RecursiveAxisPass(float* volume, const int dims[3], int axis, double sigmaVoxels)
+  : Coefficients(new Filter{ MakeSmoother(sigmaVoxels) })
+  , Volume(volume)
+  , Axis(axis)
+{
+  std::copy(dims, dims + 3, this->Dims);
+  this->NumberOfLines = static_cast<long long>(dims[0]) * dims[1] * dims[2] / dims[axis];
+  // Axis 0: a start state per line; axes 1, 2: an end state and the last input per line.
+  this->Saved.resize(static_cast<std::size_t>(this->NumberOfLines) * (axis == 0 ? K : K + 1));
+}
+
+RecursiveAxisPass::~RecursiveAxisPass() = default;
+
+namespace
+{
+/// slot[p] = r for p = record[r], -1 elsewhere (positions 0..n-1).
+std::vector<int> RecordSlots(const std::vector<int>& record, int n)
+{
+  std::vector<int> slot(n, -1);
+  for (std::size_t r = 0; r < record.size(); ++r)
+  {
+    if (record[r] >= 0 && record[r] < n)
+    {
+      slot[record[r]] = static_cast<int>(r);
+    }
+  }
+  return slot;
+}
+
+/// Line l's state into recorded[slot] (K per line), unless slot is -1.
+inline void RecordLine(
+  const double* st, int slot, long long l, std::vector<std::vector<double>>& recorded)
+{
+  if (slot >= 0)
+  {
+    std::copy(st, st + K, recorded[slot].data() + l * K);
+  }
+}
+
+/// The geometry of the rows path (SmoothRows): `blocks` blocks of N rows of nx floats, line
+/// i + nx * c being column i of block c.
+struct RowBlocks
+{
+  long long Blocks;
+  int N, Nx;
+  std::ptrdiff_t Outer, Stride;
+  RowBlocks(const int dims[3], int axis)
+    : Blocks(axis == 1 ? dims[2] : dims[1])
+    , N(dims[axis])
+    , Nx(dims[0])
+    , Outer(axis == 1 ? static_cast<std::ptrdiff_t>(dims[0]) * dims[1] : dims[0])
+    , Stride(axis == 1 ? dims[0] : static_cast<std::ptrdiff_t>(dims[0]) * dims[1])
+  {
+  }
+};
+
+/// Copies the rows path's state of block c's columns into `to` (K per line).
+void StoreRowStates(double* const state[K], int nx, long long c, double* to, int perLine)
+{
+  for (int i = 0; i < nx; ++i)
+  {
+    for (int j = 0; j < K; ++j)
+    {
+      to[(i + nx * c) * perLine + j] = state[j][i];
+    }
+  }
+}
+/// body(c, state) for every block c of the rows path, in parallel, state holding K rows of nx
+/// doubles for its columns.
+template <typename Body>
+void ForEachRowBlock(const RowBlocks& g, Body&& body)
+{
+  vtkSMPTools::For(0, g.Blocks,
+    [&](long long begin, long long end)
+    {
+      std::vector<double> scratch(K * static_cast<std::size_t>(g.Nx));
+      double* state[K];
+      for (long long c = begin; c < end; ++c)
+      {
+        for (int j = 0; j < K; ++j)
+        {
+          state[j] = scratch.data() + j * static_cast<std::ptrdiff_t>(g.Nx);
+        }
+        body(c, state);
+      }
+    });
+}
+} // namespace
+
+void RecursiveAxisPass::Forward(
+  const double* start, const std::vector<int>& record, std::vector<std::vector<double>>& recorded)
+{
+  const AxisSmoother& s = this->Coefficients->S;
+  const std::vector<int> slot = RecordSlots(record, this->Dims[this->Axis]);
+  recorded.assign(record.size(), std::vector<double>(K * this->NumberOfLines));
+  if (this->Axis == 0)
+  {
+    const int n = this->Dims[0];
+    vtkSMPTools::For(0, this->NumberOfLines,
+      [&](long long begin, long long end)
+      {
+        for (long long l = begin; l < end; ++l)
+        {
+          const float* in = this->Volume + l * n;
+          double* st = this->Saved.data() + l * K;
+          for (int j = 0; j < K; ++j)
+          {
+            st[j] = start ? start[l * K + j] : static_cast<double>(in[0]);
+          }
+          double run[K];
+          std::copy(st, st + K, run);
+          for (int i = 0; i < n; ++i)
+          {
+            CascadeStep(s, in[i], run);
+            RecordLine(run, slot[i], l, recorded);
+          }
+        }
+      });
+    return;
+  }
+  const RowBlocks g(this->Dims, this->Axis);
+  ForEachRowBlock(g,
+    [&](long long c, double* state[K])
+    {
+      float* base = this->Volume + c * g.Outer;
+      for (int i = 0; i < g.Nx; ++i)
+      {
+        const long long l = i + g.Nx * c;
+        for (int j = 0; j < K; ++j)
+        {
+          state[j][i] = start ? start[l * K + j] : static_cast<double>(base[i]);
+        }
+        this->Saved[l * (K + 1) + K] = base[(g.N - 1) * g.Stride + i];
+      }
+      for (int r = 0; r < g.N; ++r)
+      {
+        CascadeRowStep(base + r * g.Stride, g.Nx, s, state);
+        if (slot[r] >= 0)
+        {
+          StoreRowStates(state, g.Nx, c, recorded[slot[r]].data(), K);
+        }
+      }
+      StoreRowStates(state, g.Nx, c, this->Saved.data(), K + 1);
+    });
+}
+
+void RecursiveAxisPass::Backward(
+  const double* ahead, const std::vector<int>& record, std::vector<std::vector<double>>& recorded)
+{
+  const AxisSmoother& s = this->Coefficients->S;
+  const std::vector<int> slot = RecordSlots(record, this->Dims[this->Axis]);
+  recorded.assign(record.size(), std::vector<double>(K * this->NumberOfLines));
+  if (this->Axis == 0)
+  {
+    const int n = this->Dims[0];
+    vtkSMPTools::For(0, this->NumberOfLines,
+      [&](long long begin, long long end)
+      {
+        std::vector<double> w(n);
+        for (long long l = begin; l < end; ++l)
+        {
+          // The forward outputs again, as doubles as IIRLine keeps them.
+          float* line = this->Volume + l * n;
+          double st[K];
+          std::copy(this->Saved.data() + l * K, this->Saved.data() + (l + 1) * K, st);
+          for (int i = 0; i < n; ++i)
+          {
+            w[i] = CascadeStep(s, line[i], st);
+          }
+          if (ahead)
+          {
+            std::copy(ahead + l * K, ahead + (l + 1) * K, st);
+          }
+          else
+          {
+            StartBackward(s, line[n - 1], st);
+          }
+          for (int i = n - 1; i >= 0; --i)
+          {
+            line[i] = static_cast<float>(CascadeStep(s, w[i], st));
+            RecordLine(st, slot[i], l, recorded);
+          }
+        }
+      });
+    return;
+  }
+  const RowBlocks g(this->Dims, this->Axis);
+  ForEachRowBlock(g,
+    [&](long long c, double* state[K])
+    {
+      for (int i = 0; i < g.Nx; ++i)
+      {
+        const long long l = i + g.Nx * c;
+        double st[K];
+        if (ahead)
+        {
+          std::copy(ahead + l * K, ahead + (l + 1) * K, st);
+        }
+        else
+        {
+          const double* saved = this->Saved.data() + l * (K + 1);
+          std::copy(saved, saved + K, st);
+          StartBackward(s, saved[K], st);
+        }
+        for (int j = 0; j < K; ++j)
+        {
+          state[j][i] = st[j];
+        }
+      }
+      float* base = this->Volume + c * g.Outer;
+      for (int r = g.N - 1; r >= 0; --r)
+      {
+        CascadeRowStep(base + r * g.Stride, g.Nx, s, state);
+        if (slot[r] >= 0)
+        {
+          StoreRowStates(state, g.Nx, c, recorded[slot[r]].data(), K);
+        }
+      }
+    });
+}
+
 void SmoothGaussianSeparable(
   const float* src, float* dst, const int dims[3], const double sigmaVoxels[3])
 {

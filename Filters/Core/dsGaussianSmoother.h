@@ -16,6 +16,9 @@
 #ifndef dsGaussianSmoother_h
 #define dsGaussianSmoother_h
 
+#include <memory>
+#include <vector>
+
 namespace dsurf
 {
 /// Axes with fewer voxels of sigma than this use the sampled Gaussian: exact, and below 3 voxels
@@ -28,6 +31,49 @@ constexpr double GaussianRecursiveFromSigmaVoxels = 3.0;
 /// on their number.
 void SmoothGaussianSeparable(
   const float* src, float* dst, const int dims[3], const double sigmaVoxels[3]);
+
+/// The pass of SmoothGaussianSeparable along axis a alone, in place (the same code).
+void SmoothGaussianAxis(float* volume, const int dims[3], int a, double sigmaVoxels);
+
+/// The recursive pass along one axis of a volume whose lines go on in other processes' pieces
+/// (docs/METHOD.md §9.8): the forward recursion starts from the state the previous piece ended
+/// with, the backward one from the next piece's, and the states at chosen positions are
+/// recorded for the pieces that go on from there. The arithmetic is SmoothGaussianSeparable's,
+/// so the pieces' lines equal the whole lines bit for bit. A line's state is States doubles;
+/// the lines are the voxels of the other two axes, the lower one fastest.
+class RecursiveAxisPass
+{
+public:
+  static constexpr int States = 5;
+  /// sigmaVoxels at least GaussianRecursiveFromSigmaVoxels; `volume` (dims voxels) is filtered
+  /// in place by Forward then Backward.
+  RecursiveAxisPass(float* volume, const int dims[3], int axis, double sigmaVoxels);
+  ~RecursiveAxisPass();
+  long long Lines() const { return this->NumberOfLines; }
+
+  /// The forward recursion over every line, from `start` (States per line: the state after the
+  /// position before this volume's first) or, when null, the replicated first sample as the
+  /// serial filter starts at the image's end. After the position record[r] (along the axis) each
+  /// line's state is stored in recorded[r].
+  void Forward(const double* start, const std::vector<int>& record,
+    std::vector<std::vector<double>>& recorded);
+  /// Then the backward recursion, from `ahead` (States per line: the backward state after the
+  /// position past this volume's last) or, when null, the replicated last sample (Triggs &
+  /// Sdika, as the serial filter); records likewise.
+  void Backward(const double* ahead, const std::vector<int>& record,
+    std::vector<std::vector<double>>& recorded);
+
+private:
+  struct Filter;
+  std::unique_ptr<Filter> Coefficients;
+  float* Volume;
+  int Dims[3];
+  int Axis;
+  long long NumberOfLines;
+  /// Axis 0: the forward start of each line (its outputs are recomputed before the backward
+  /// pass, which reads them as doubles). Axes 1 and 2: the forward end state and the last input.
+  std::vector<double> Saved;
+};
 } // namespace dsurf
 
 #endif

@@ -1,5 +1,7 @@
 #include "dsMultilevel.h"
 
+#include "dsGaussianSmoother.h"
+
 #include "dsFieldBricks.h"
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
@@ -713,20 +715,22 @@ int MultilevelSolver::DistributedGhostVoxels(
     : p.SigmaFraction > 0    ? p.SigmaFraction * whole.MeanExtent()
     : p.HierarchicalSigma    ? whole.MeanExtent() / 6.0
                              : ConstantSigmaVoxels * whole.MeanSpacing();
-  // The levels halve sigma down to its floor: the coarse ones need twice their block size
-  // (dsPieceField.h), the first on the image's own grid the most of the fine ones. sigma_0
-  // from the start is at most extent / 6, and its probe needs ghosts of its own.
+  // Every level's sigma lies in (0, sigma] (hierarchical: the levels halve it, and sigma_0 from
+  // the start is at most extent / 6; else sigma alone). The coarse levels need twice their
+  // block size (dsPieceField.h), at most that of sigma; the fine ones one layer with the
+  // recursive Gaussian, whose state passes from piece to piece (dsPieceGaussian.h), and the
+  // sampled one's radius and one below 3 voxels, at most that of just under 3 voxels (or of
+  // sigma). So the ghosts are bounded without knowing sigma_0. The probe of sigma_0 from the
+  // start needs ghosts of its own.
   const bool fromStart = !(p.Sigma > 0) && !(p.SigmaFraction > 0) && p.HierarchicalSigma;
   int ghost = fromStart ? InitialSigmaProbeGhostVoxels(whole, a) : 0;
-  for (int level = 0; level <= std::max(0, p.MaxLevels); ++level)
+  const int f = DecimationFactor(sigma, whole);
+  ghost = std::max(ghost, f > 1 ? 2 * f : PieceGhostVoxels(sigma, whole, a));
+  if (p.HierarchicalSigma)
   {
-    const int f = DecimationFactor(sigma, whole);
-    ghost = std::max(ghost, f > 1 ? 2 * f : PieceGhostVoxels(sigma, whole, a));
-    if (f == 1 || !p.HierarchicalSigma || !(sigma > SigmaFloorVoxels * whole.MeanSpacing()))
-    {
-      break;
-    }
-    sigma = std::max(0.5 * sigma, std::min(sigma, SigmaFloorVoxels * whole.MeanSpacing()));
+    const double sampled =
+      std::min(sigma, std::nextafter(GaussianRecursiveFromSigmaVoxels * whole.Spacing[a], 0.0));
+    ghost = std::max(ghost, PieceGhostVoxels(sampled, whole, a));
   }
   return std::min(ghost, whole.Dimensions[a]);
 }

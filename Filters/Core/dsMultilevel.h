@@ -230,9 +230,10 @@ public:
     this->Reduce = reduce;
   }
   /// The ghost voxels along axis a that a distributed solve of `whole` with parameters p needs
-  /// around each piece: those of the largest sigma computed on the image's own grid, with
-  /// sigma_0 as p gives it (or extent / 6, the largest sigma_0 a start can give), and those of
-  /// the probe of sigma_0 from the start (InitialSigmaProbeGhostVoxels).
+  /// around each piece, for any level's sigma up to sigma_0 as p gives it (or extent / 6, the
+  /// largest sigma_0 a start can give): twice the block size of the coarsest level, the sampled
+  /// Gaussian's radius and one (at most 13 voxels), one layer for the recursive Gaussian; and
+  /// those of the probe of sigma_0 from the start (InitialSigmaProbeGhostVoxels).
   static int DistributedGhostVoxels(
     const MultilevelParameters& p, const ImageGeometry& whole, int a);
 

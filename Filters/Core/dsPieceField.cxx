@@ -1,6 +1,7 @@
 #include "dsPieceField.h"
 
 #include "dsGaussianSmoother.h"
+#include "dsPieceGaussian.h"
 
 #include <algorithm>
 #include <cmath>
@@ -93,17 +94,14 @@ VoxelBox ImagePiece::CountedVoxels() const
 int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a)
 {
   // One voxel for the differences of G_sigma * f (g and the force's chain rule read the 3^3
-  // voxels around a voxel: dsScaleSpace.h), and the Gaussian's reach
-  // (dsGaussianSmoother.h): the sampled kernel's radius, so the owned voxels get the serial
-  // values bit for bit. The recursive filter's start reaches along the whole axis: ghosts of
-  // 6, 8, 10, 12, 14 sigma left 4e-4, 8e-6, 3e-6, 1e-6, 4e-7 of the largest force (measured),
-  // and the sweeps' projection rule (a switch on the sign of F . U) and the refinement's marks
-  // turned 1e-7 into 2e-5 of the coordinates and a few percent of the vertices; only the
-  // whole axis gives the serial field.
+  // voxels around a voxel: dsScaleSpace.h), and the Gaussian's reach (dsGaussianSmoother.h):
+  // the sampled kernel's radius, so the owned voxels get the serial values bit for bit. The
+  // recursive filter reaches along the whole axis, but its state comes from the neighbouring
+  // pieces (dsPieceGaussian.h), so it needs no ghosts of its own.
   const double s = sigma / whole.Spacing[a];
   if (!(s < GaussianRecursiveFromSigmaVoxels))
   {
-    return whole.Dimensions[a];
+    return 1;
   }
   return static_cast<int>(std::ceil(4.0 * s)) + 1;
 }
@@ -258,9 +256,16 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
   std::string* error)
 {
   std::string problem;
+  double sigmaVoxels[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    sigmaVoxels[a] = parameters.Sigma / piece.Whole.Spacing[a];
+  }
   if (Intersect(piece.Owned, cut).NumberOfVoxels() == 0)
   {
-    // Nothing of the box here: no field (its vertices are other pieces'), and a maximum of 0.
+    // Nothing of the box here: no field (its vertices are other pieces'), but the sums of the
+    // recursive Gaussian and a maximum of 0.
+    SmoothPieceGaussian(piece, cut, VoxelBox(), nullptr, sigmaVoxels, reduce);
     const double gMax = reduce.Max(0.0);
     *error = std::isfinite(gMax) ? std::string() : "another process's piece failed";
     return std::isfinite(gMax);
@@ -290,7 +295,12 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
     pieceParameters.MaximumBegin[a] = owned.Begin[a] - region.Begin[a];
     pieceParameters.MaximumEnd[a] = owned.End[a] - region.Begin[a];
   }
-  bool reduced = false;
+  bool smoothed = false, reduced = false;
+  pieceParameters.Smooth = [&](float* volume, const double sv[3])
+  {
+    smoothed = true;
+    SmoothPieceGaussian(piece, cut, region, volume, sv, reduce);
+  };
   double gMax = 0.0;
   pieceParameters.GradientMaximum = [&](double ownedMaximum)
   {
@@ -302,7 +312,12 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
   {
     ComputeScaleSpaceForce(regionImage, pieceParameters, out, &problem);
   }
-  if (!reduced) // failed before the normalisation: the others still wait for this maximum
+  // Failed before smoothing or the normalisation: the others still wait for these sums.
+  if (!smoothed)
+  {
+    SmoothPieceGaussian(piece, cut, VoxelBox(), nullptr, sigmaVoxels, reduce);
+  }
+  if (!reduced)
   {
     gMax = reduce.Max(std::numeric_limits<double>::infinity());
   }

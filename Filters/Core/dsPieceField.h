@@ -11,10 +11,10 @@
 //   first levels of 512^3), whose field they then compute alike: the serial field bit for bit.
 // - Fine scales (f = 1): each process computes the field on the voxels it owns plus
 //   PieceGhostVoxels() around them (within the level's box), normalised by the largest edge
-//   strength over all processes (ScaleSpaceParameters::GradientMaximum). With the sampled
-//   Gaussian (sigma below 3 voxels) a few ghost layers give the serial field bit for bit; the
-//   recursive Gaussian needs the whole axis (a distributed recursion, passing the filter's
-//   state from piece to piece, would not: not done yet).
+//   strength over all processes (ScaleSpaceParameters::GradientMaximum). The sampled Gaussian
+//   (sigma below 3 voxels) needs its radius of ghost layers; the recursive one passes its state
+//   from piece to piece (dsPieceGaussian.h) and needs one layer, for the differences. Both give
+//   the serial field bit for bit.
 // Only the default potential is distributed (EdgeWeight alone, ImageWeight 0, the global
 // maximum normalisation): the image term's range and the local normalisation's second Gaussian
 // would need more reductions; they are refused with a message.
@@ -79,11 +79,10 @@ DEFORMABLESURFACEFILTERS_EXPORT PieceReductions SingleProcessReductions();
 DEFORMABLESURFACEFILTERS_EXPORT ImagePiece WholeImagePiece(const ImageView& image);
 
 /// Ghost voxels a fine field (block size 1) at `sigma` (world units) needs around the owned
-/// ones along axis a for the serial field bit for bit: the sampled Gaussian's radius (4 sigma,
-/// below 3 voxels of sigma) and one voxel for the differences of G_sigma * f (the edge strength
-/// and the force's chain rule); the whole axis for the recursive Gaussian (3 voxels of sigma and more),
-/// whose start at a cut changes the field everywhere a little (see the .cxx). Coarse fields
-/// (block size f > 1) need 2 f.
+/// ones along axis a for the serial field bit for bit: one voxel for the differences of
+/// G_sigma * f (the edge strength and the force's chain rule), plus the sampled Gaussian's
+/// radius (4 sigma) below 3 voxels of sigma; the recursive Gaussian's state comes from the
+/// neighbouring pieces (dsPieceGaussian.h). Coarse fields (block size f > 1) need 2 f.
 DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(
   double sigma, const ImageGeometry& whole, int a);
 

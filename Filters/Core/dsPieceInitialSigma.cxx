@@ -68,8 +68,12 @@ bool PieceProbe(const ImagePiece& piece, const VoxelBox& region, int numberOfThr
 
 int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a)
 {
+  // The probe smooths each piece on its own (its Gaussians are not passed between the pieces,
+  // dsPieceGaussian.h): where one is recursive (a very anisotropic grid) it needs the whole axis.
   const double sigma = whole.MeanSpacing();
-  const int first = PieceGhostVoxels(sigma, whole, a);
+  const int first = sigma / whole.Spacing[a] < GaussianRecursiveFromSigmaVoxels
+    ? PieceGhostVoxels(sigma, whole, a)
+    : whole.Dimensions[a];
   const double wide = 2.0 * sigma / whole.Spacing[a];
   const int second =
     wide < GaussianRecursiveFromSigmaVoxels ? static_cast<int>(std::ceil(4.0 * wide)) : whole.Dimensions[a];

@@ -16,7 +16,8 @@ namespace dsurf
 {
 /// Ghost voxels along axis a the probe field needs around a piece's owned voxels: the first
 /// Gaussian's (PieceGhostVoxels at one voxel of sigma) and the local normalisation's second
-/// Gaussian at twice that sigma (its sampled radius; the whole axis where it is recursive).
+/// Gaussian at twice that sigma (its sampled radius); the whole axis where either is recursive
+/// (an axis 3 times finer than the mean spacing, or 1.5 times for the second).
 DEFORMABLESURFACEFILTERS_EXPORT int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a);
 
 /// ChooseInitialSigma of the whole image whose piece this process holds: the same choice on

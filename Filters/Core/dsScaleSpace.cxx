@@ -570,12 +570,18 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
 }
 
 /// G_sigma * f of `image` into `smooth`: an image of another type (or a box of a larger one)
-/// is converted there first and smoothed in place, with the same result. In the caller's SMP
-/// scope.
-void SmoothImage(const ImageView& image, const double sigmaVoxels[3], float* smooth)
+/// is converted there first and smoothed in place, with the same result; on a piece of a
+/// distributed image by `pieceSmooth` (ScaleSpaceParameters::Smooth). In the caller's SMP scope.
+void SmoothImage(const ImageView& image, const double sigmaVoxels[3], float* smooth,
+  const std::function<void(float*, const double*)>& pieceSmooth = nullptr)
 {
   const int* dims = image.Geometry.Dimensions;
-  if (image.IsContiguousFloat())
+  if (pieceSmooth)
+  {
+    CopyToFloat(image, smooth);
+    pieceSmooth(smooth, sigmaVoxels);
+  }
+  else if (image.IsContiguousFloat())
   {
     SmoothGaussianSeparable(static_cast<const float*>(image.Data), smooth, dims, sigmaVoxels);
   }
@@ -673,7 +679,8 @@ bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParamete
         LocallyNormalisedField(image, parameters, sv, toWorld, potential, force);
         return;
       }
-      SmoothImage(image, sv, potential); // G_sigma*f, replaced by P as the force is computed
+      // G_sigma*f, replaced by P as the force is computed
+      SmoothImage(image, sv, potential, parameters.Smooth);
       const EdgeStatistics stats =
         EdgeStatisticsOf(potential, dims, toWorld, nullptr, parameters);
       PotentialAndForceInPlace(

@@ -67,6 +67,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   std::function<double(double boxMaximum)> GradientMaximum;
   int MaximumBegin[3] = { 0, 0, 0 };
   int MaximumEnd[3] = { 0, 0, 0 };
+  /// A piece of a distributed image (dsPieceGaussian.h): G_sigma * f in place on the field's
+  /// voxels (`volume`, the image's values as floats), sigmaVoxels per axis, the recursive
+  /// filter's state passed between the pieces. Empty: SmoothGaussianSeparable.
+  std::function<void(float* volume, const double sigmaVoxels[3])> Smooth;
 };
 
 class FieldBricks;

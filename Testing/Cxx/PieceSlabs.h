@@ -32,18 +32,20 @@ inline dsurf::ImageGeometry AnisotropicGeometry(int nx, int ny, int nz)
   return g;
 }
 
-/// Rank r's slab of `ranks` along z with ghost(a) ghost layers along axis a; an empty piece
-/// (nothing owned or held) when `empty`.
+/// The piece owning `owned` (whole-image indices) with ghost(a) ghost layers along axis a,
+/// holding a copy of its voxels; an empty piece (nothing owned or held) when `empty`.
 template <typename T>
-dsurf::ImagePiece Slab(const dsurf::ImageGeometry& g, const std::vector<T>& image, int r,
-  int ranks, const std::function<int(int)>& ghost, std::vector<T>& held, bool empty = false)
+dsurf::ImagePiece PieceOf(const dsurf::ImageGeometry& g, const std::vector<T>& image,
+  const dsurf::VoxelBox& owned, const std::function<int(int)>& ghost, std::vector<T>& held,
+  bool empty = false)
 {
   dsurf::ImagePiece piece;
   piece.Whole = g;
-  piece.Owned = dsurf::VoxelBox::Whole(g);
-  const int cells = g.Dimensions[2] - 1;
-  piece.Owned.Begin[2] = cells * r / ranks;
-  piece.Owned.End[2] = empty ? piece.Owned.Begin[2] : cells * (r + 1) / ranks + 1;
+  piece.Owned = owned;
+  if (empty)
+  {
+    piece.Owned.End[2] = piece.Owned.Begin[2];
+  }
   piece.Held = piece.Owned;
   for (int a = 0; a < 3 && !empty; ++a)
   {
@@ -60,6 +62,26 @@ dsurf::ImagePiece Slab(const dsurf::ImageGeometry& g, const std::vector<T>& imag
       }
   piece.Image = dsurf::ImageView::Of(held.empty() ? nullptr : held.data(), piece.HeldGeometry());
   return piece;
+}
+
+/// Part r of `parts` of the cells of [begin, end) along axis a, as VTK splits an extent: the
+/// voxels of those cells (neighbouring parts share their border voxel).
+inline void SplitAxis(dsurf::VoxelBox& box, int a, int r, int parts)
+{
+  const int begin = box.Begin[a], cells = box.End[a] - 1 - begin;
+  box.Begin[a] = begin + cells * r / parts;
+  box.End[a] = begin + cells * (r + 1) / parts + 1;
+}
+
+/// Rank r's slab of `ranks` along z with ghost(a) ghost layers along axis a; an empty piece
+/// (nothing owned or held) when `empty`.
+template <typename T>
+dsurf::ImagePiece Slab(const dsurf::ImageGeometry& g, const std::vector<T>& image, int r,
+  int ranks, const std::function<int(int)>& ghost, std::vector<T>& held, bool empty = false)
+{
+  dsurf::VoxelBox owned = dsurf::VoxelBox::Whole(g);
+  SplitAxis(owned, 2, r, ranks);
+  return PieceOf(g, image, owned, ghost, held, empty);
 }
 
 /// Rank r's reductions among `ranks`.

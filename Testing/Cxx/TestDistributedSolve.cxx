@@ -3,14 +3,19 @@
 // image with noise, split into 2 and 3 slabs along z (neighbouring pieces share their border
 // voxels, as VTK's), each rank holding its slab and DistributedGhostVoxels() around it.
 // - Every default, from the box around the volume: every rank ends with the serial surface, bit
-//   for bit (the levels on the image's own grid use the recursive Gaussian: each rank holds the
-//   whole image).
+//   for bit (the levels on the image's own grid use the recursive Gaussian, its state passed
+//   from piece to piece), and no rank holds the whole image.
 // - A start near the object with Sigma 2.5 voxels and the edge force alone (RegionWeight 0; the
 //   region force's exchange is TestForceExchange's): the serial surface bit for bit, and no rank
 //   holds the whole image.
 // - Every default from the near start (sigma_0 from the start, the intensity range estimated,
-//   both from the pieces), 3 slabs: the serial surface bit for bit (its levels pass 3-9 voxels of sigma:
-//   each rank holds the whole image).
+//   both from the pieces), 3 slabs: the serial surface bit for bit (its levels pass 3-9 voxels
+//   of sigma), and no rank holds the whole image.
+// - The ghost layers the request allows for (DistributedGhostVoxels): 13 with every default on
+//   this image (the sampled Gaussian's largest radius and one, or the sigma_0 probe's), twice the
+//   coarsest block for sigma_0 = extent / 6 at 512^3 and 1024^3 (54, 110), 11 with Sigma 2.5
+//   voxels, one for a single level at 5 voxels (the recursive Gaussian); the whole axis for the
+//   sigma_0 probe along an axis 3.7 times finer than the mean spacing.
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
 //   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
 //   stops every rank after the same sweep, with the same surface.
@@ -115,6 +120,31 @@ void SameAsSerial(const std::string& label, const MultilevelParameters& p,
   }
 }
 
+void GhostLayers(const MultilevelParameters& defaults)
+{
+  const auto ghost = [](const MultilevelParameters& p, const ImageGeometry& g)
+  { return MultilevelSolver::DistributedGhostVoxels(p, g, 2); };
+  ImageGeometry cube;
+  cube.Dimensions[0] = cube.Dimensions[1] = cube.Dimensions[2] = 512;
+  DS_CHECK(ghost(defaults, dstest::CapsuleGeometry()) == 13, "every default, 32 x 32 x 240: 13");
+  DS_CHECK(ghost(defaults, cube) == 54, "every default, 512^3: 54 (blocks of 27)");
+  cube.Dimensions[0] = cube.Dimensions[1] = cube.Dimensions[2] = 1024;
+  DS_CHECK(ghost(defaults, cube) == 110, "every default, 1024^3: 110 (blocks of 55)");
+  MultilevelParameters p = defaults;
+  p.Sigma = 2.5;
+  DS_CHECK(ghost(p, cube) == 11, "Sigma 2.5 voxels: 11");
+  p.Sigma = 5.0;
+  p.HierarchicalSigma = false;
+  DS_CHECK(ghost(p, cube) == 1, "a single level at 5 voxels: 1");
+  // The sigma_0 probe smooths each piece on its own: along an axis 3.7 times finer than the mean
+  // spacing its Gaussian is recursive, and it asks for that whole axis.
+  ImageGeometry fine = dstest::CapsuleGeometry();
+  fine.Spacing[2] = 0.3;
+  fine.Spacing[0] = fine.Spacing[1] = 1.5;
+  DS_CHECK(ghost(defaults, fine) == fine.Dimensions[2],
+    "every default, z 3.7 times finer than the mean: whole z");
+}
+
 void BadInput(const TriangleMesh& box)
 {
   const ImageGeometry g = dstest::CapsuleGeometry();
@@ -181,8 +211,8 @@ int TestDistributedSolve(int, char*[])
   MultilevelParameters defaults;
   defaults.Solver.NumberOfThreads = 1;
   // sigma_0 = extent / 6 = 16.9 voxels: one level on block means of 5, then 8.4 voxels on the
-  // image's grid, with the recursive Gaussian: every rank holds the whole axis.
-  SameAsSerial("every default from the box", defaults, around, false);
+  // image's grid, with the recursive Gaussian passed from piece to piece.
+  SameAsSerial("every default from the box", defaults, around, true);
   // sigma_0 = 2.5 voxels: the sampled Gaussian only, a dozen ghost layers.
   MultilevelParameters small = defaults;
   small.Sigma = 2.5;
@@ -190,7 +220,8 @@ int TestDistributedSolve(int, char*[])
   SameAsSerial("a start near the capsule, Sigma 2.5, RegionWeight 0", small, near, true);
   // Every default from the near start: sigma_0 from the start, the intensity range estimated
   // (3 ranks here; mpi_image_pieces.py runs 2 and 3 under MPI).
-  SameAsSerial("every default from a start near the capsule", defaults, near, false, { 3 });
+  SameAsSerial("every default from a start near the capsule", defaults, near, true, { 3 });
+  GhostLayers(defaults);
   BadInput(around);
   AgreedAbort(near);
   return dstest::Result("TestDistributedSolve");

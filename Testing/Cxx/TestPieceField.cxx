@@ -4,10 +4,14 @@
 // each rank holding its slab and the ghost layers PieceGhostVoxels() asks for.
 // - The piece fields equal the whole image's field (ComputeForceAtScale) on the owned voxels to
 //   1e-12 of the largest force: a fine sigma (sampled Gaussian: a few ghost layers), a middle
-//   one (recursive Gaussian: the whole axis), a coarse one (block means summed over the ranks,
-//   twice the block size of ghosts), over the whole image and over a box (a later level's
-//   neighbourhood); the same for a uint16 image, its pieces read in their own type.
-// - With the sampled Gaussian and on coarse grids no rank holds the whole image.
+//   one (recursive Gaussian, its state passed from piece to piece), a coarse one (block means
+//   summed over the ranks, twice the block size of ghosts), over the whole image and over a box
+//   (a later level's neighbourhood); the same for a uint16 image, its pieces read in their own
+//   type. No rank holds the whole image.
+// - The recursive Gaussian (sigma 3.5 and 8 on this anisotropic grid: 3.2-8.9 voxels, and 5.5)
+//   on 2 and 3 slabs and on 3 bricks (split along z then y, and along x then z, as VTK's block mode
+//   cuts an image): P and -grad P equal the serial field bit for bit on every owned voxel, and
+//   each rank holds exactly its piece and one ghost layer (at most 132 300 of 368 480 voxels).
 // - A single-level solve on every rank with its piece field and OwnerForceExchange equals the
 //   serial solve on the whole field (coordinates to 1e-12 relative).
 // - Bad input: a rank holding too few ghost layers makes every rank fail with a message, none
@@ -24,6 +28,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -94,17 +100,32 @@ void CompareOnOwned(const ForceField& whole, const ForceField& piece, const Imag
       }
 }
 
-template <typename T>
-void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks, double sigma,
-  const VoxelBox& box, bool pieceSmaller, const std::string& label)
+ScaleSpaceParameters OneThread(double sigma)
 {
   ScaleSpaceParameters parameters;
   parameters.Sigma = sigma;
   parameters.NumberOfThreads = 1;
+  return parameters;
+}
+
+/// The serial field of the whole image on `box`.
+template <typename T>
+ForceField SerialField(const ImageGeometry& g, const std::vector<T>& image, const VoxelBox& box,
+  const ScaleSpaceParameters& parameters)
+{
   ForceField whole;
   std::string error;
   DS_CHECK(
     ComputeForceAtScale(ImageView::Of(image.data(), g), box, parameters, whole, &error), error);
+  return whole;
+}
+
+template <typename T>
+void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks, double sigma,
+  const VoxelBox& box, bool pieceSmaller, const std::string& label)
+{
+  const ScaleSpaceParameters parameters = OneThread(sigma);
+  const ForceField whole = SerialField(g, image, box, parameters);
   dstest::EmulatedRanks ranks(nRanks);
   std::vector<double> diff(nRanks, 0.0), force(nRanks, 0.0);
   std::vector<int> missing(nRanks, 0), ok(nRanks, 0);
@@ -137,6 +158,107 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks
   {
     DS_CHECK_LE(*std::max_element(heldVoxels.begin(), heldVoxels.end()), g.NumberOfVoxels() - 1,
       label + ": voxels held by the largest piece");
+  }
+  DS_CHECK(ranks.Mismatches() == 0, label + ": the ranks reduced vectors of one size");
+}
+
+/// The values of `piece` (a field on a box of the image) that differ from `whole`'s bit for
+/// bit on the voxels of `voxels` (whole-image indices), P and the three components of -grad P.
+long long DifferingValues(const ForceField& whole, const ForceField& piece, const VoxelBox& voxels)
+{
+  const auto firstVoxel = [](const ForceField& f, int a)
+  {
+    return static_cast<int>(
+      std::lround((f.Geometry.Origin[a] - f.Image.Origin[a]) / f.Image.Spacing[a]));
+  };
+  const auto index = [&](const ForceField& f, int i, int j, int k)
+  {
+    const int* n = f.Geometry.Dimensions;
+    return (i - firstVoxel(f, 0)) +
+      static_cast<long long>(n[0]) *
+      ((j - firstVoxel(f, 1)) + static_cast<long long>(n[1]) * (k - firstVoxel(f, 2)));
+  };
+  long long differing = 0;
+  for (int k = voxels.Begin[2]; k < voxels.End[2]; ++k)
+    for (int j = voxels.Begin[1]; j < voxels.End[1]; ++j)
+      for (int i = voxels.Begin[0]; i < voxels.End[0]; ++i)
+      {
+        const long long w = index(whole, i, j, k), q = index(piece, i, j, k);
+        differing += std::memcmp(&whole.Potential[w], &piece.Potential[q], sizeof(float)) != 0;
+        differing += std::memcmp(&whole.Force[3 * w], &piece.Force[3 * q], 3 * sizeof(float)) != 0;
+      }
+  return differing;
+}
+
+/// The owned voxels of rank r of 3 as VTK's block mode splits an image whose longest axis is
+/// `first`: rank 0 a third of it, ranks 1 and 2 the rest split along `second`.
+VoxelBox Brick(const ImageGeometry& g, int r, int first, int second)
+{
+  VoxelBox owned = VoxelBox::Whole(g);
+  dstest::SplitAxis(owned, first, r == 0 ? 0 : 1, 3);
+  if (r > 0)
+  {
+    owned.End[first] = VoxelBox::Whole(g).End[first];
+    dstest::SplitAxis(owned, second, r - 1, 2);
+  }
+  return owned;
+}
+
+/// The recursive Gaussian (sigma between 3 and 9 voxels, fine grids) on pieces holding one ghost
+/// layer: the field on every owned voxel equals the serial one bit for bit, and each rank holds
+/// exactly its owned voxels and one layer around them (clipped to the image).
+template <typename T>
+void RecursiveFieldsExact(const ImageGeometry& g, const std::vector<T>& image, double sigma,
+  const VoxelBox& box, const std::function<VoxelBox(int)>& ownedOf, int nRanks,
+  const std::string& label)
+{
+  const ScaleSpaceParameters parameters = OneThread(sigma);
+  const ForceField whole = SerialField(g, image, box, parameters);
+  DS_CHECK(DecimationFactor(sigma, g) == 1 && PieceGhostVoxels(sigma, g, 0) == 1 &&
+      PieceGhostVoxels(sigma, g, 1) == 1 && PieceGhostVoxels(sigma, g, 2) == 1,
+    label + ": a fine grid, one ghost layer per axis");
+  dstest::EmulatedRanks ranks(nRanks);
+  std::vector<long long> differing(nRanks, -1), held(nRanks, 0), expected(nRanks, 0);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<T> values;
+      const ImagePiece piece = dstest::PieceOf<T>(
+        g, image, ownedOf(r), [](int) { return 1; }, values);
+      held[r] = piece.Held.NumberOfVoxels();
+      expected[r] = 1;
+      for (int a = 0; a < 3; ++a)
+      {
+        expected[r] *=
+          std::min(g.Dimensions[a], piece.Owned.End[a] + 1) - std::max(0, piece.Owned.Begin[a] - 1);
+      }
+      ForceField field;
+      std::string message;
+      if (ComputePieceForce(piece, box, parameters, ReductionsOf(ranks, r), field, &message))
+      {
+        VoxelBox owned = piece.Owned;
+        for (int a = 0; a < 3; ++a)
+        {
+          owned.Begin[a] = std::max(owned.Begin[a], box.Begin[a]);
+          owned.End[a] = std::max(owned.Begin[a], std::min(owned.End[a], box.End[a]));
+        }
+        differing[r] = DifferingValues(whole, field, owned);
+      }
+    });
+  std::cout << label << ": held voxels per rank";
+  for (long long h : held)
+  {
+    std::cout << " " << h;
+  }
+  std::cout << " of " << g.NumberOfVoxels() << std::endl;
+  for (int r = 0; r < nRanks; ++r)
+  {
+    const std::string rank = label + ", rank " + std::to_string(r);
+    DS_CHECK(differing[r] == 0,
+      rank + ": values differing from the serial field on the owned voxels: " +
+        std::to_string(differing[r]));
+    DS_CHECK(held[r] == expected[r], rank + ": holds its piece and one ghost layer");
+    DS_CHECK_LE(held[r], g.NumberOfVoxels() * 2 / 3, rank + ": voxels held");
   }
   DS_CHECK(ranks.Mismatches() == 0, label + ": the ranks reduced vectors of one size");
 }
@@ -261,13 +383,42 @@ int TestPieceField(int, char*[])
     FieldsAgree(
       g, image, nRanks, 1.5, VoxelBox::Whole(g), true, n + ", sigma 1.5 (sampled Gaussian)");
     FieldsAgree(
-      g, image, nRanks, 3.0, VoxelBox::Whole(g), false, n + ", sigma 3 (recursive Gaussian)");
-    FieldsAgree(g, image, nRanks, 3.0, box, false, n + ", sigma 3 on a box");
+      g, image, nRanks, 3.0, VoxelBox::Whole(g), true, n + ", sigma 3 (recursive Gaussian)");
+    FieldsAgree(g, image, nRanks, 3.0, box, true, n + ", sigma 3 on a box");
     FieldsAgree(g, image, nRanks, 14.0, VoxelBox::Whole(g), true, n + ", sigma 14 (blocks of 3)");
     FieldsAgree(g, image, nRanks, 14.0, box, true, n + ", sigma 14 on a box");
     SolvesAgree(g, image, nRanks, 2.0);
     SolvesAgree(g, image, nRanks, 3.0);
   }
+  // The recursive Gaussian passed from piece to piece: 2 and 3 slabs along z, and 3 bricks
+  // as VTK's block mode cuts an image longest along z (then y) or along x (then z).
+  const auto slabs = [&](int n)
+  {
+    return [&g, n](int r)
+    {
+      VoxelBox owned = VoxelBox::Whole(g);
+      dstest::SplitAxis(owned, 2, r, n);
+      return owned;
+    };
+  };
+  for (double sigma : { 3.5, 8.0 })
+  {
+    const std::string s = ", sigma " + std::to_string(sigma).substr(0, 3);
+    RecursiveFieldsExact(g, image, sigma, VoxelBox::Whole(g), slabs(2), 2, "2 slabs" + s);
+    RecursiveFieldsExact(g, image, sigma, VoxelBox::Whole(g), slabs(3), 3, "3 slabs" + s);
+  }
+  RecursiveFieldsExact(
+    g, image, 5.5, VoxelBox::Whole(g), [&g](int r) { return Brick(g, r, 2, 1); }, 3,
+    "3 bricks z then y, sigma 5.5");
+  RecursiveFieldsExact(
+    g, image, 5.5, box, [&g](int r) { return Brick(g, r, 2, 1); }, 3,
+    "3 bricks z then y, sigma 5.5 on a box");
+  const ImageGeometry wide = dstest::AnisotropicGeometry(160, 47, 49);
+  const std::vector<float> wideImage = Image(wide);
+  RecursiveFieldsExact(
+    wide, wideImage, 5.5, VoxelBox::Whole(wide), [&wide](int r) { return Brick(wide, r, 0, 2); }, 3,
+    "3 bricks x then z, sigma 5.5");
+
   // The pieces read in the input's own type (no float copy): a uint16 image's piece fields
   // equal its whole field as the float image's do.
   std::vector<std::uint16_t> image16;
@@ -276,6 +427,7 @@ int TestPieceField(int, char*[])
     image16.push_back(static_cast<std::uint16_t>(std::lround(100.0 * v)));
   }
   FieldsAgree(g, image16, 3, 1.5, VoxelBox::Whole(g), true, "uint16, 3 ranks, sigma 1.5");
+  FieldsAgree(g, image16, 3, 5.5, VoxelBox::Whole(g), true, "uint16, 3 ranks, sigma 5.5");
   FieldsAgree(g, image16, 3, 14.0, box, true, "uint16, 3 ranks, sigma 14 on a box");
   BadPieces(g, image);
   return dstest::Result("TestPieceField");

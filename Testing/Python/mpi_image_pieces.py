@@ -5,12 +5,16 @@ and read by ParaView's XML readers; the start is a box near the capsule, with Si
 and RegionWeight 0 (every other property default), and for the .pvti also with every default
 (sigma_0 from the start and the intensity range estimated, both from the pieces).
 Asserted, for each file:
-- every rank held at least its share (field data PieceVoxels), and with Sigma 2.5 less than the
-  whole image (with every default the levels between 3 and 9 voxels of sigma use the recursive
-  Gaussian along whole axes, so each rank's ghosts reach across the image: printed, not asserted);
+- every rank held at least its share (field data PieceVoxels) and less than the whole image: its
+  slab and the ghost layers the request allows for (11 with Sigma 2.5; 13 with every default,
+  the sampled Gaussian's largest radius and one, as sigma_0 from the start is not known when
+  the pieces are asked for); with every default the levels include sigma between 3 and 9
+  voxels, the recursive Gaussian passed from piece to piece;
 - the surface equals the serial filter's on the whole image and the same gathered start: same
   vertex count, coordinates to 1e-6 relative; it is delivered once (rank 0; the others and their
   convergence tables are empty); it lies on the capsule (mean distance below 0.2 voxel);
+- a ball in a 44 x 46 x 48 image (bricks on 3 ranks) with every default: the serial surface
+  exactly, no rank holding the whole image;
 - a rank whose piece of the image has no scalars makes every rank fail with an error, none left
   waiting (the ctest timeout is the hang guard), and a good run afterwards still works."""
 import builtins
@@ -95,9 +99,9 @@ class Errors:
         self.errors.append(text)
 
 
-def serial(start, settings):
+def serial(start, settings, path=None):
     reader = vtkXMLImageDataReader()
-    reader.SetFileName(vti)
+    reader.SetFileName(path or vti)
     reader.Update()
     f = vtkDeformableSurfaceFilter()
     f.SetController(None)
@@ -106,7 +110,8 @@ def serial(start, settings):
     for key, value in settings.items():
         getattr(f, "Set" + key)(value)
     f.Update()
-    return f.GetOutput()
+    sigmas = f.GetOutputDataObject(1).GetColumnByName("Sigma")
+    return f.GetOutput(), sorted({sigmas.GetValue(i) for i in range(sigmas.GetNumberOfTuples())})
 
 
 def check_file(path, settings):
@@ -119,7 +124,7 @@ def check_file(path, settings):
     table_ranks = per_rank(ds, 1)
     distributed = servermanager.Fetch(ds)
     start = servermanager.Fetch(box)
-    reference = serial(start, settings)
+    reference, sigmas = serial(start, settings)
     fd = distributed.GetFieldData()
     held = [fd.GetArray("PieceVoxels").GetValue(r) for r in range(n_ranks)]
     whole = fd.GetArray("ImageVoxels").GetValue(0)
@@ -144,7 +149,14 @@ def check_file(path, settings):
     assert not errors.errors, name + ": no error"
     assert whole == NX * NY * NZ
     assert builtins.all(whole / n_ranks <= h <= whole for h in held), name + ": every rank held its share"
-    assert not settings or builtins.all(h < whole for h in held), name + ": less than the whole image"
+    ghosts = 13 if not settings else 11
+    slab = NX * NY * (NZ - 1) / n_ranks  # a rank's share of the cells along z
+    print("%s: levels' sigma %s voxels" % (name, ["%.2f" % s for s in sigmas]))
+    assert builtins.all(h <= slab + NX * NY * (2 * ghosts + 2) for h in held), \
+        name + ": each rank held its slab and %d ghost layers at most" % ghosts
+    assert builtins.max(held) < whole, name + ": less than the whole image"
+    assert settings or builtins.any(3.0 <= s < 9.0 for s in sigmas), \
+        name + ": a level with the recursive Gaussian, in pieces"
     assert n == reference.GetNumberOfPoints() > 0, name + ": the serial vertex count"
     assert distributed.GetNumberOfPolys() == reference.GetNumberOfPolys()
     assert worst <= 1e-6, name + ": the serial coordinates to 1e-6 relative"
@@ -153,6 +165,44 @@ def check_file(path, settings):
         p == 0 and c == 0 for r, (p, c) in surface_ranks.items() if r != 0), name + ": delivered once"
     assert table_ranks[0][0] > 0 and builtins.all(
         rows == 0 for r, (rows, _) in table_ranks.items() if r != 0), name + ": one convergence table"
+    for p in (ds, box, reader):
+        simple.Delete(p)
+
+
+def check_bricks():
+    """A ball in a 44 x 46 x 48 image with every default: on 3 ranks VTK's block mode cuts z,
+    then y (bricks), so the recursive Gaussian passes its state along two axes."""
+    k, j, i = numpy.mgrid[0:48, 0:46, 0:44].astype(float)
+    d = numpy.sqrt((i - 21.5) ** 2 + (j - 22.5) ** 2 + (k - 23.5) ** 2)
+    noise = numpy.random.default_rng(4712).uniform(-5.0, 5.0, d.shape)
+    ball = vtkImageData()
+    ball.SetDimensions(44, 46, 48)
+    array = numpy_to_vtk((100.0 / (1.0 + numpy.exp(2.0 * (d - 12.0))) + noise).astype(numpy.float32).ravel(), deep=1)
+    array.SetName("ball")
+    ball.GetPointData().SetScalars(array)
+    path = os.path.join(out_dir, "mpi_image_pieces_ball_%d.vti" % n_ranks)
+    w = vtkXMLImageDataWriter()
+    w.SetInputData(ball)
+    w.SetFileName(path)
+    w.Write()
+    reader = simple.OpenDataFile(path)
+    box = simple.Box(XLength=32.0, YLength=32.0, ZLength=32.0, Center=[21.5, 22.5, 23.5])
+    ds = simple.DeformableSurface(Input=reader, InitialSurface=box)
+    ds.Scalars = ["POINTS", "ball"]
+    errors = Errors(ds)
+    distributed = servermanager.Fetch(ds)
+    reference, sigmas = serial(servermanager.Fetch(box), {}, path)
+    held = [distributed.GetFieldData().GetArray("PieceVoxels").GetValue(r) for r in range(n_ranks)]
+    n = distributed.GetNumberOfPoints()
+    same = n == reference.GetNumberOfPoints() > 0 and builtins.all(
+        distributed.GetPoint(v) == reference.GetPoint(v) for v in range(n))
+    print("ball (every default, levels' sigma %s voxels): %d ranks held %s of %d voxels; %d vertices"
+          " (serial %d), identical %s; errors %s"
+          % (["%.2f" % s for s in sigmas], n_ranks, held, 44 * 46 * 48, n,
+             reference.GetNumberOfPoints(), same, errors.errors))
+    assert not errors.errors and same, "ball: the serial surface exactly"
+    assert builtins.max(held) < 44 * 46 * 48, "ball: no rank held the whole image"
+    assert builtins.any(3.0 <= s < 9.0 for s in sigmas), "ball: a level with the recursive Gaussian"
     for p in (ds, box, reader):
         simple.Delete(p)
 
@@ -179,6 +229,7 @@ def bad_piece(strip):
 check_file(vti, SETTINGS)
 check_file(pvti, SETTINGS)
 check_file(pvti, {})
+check_bricks()
 bad_piece(True)
 bad_piece(False)  # the ranks are still in step
 print("mpi_image_pieces: all checks passed")
