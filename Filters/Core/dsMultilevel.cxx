@@ -35,6 +35,14 @@ double PotentialEdgeWidth(double sigma, double voxel)
   return std::sqrt(sigma * sigma + voxel * voxel);
 }
 
+double NextHierarchicalSigma(double sigma, double floor)
+{
+  // Half of sigma, unless the half would lie less than a third of an octave above the floor: a
+  // level that little coarser than the floor's costs a field and the finest mesh's sweeps for
+  // what the floor's level redoes (docs/METHOD.md §6.6).
+  return 0.5 * sigma < std::cbrt(2.0) * floor ? std::min(sigma, floor) : 0.5 * sigma;
+}
+
 std::vector<char> MultilevelSolver::MarkTriangles(
   const TriangleMesh& mesh, const std::vector<double>& estimator, double threshold, bool uniform)
 {
@@ -653,8 +661,12 @@ bool MultilevelSolver::RunLevels(
   const double sigmaFloor = SigmaFloorVoxels * state.Voxel;
   if (P.HierarchicalSigma && state.Sigma > sigmaFloor)
   {
-    const double halvings = std::ceil(std::log2(state.Sigma / sigmaFloor) - 1e-9);
-    this->PlannedLevels = std::min(maxLevels, static_cast<int>(halvings));
+    int steps = 0;
+    for (double s = state.Sigma; s > sigmaFloor * (1 + 1e-9) && steps < maxLevels; ++steps)
+    {
+      s = NextHierarchicalSigma(s, sigmaFloor);
+    }
+    this->PlannedLevels = steps;
   }
   for (int level = 0; level <= maxLevels; ++level)
   {
@@ -690,8 +702,7 @@ bool MultilevelSolver::RunLevels(
     // image has nothing more to show; a level that would change neither mesh nor sigma
     // ends the run.
     const double sigma = state.Sigma;
-    const double nextSigma =
-      P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, sigmaFloor)) : sigma;
+    const double nextSigma = P.HierarchicalSigma ? NextHierarchicalSigma(sigma, sigmaFloor) : sigma;
     if (!refined && !(nextSigma < sigma))
     {
       if (!(rec.MeanEdgeLength <= rec.Sigma)) // else EndSweeps has smoothed it
