@@ -89,6 +89,20 @@ void LastStepToTheFloor()
     ++levels;
   }
   DS_CHECK(levels == 5, "12.6 / floor = 2^4.24: 12.6, 6.3, 3.15, 1.58, 2/3 (five levels, not six)");
+
+  // In a solve: the sphere of radius 16 in 64^3 from the box with Sigma 6.4 voxels solves
+  // 6.4, 3.2, 1.6 and the floor (0.8 would lie 1.2 floors up), and still ends on the sphere.
+  const int n = 64;
+  MultilevelParameters p;
+  p.Sigma = 6.4;
+  Run run;
+  run.Mesh = dsphantom::EnclosingBox(n, 1);
+  Solve(run, dsphantom::Sphere(n, 16), dsphantom::Geometry(n), p, n, 16);
+  const auto& solved = run.Solver.GetLevels();
+  DS_CHECK(solved.size() == 4, "Sigma 6.4: four levels");
+  DS_CHECK(solved.size() == 4 && solved[2].Sigma == 1.6 && solved[3].Sigma == floor,
+    "Sigma 6.4: 1.6 then the floor");
+  DS_CHECK_LE(run.Accuracy.Mean, 0.1, "Sigma 6.4: mean |d| (voxels)");
 }
 
 void CapAndBudget()
