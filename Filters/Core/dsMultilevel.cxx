@@ -262,6 +262,7 @@ bool MultilevelSolver::SolveLevel(
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
     }
     batchStats.clear();
+    double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
     solver.Sweeps(std::min({ batchSize, cap - s, budget }),
       [&](const SweepStatistics& st)
       {
@@ -271,7 +272,10 @@ bool MultilevelSolver::SolveLevel(
           rec.Converged = true;
           return false;
         }
-        return true;
+        // With bricks, the batch ends once a vertex may have moved half their reach, so that
+        // Cover follows the surface before a sweep could take a vertex out of them.
+        batchTravel += st.MaxCorrection;
+        return !field.Bricks || batchTravel < 0.5 * BrickReachSigmas * rec.Sigma;
       });
     for (const SweepStatistics& st : batchStats)
     {
@@ -481,12 +485,13 @@ bool MultilevelSolver::SetUpLevel(
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
-    // Serial, after the first level: a field on the image's own grid only where the surface
-    // is (dsFieldBricks.h). Distributed: each piece's field (dsPieceField.h), no bricks.
+    // Serial: a field on the image's own grid only where the surface is (dsFieldBricks.h),
+    // following it batch by batch (SolveLevel), the first level's too, whose surface may
+    // travel far. Distributed: each piece's field (dsPieceField.h), no bricks.
     const bool computed = this->Distributed
       ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
       : ComputeForceAtScale(
-          image, box, state.FieldParameters, state.Field, &msg, rec.Level == 0 ? nullptr : &mesh);
+          image, box, state.FieldParameters, state.Field, &msg, &mesh);
     if (!computed)
     {
       *error = "scale-space force: " + msg;

@@ -198,8 +198,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
   /// Force samples that fell in a brick of the field not computed yet (no force there; the
-  /// bricks follow the surface between batches of sweeps, so this stays 0 unless a vertex
-  /// moves more than BrickReachSigmas sigma within one batch).
+  /// bricks follow the surface between batches of sweeps, and a batch ends once the sum of its
+  /// sweeps' largest corrections reaches half their reach, so this stays 0 unless one sweep
+  /// moves a vertex more than BrickReachSigmas / 2 sigma).
   long long FieldMisses = 0;
 };
 
@@ -356,7 +357,8 @@ private:
   /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
   /// convergence test, the records, progress and abort, MaxSweeps. True = stop the run.
   /// A field in bricks (dsFieldBricks.h) gets the bricks the surface comes within reach of
-  /// before each batch.
+  /// before each batch, and a batch ends early once its vertices may have moved half that reach
+  /// (the sum of its sweeps' largest corrections).
   bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
     int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says
