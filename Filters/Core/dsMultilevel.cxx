@@ -37,6 +37,14 @@ double PotentialEdgeWidth(double sigma, double voxel)
   return std::sqrt(sigma * sigma + voxel * voxel);
 }
 
+double NextHierarchicalSigma(double sigma, double floor)
+{
+  // Half of sigma, unless the half would lie less than a third of an octave above the floor: a
+  // level that little coarser than the floor's costs a field and the finest mesh's sweeps for
+  // what the floor's level redoes (docs/METHOD.md §6.6).
+  return 0.5 * sigma < std::cbrt(2.0) * floor ? std::min(sigma, floor) : 0.5 * sigma;
+}
+
 std::vector<char> MultilevelSolver::MarkTriangles(
   const TriangleMesh& mesh, const std::vector<double>& estimator, double threshold, bool uniform)
 {
@@ -256,6 +264,7 @@ bool MultilevelSolver::SolveLevel(
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
     }
     batchStats.clear();
+    double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
     solver.Sweeps(std::min({ batchSize, cap - s, budget }),
       [&](const SweepStatistics& st)
       {
@@ -265,7 +274,10 @@ bool MultilevelSolver::SolveLevel(
           rec.Converged = true;
           return false;
         }
-        return true;
+        // With bricks, the batch ends once a vertex may have moved half their reach, so that
+        // Cover follows the surface before a sweep could take a vertex out of them.
+        batchTravel += st.MaxCorrection;
+        return !field.Bricks || batchTravel < 0.5 * BrickReachSigmas * rec.Sigma;
       });
     for (const SweepStatistics& st : batchStats)
     {
@@ -475,12 +487,13 @@ bool MultilevelSolver::SetUpLevel(
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
-    // Serial, after the first level: a field on the image's own grid only where the surface
-    // is (dsFieldBricks.h). Distributed: each piece's field (dsPieceField.h), no bricks.
+    // Serial: a field on the image's own grid only where the surface is (dsFieldBricks.h),
+    // following it batch by batch (SolveLevel), the first level's too, whose surface may
+    // travel far. Distributed: each piece's field (dsPieceField.h), no bricks.
     const bool computed = this->Distributed
       ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
       : ComputeForceAtScale(
-          image, box, state.FieldParameters, state.Field, &msg, rec.Level == 0 ? nullptr : &mesh);
+          image, box, state.FieldParameters, state.Field, &msg, &mesh);
     if (!computed)
     {
       *error = "scale-space force: " + msg;
@@ -655,8 +668,12 @@ bool MultilevelSolver::RunLevels(
   const double sigmaFloor = SigmaFloorVoxels * state.Voxel;
   if (P.HierarchicalSigma && state.Sigma > sigmaFloor)
   {
-    const double halvings = std::ceil(std::log2(state.Sigma / sigmaFloor) - 1e-9);
-    this->PlannedLevels = std::min(maxLevels, static_cast<int>(halvings));
+    int steps = 0;
+    for (double s = state.Sigma; s > sigmaFloor * (1 + 1e-9) && steps < maxLevels; ++steps)
+    {
+      s = NextHierarchicalSigma(s, sigmaFloor);
+    }
+    this->PlannedLevels = steps;
   }
   for (int level = 0; level <= maxLevels; ++level)
   {
@@ -692,8 +709,7 @@ bool MultilevelSolver::RunLevels(
     // image has nothing more to show; a level that would change neither mesh nor sigma
     // ends the run.
     const double sigma = state.Sigma;
-    const double nextSigma =
-      P.HierarchicalSigma ? std::max(0.5 * sigma, std::min(sigma, sigmaFloor)) : sigma;
+    const double nextSigma = P.HierarchicalSigma ? NextHierarchicalSigma(sigma, sigmaFloor) : sigma;
     if (!refined && !(nextSigma < sigma))
     {
       if (!(rec.MeanEdgeLength <= rec.Sigma)) // else EndSweeps has smoothed it

@@ -31,8 +31,9 @@
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h; at edge midpoints with ButterflyProlongation off);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
-//      sigma: it is 4 sigma in the recursive Gaussian), else sigma stays; never below half
-//      a voxel (mean spacing), where the image shows nothing finer.
+//      sigma: it is 4 sigma in the recursive Gaussian), else sigma stays; never below its floor
+//      (SigmaFloorVoxels), and the floor itself when the half would lie less than a third of an
+//      octave above it (NextHierarchicalSigma).
 // A level with nothing to refine (nothing marked, the marked triangles all below a voxel,
 // or the next step over MaxVertices: a warning, once) still goes on to the next, smaller
 // sigma with the same mesh, so the surface always ends at the fine scale rather than on
@@ -149,6 +150,14 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
 /// their rest than the same share of the narrower width.
 DEFORMABLESURFACEFILTERS_EXPORT double PotentialEdgeWidth(double sigma, double voxel);
 
+/// The next level's sigma with the hierarchical sigma: sigma / 2, or `floor` (sigma's floor,
+/// SigmaFloorVoxels in world units) when sigma / 2 lies below 2^(1/3) * floor (a third of an
+/// octave); never below the floor, and sigma itself once it is there. This saves a level that
+/// would sit barely above the floor's, with its field and its sweeps of the finest mesh (the
+/// Colin27 click's sigma went 1.59, 0.80, 0.67 mm; now 1.59, 0.67). Half an octave was too much:
+/// the level it merged held a refinement a capsule phantom needed (docs/METHOD.md §6.6).
+DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, double floor);
+
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
 enum class StopReason
 {
@@ -189,8 +198,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
   /// Force samples that fell in a brick of the field not computed yet (no force there; the
-  /// bricks follow the surface between batches of sweeps, so this stays 0 unless a vertex
-  /// moves more than BrickReachSigmas sigma within one batch).
+  /// bricks follow the surface between batches of sweeps, and a batch ends once the sum of its
+  /// sweeps' largest corrections reaches half their reach, so this stays 0 unless one sweep
+  /// moves a vertex more than BrickReachSigmas / 2 sigma).
   long long FieldMisses = 0;
 };
 
@@ -348,7 +358,8 @@ private:
   /// The sweeps of one level (rec: its level, sigma and mean edge length): batches, the
   /// convergence test, the records, progress and abort, MaxSweeps. True = stop the run.
   /// A field in bricks (dsFieldBricks.h) gets the bricks the surface comes within reach of
-  /// before each batch.
+  /// before each batch, and a batch ends early once its vertices may have moved half that reach
+  /// (the sum of its sweeps' largest corrections).
   bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
     int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says

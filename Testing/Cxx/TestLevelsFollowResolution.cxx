@@ -40,7 +40,7 @@ void Solve(Run& run, const std::vector<float>& volume, const ImageGeometry& geom
 void HierarchyFollowsResolution()
 {
   // Sphere of radius n/4 in n^3 from the box: sigma_0 = n / 6 halves to its floor, 2/3 voxel,
-  // which takes ceil(log2(n / 4)) halvings: 4 at 64^3, 5 at 128^3 (the former fixed 4 stopped at
+  // which takes log2(n / 4) halvings: 4 at 64^3, 5 at 128^3 (the former fixed 4 stopped at
   // 1.3 voxels at 128^3).
   int previousLevels = 0;
   for (const int n : { 64, 128 })
@@ -50,7 +50,7 @@ void HierarchyFollowsResolution()
     Solve(run, dsphantom::Sphere(n, n / 4.0), dsphantom::Geometry(n), MultilevelParameters(), n,
       n / 4.0);
     const auto& levels = run.Solver.GetLevels();
-    const int halvings = static_cast<int>(std::ceil(std::log2(n / 4.0) - 1e-9));
+    const int halvings = static_cast<int>(std::lround(std::log2(n / 4.0)));
     DS_CHECK(static_cast<int>(levels.size()) == halvings + 1, "levels from sigma_0 to the floor");
     DS_CHECK(std::abs(levels.back().Sigma - SigmaFloorVoxels) < 1e-12,
       "the last level at sigma's floor, 2/3 voxel");
@@ -67,6 +67,42 @@ void HierarchyFollowsResolution()
       DS_CHECK_LE(run.Mesh.NumberOfTriangles(), 6000, "sphere r 32: triangles");
     }
   }
+}
+
+void LastStepToTheFloor()
+{
+  // Sigma halves, and goes straight to its floor when the half would lie less than a third of
+  // an octave (2^(1/3) = 1.26) above it.
+  const double floor = 2.0 / 3.0;
+  DS_CHECK(NextHierarchicalSigma(4.0, floor) == 2.0, "far above the floor: sigma halves");
+  DS_CHECK(NextHierarchicalSigma(2.0, floor) == 1.0, "1 lies 1.5 floors up: sigma halves");
+  DS_CHECK(NextHierarchicalSigma(1.875, floor) == 0.9375,
+    "0.94 lies 1.41 floors up (the capsule of mpi_image_pieces): sigma halves");
+  DS_CHECK(NextHierarchicalSigma(1.0, floor) == floor, "1 / 2 is below the floor: the floor");
+  DS_CHECK(NextHierarchicalSigma(1.59, floor) == floor,
+    "0.795 lies 1.19 floors up (the Colin27 click's 1.59 -> 0.80 -> 0.67 mm): the floor");
+  DS_CHECK(NextHierarchicalSigma(floor, floor) == floor, "at the floor sigma stays");
+  DS_CHECK(NextHierarchicalSigma(0.5, floor) == 0.5, "a sigma below the floor stays");
+  int levels = 1;
+  for (double s = 12.6; s > floor; s = NextHierarchicalSigma(s, floor))
+  {
+    ++levels;
+  }
+  DS_CHECK(levels == 5, "12.6 / floor = 2^4.24: 12.6, 6.3, 3.15, 1.58, 2/3 (five levels, not six)");
+
+  // In a solve: the sphere of radius 16 in 64^3 from the box with Sigma 6.4 voxels solves
+  // 6.4, 3.2, 1.6 and the floor (0.8 would lie 1.2 floors up), and still ends on the sphere.
+  const int n = 64;
+  MultilevelParameters p;
+  p.Sigma = 6.4;
+  Run run;
+  run.Mesh = dsphantom::EnclosingBox(n, 1);
+  Solve(run, dsphantom::Sphere(n, 16), dsphantom::Geometry(n), p, n, 16);
+  const auto& solved = run.Solver.GetLevels();
+  DS_CHECK(solved.size() == 4, "Sigma 6.4: four levels");
+  DS_CHECK(solved.size() == 4 && solved[2].Sigma == 1.6 && solved[3].Sigma == floor,
+    "Sigma 6.4: 1.6 then the floor");
+  DS_CHECK_LE(run.Accuracy.Mean, 0.1, "Sigma 6.4: mean |d| (voxels)");
 }
 
 void CapAndBudget()
@@ -159,6 +195,7 @@ int TestLevelsFollowResolution(int, char*[])
 {
   std::cout << "hierarchical sigma, defaults:" << std::endl;
   HierarchyFollowsResolution();
+  LastStepToTheFloor();
   std::cout << "caps:" << std::endl;
   CapAndBudget();
   std::cout << "constant sigma:" << std::endl;
