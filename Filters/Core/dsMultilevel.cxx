@@ -744,9 +744,11 @@ int MultilevelSolver::DistributedGhostVoxels(
   ghost = std::max(ghost, f > 1 ? 2 * f : PieceGhostVoxels(sigma, whole, a));
   if (p.HierarchicalSigma)
   {
+    // In voxels: a world sigma just under 3 spacings can divide back to 3.0 (spacing 1.05)
+    // and read as recursive, one layer.
     const double sampled =
-      std::min(sigma, std::nextafter(GaussianRecursiveFromSigmaVoxels * whole.Spacing[a], 0.0));
-    ghost = std::max(ghost, PieceGhostVoxels(sampled, whole, a));
+      std::min(sigma / whole.Spacing[a], std::nextafter(GaussianRecursiveFromSigmaVoxels, 0.0));
+    ghost = std::max(ghost, FineGhostVoxels(sampled));
   }
   return std::min(ghost, whole.Dimensions[a]);
 }

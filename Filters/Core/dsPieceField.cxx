@@ -98,12 +98,16 @@ int PieceGhostVoxels(double sigma, const ImageGeometry& whole, int a)
   // the sampled kernel's radius, so the owned voxels get the serial values bit for bit. The
   // recursive filter reaches along the whole axis, but its state comes from the neighbouring
   // pieces (dsPieceGaussian.h), so it needs no ghosts of its own.
-  const double s = sigma / whole.Spacing[a];
-  if (!(s < GaussianRecursiveFromSigmaVoxels))
+  return FineGhostVoxels(sigma / whole.Spacing[a]);
+}
+
+int FineGhostVoxels(double sigmaVoxels)
+{
+  if (!(sigmaVoxels < GaussianRecursiveFromSigmaVoxels))
   {
     return 1;
   }
-  return static_cast<int>(std::ceil(4.0 * s)) + 1;
+  return static_cast<int>(std::ceil(4.0 * sigmaVoxels)) + 1;
 }
 
 namespace

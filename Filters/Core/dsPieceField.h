@@ -85,6 +85,8 @@ DEFORMABLESURFACEFILTERS_EXPORT ImagePiece WholeImagePiece(const ImageView& imag
 /// neighbouring pieces (dsPieceGaussian.h). Coarse fields (block size f > 1) need 2 f.
 DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(
   double sigma, const ImageGeometry& whole, int a);
+/// PieceGhostVoxels for sigmaVoxels voxels of sigma along the axis.
+DEFORMABLESURFACEFILTERS_EXPORT int FineGhostVoxels(double sigmaVoxels);
 
 /// The field of ComputeForceAtScale(whole image, box, parameters) on this piece (see above):
 /// on coarse scales the whole coarse grid, on fine scales the owned voxels of the box and the

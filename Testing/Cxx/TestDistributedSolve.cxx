@@ -14,7 +14,8 @@
 // - The ghost layers the request allows for (DistributedGhostVoxels): 13 with every default on
 //   this image (the sampled Gaussian's largest radius and one, or the sigma_0 probe's), twice the
 //   coarsest block for sigma_0 = extent / 6 at 512^3 and 1024^3 (54, 110), 11 with Sigma 2.5
-//   voxels, one for a single level at 5 voxels (the recursive Gaussian); the whole axis for the
+//   voxels, one for a single level at 5 voxels (the recursive Gaussian), 13 for Sigma 8 voxels
+//   (its levels below 3 voxels) at spacings 1 and 1.05; the whole axis for the
 //   sigma_0 probe along an axis 3.7 times finer than the mean spacing.
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
 //   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
@@ -136,6 +137,18 @@ void GhostLayers(const MultilevelParameters& defaults)
   p.Sigma = 5.0;
   p.HierarchicalSigma = false;
   DS_CHECK(ghost(p, cube) == 1, "a single level at 5 voxels: 1");
+  // Sigma 8 voxels halves through 2 voxels (the sampled Gaussian): 13 layers, also where a world
+  // sigma just under 3 spacings divides back to 3.0 (spacing 1.05).
+  p.HierarchicalSigma = true;
+  for (const double spacing : { 1.0, 1.05 })
+  {
+    ImageGeometry g;
+    g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = 64;
+    g.Spacing[0] = g.Spacing[1] = g.Spacing[2] = spacing;
+    p.Sigma = 8.0 * spacing;
+    DS_CHECK(ghost(p, g) == 13,
+      "Sigma 8 voxels, spacing " + std::to_string(spacing) + ": 13 (the sampled levels)");
+  }
   // The sigma_0 probe smooths each piece on its own: along an axis 3.7 times finer than the mean
   // spacing its Gaussian is recursive, and it asks for that whole axis.
   ImageGeometry fine = dstest::CapsuleGeometry();
