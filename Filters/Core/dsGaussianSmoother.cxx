@@ -16,6 +16,7 @@ namespace
 // Gaussian by ~1 % of the peak and its edge pull 2.5-3 sigma out is ~15 % too strong; the
 // 5th order is within 0.11 % and 3.1 % from 3 voxels on (docs/METHOD.md §6c).
 constexpr int K = 5;
+static_assert(K == RecursiveAxisPass::States, "a line's state is the cascade's K values");
 
 // One axis of the separable Gaussian. Recursive: the 5 poles as a cascade of one real and two
 // complex-pair sections, each with unit DC gain, run forward and then backward:
@@ -430,11 +431,11 @@ void SmoothGaussianAxis(float* volume, const int dims[3], int a, double sigmaVox
   }
   else if (a == 1)
   {
-    SmoothRows(volume, s, nz, ny, slice, nx, nx);
+    SmoothRows(volume, s, nz, ny, slice, nx, nx); // for each k, rows j
   }
   else
   {
-    SmoothRows(volume, s, ny, nz, nx, slice, nx);
+    SmoothRows(volume, s, ny, nz, nx, slice, nx); // for each j, rows k
   }
 }
 
@@ -668,10 +669,8 @@ void RecursiveAxisPass::Backward(
 void SmoothGaussianSeparable(
   const float* src, float* dst, const int dims[3], const double sigmaVoxels[3])
 {
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(nx) * ny;
   SmoothX(src, dst, dims, MakeSmoother(sigmaVoxels[0]));
-  SmoothRows(dst, MakeSmoother(sigmaVoxels[1]), nz, ny, slice, nx, nx); // y: for each k, rows j
-  SmoothRows(dst, MakeSmoother(sigmaVoxels[2]), ny, nz, nx, slice, nx); // z: for each j, rows k
+  SmoothGaussianAxis(dst, dims, 1, sigmaVoxels[1]);
+  SmoothGaussianAxis(dst, dims, 2, sigmaVoxels[2]);
 }
 } // namespace dsurf
