@@ -67,8 +67,10 @@
  * voxel, nor, with the region force, than the level's sigma); the marked triangles are red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
- * Sigma never goes below 2/3 of a voxel; the level solved there is the last (finer meshes
- * would follow detail the image does not show), so the number of levels follows the resolution:
+ * Sigma never goes below 2/3 of a voxel, and goes straight there when half would be less than
+ * 1.26 times that (a third of an octave: NextHierarchicalSigma); the level solved there is the
+ * last (finer meshes would follow detail the image does not show), so the number of levels
+ * follows the resolution:
  * halving from extent / 6 takes 6 levels at 128^3, 8 at 512^3. MaxLevels is a cap. Refinement
  * stops where nothing is marked or before a step would exceed MaxVertices (a warning; the
  * red-green closure can add some more); the levels still halve sigma on the same mesh, so the
