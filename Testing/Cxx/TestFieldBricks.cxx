@@ -5,7 +5,8 @@
 // brick); a point in a brick not computed yet feels no
 // force and is counted as a miss, not as outside the image, until Cover computes its brick; a
 // point outside the level's box but inside the image is not outside the image; a whole solve
-// of a phantom never samples a missing brick.
+// of a phantom never samples a missing brick, nor does a seed that the region force grows far
+// on a first level in bricks.
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
@@ -131,6 +132,33 @@ int TestFieldBricks(int, char*[])
   }
   DS_CHECK(misses == 0 && solver.GetMaxOutsideVertices() == 0 && solver.GetLevels().size() > 3,
     "a solve: no missed brick, no vertex outside the image");
+
+  // The first level in bricks, its surface travelling far: a seed of radius 3 grown by the region
+  // force to the ball (radius 30) at sigma 1 voxel (reach 3 voxels), in batches of up to 200
+  // sweeps. A batch ends once its sweeps' largest corrections add up to sigma, so Cover follows
+  // the surface (batches of 200 sweeps left whole: 22 108 misses).
+  MultilevelParameters grow;
+  grow.Sigma = 1.0;
+  grow.MaxLevels = 0;
+  grow.RegionWeight = 1.0;
+  grow.IntensityRange[0] = 0.5;
+  grow.IntensityRange[1] = 2.0;
+  grow.SweepBatch = 200;
+  grow.Solver.NumberOfThreads = 1;
+  MultilevelSolver grower;
+  grower.SetParameters(grow);
+  TriangleMesh seed = dstest::MakeIcosphere(2, 3.0, c);
+  DS_CHECK(grower.Run(view, seed, &error), error);
+  double radius = 0;
+  for (const Vec3& x : seed.Points)
+  {
+    radius += Norm(x - c) / seed.NumberOfPoints();
+  }
+  std::cout << "grown seed: mean radius " << radius << ", field misses "
+            << grower.GetLevels()[0].FieldMisses << std::endl;
+  DS_CHECK(grower.GetLevels().size() == 1 && grower.GetLevels()[0].FieldMisses == 0,
+    "a seed grown far on a bricked first level: no missed brick");
+  DS_CHECK(std::abs(radius - 30.0) < 1.0, "and it reaches the ball (mean radius within 1 voxel)");
   return dstest::Result("TestFieldBricks");
 }
 
