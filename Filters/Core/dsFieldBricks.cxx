@@ -18,6 +18,7 @@ bool FieldBricks::Initialize(
   this->Potential.clear();
   this->Force.clear();
   this->BrickFinite.clear();
+  this->FreeSlots.clear();
   this->MissCount = 0;
   this->Smooth.reset(new float[static_cast<std::size_t>(image.Geometry.NumberOfVoxels())]);
   if (!SmoothForPotential(image, parameters, this->Smooth.get(), this->Gains, error))
@@ -142,13 +143,25 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
   {
     if (needed[id] && this->Slots[id] < 0)
     {
-      this->Slots[id] = static_cast<int>(this->Potential.size() + fresh.size());
       fresh.push_back(static_cast<int>(id));
     }
   }
-  this->Potential.resize(this->Potential.size() + fresh.size());
-  this->Force.resize(this->Potential.size());
-  this->BrickFinite.resize(this->Potential.size(), 1);
+  this->DropUnreachedOverBudget(needed, fresh.size());
+  for (int id : fresh)
+  {
+    if (this->FreeSlots.empty())
+    {
+      this->Slots[id] = static_cast<int>(this->Potential.size());
+      this->Potential.emplace_back();
+      this->Force.emplace_back();
+      this->BrickFinite.push_back(1);
+    }
+    else
+    {
+      this->Slots[id] = this->FreeSlots.back();
+      this->FreeSlots.pop_back();
+    }
+  }
   vtkSMPTools::LocalScope(
     vtkSMPTools::Config{ ResolveThreads(this->Parameters.NumberOfThreads), "STDThread", false },
     [&]
@@ -173,6 +186,34 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
       forEachFresh(&FieldBricks::CompleteBrick);
     });
   return static_cast<int>(fresh.size());
+}
+
+void FieldBricks::DropUnreachedOverBudget(const std::vector<char>& needed, std::size_t fresh)
+{
+  // A surface that travels far in a level (a seed the region force grows across the box) would
+  // leave a trail of bricks behind it, and bricks hold their shared layers twice (9^3 values a
+  // brick of 8^3 voxels): more than the whole field, which the memory check counts on
+  // (ForceFieldBytesPerVoxel). Past that, the bricks no vertex can reach are dropped; a brick
+  // computed again holds the same values, so nothing but time depends on it.
+  const double brickVoxels = std::pow(BrickSize + 1.0, 3);
+  const double live = static_cast<double>(this->Potential.size() - this->FreeSlots.size());
+  if ((live + static_cast<double>(fresh)) * brickVoxels <=
+    static_cast<double>(this->Grid.NumberOfVoxels()))
+  {
+    return;
+  }
+  for (std::size_t id = 0; id < needed.size(); ++id)
+  {
+    const int slot = this->Slots[id];
+    if (slot >= 0 && !needed[id])
+    {
+      std::vector<float>().swap(this->Potential[slot]);
+      std::vector<float>().swap(this->Force[slot]);
+      this->BrickFinite[slot] = 1;
+      this->FreeSlots.push_back(slot);
+      this->Slots[id] = -1;
+    }
+  }
 }
 
 // inline: an exported member is otherwise called through the PLT from SampleForce.

@@ -54,7 +54,11 @@ public:
   double SamplePotential(const double x[3]) const;
   /// Samples that fell in a brick not computed, since Initialize.
   long long Misses() const { return this->MissCount.load(); }
-  int ComputedBricks() const { return static_cast<int>(this->Potential.size()); }
+  /// Bricks held now (computed and not dropped).
+  int ComputedBricks() const
+  {
+    return static_cast<int>(this->Potential.size() - this->FreeSlots.size());
+  }
   /// Every computed value is finite (huge weights can overflow single precision).
   bool Finite() const;
   /// Bytes held: G_sigma * f and the computed bricks.
@@ -71,6 +75,9 @@ private:
   VoxelBox OwnBox(const int b[3]) const;
   /// Computes brick b's own voxels (OwnBox) into its slot.
   void ComputeBrick(const int b[3], int slot);
+  /// Frees the computed bricks not `needed` when keeping them and computing `fresh` more would
+  /// pass the whole field's size (Cover).
+  void DropUnreachedOverBudget(const std::vector<char>& needed, std::size_t fresh);
   /// Fills the rest of brick b's voxels, once every fresh brick's own ones are computed: copied
   /// from the brick that owns them when it is computed, else computed. Then checks the brick.
   void CompleteBrick(const int b[3], int slot);
@@ -86,6 +93,7 @@ private:
   std::vector<int> Slots;      ///< per brick (x fastest): its index in Potential, or -1
   std::vector<std::vector<float>> Potential, Force; ///< per computed brick, x fastest
   std::vector<char> BrickFinite; ///< per computed brick: all its values are finite
+  std::vector<int> FreeSlots;    ///< slots of dropped bricks, reused before new ones
   mutable std::atomic<long long> MissCount{ 0 };
 };
 } // namespace dsurf

@@ -6,7 +6,8 @@
 // force and is counted as a miss, not as outside the image, until Cover computes its brick; a
 // point outside the level's box but inside the image is not outside the image; a whole solve
 // of a phantom never samples a missing brick, nor does a seed that the region force grows far
-// on a first level in bricks.
+// on a first level in bricks; the bricks a travelling surface left behind are dropped once the
+// whole field's size is reached, and equal it when computed again.
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
@@ -112,6 +113,23 @@ int TestFieldBricks(int, char*[])
   DS_CHECK(bricked.Bricks->Cover(inner) > 0, "Cover computes the bricks a surface came near");
   DS_CHECK(LargestDifference(bricked, whole, { c }) == 0.0, "and then they equal the box's");
   DS_CHECK(bricked.Bricks->Cover(inner) == 0, "a brick is computed once");
+
+  // A surface travelling across the box: the bricks held never pass the whole field's size (a
+  // brick holds 9^3 values), the ones left behind dropped; back where it started, the bricks
+  // computed again equal the whole box's field bit for bit.
+  const double budget = box.NumberOfVoxels() / std::pow(FieldBricks::BrickSize + 1.0, 3);
+  int mostHeld = 0;
+  for (const Vec3& shift : { Vec3{ 9, 0, 0 }, Vec3{ 0, 9, 0 }, Vec3{ 0, 0, 9 },
+         Vec3{ -9, 0, 0 }, Vec3{ 0, -9, 0 }, Vec3{ 0, 0, -9 }, Vec3{ 0, 0, 0 } })
+  {
+    bricked.Bricks->Cover(dstest::MakeIcosphere(3, 31.5, c + shift));
+    mostHeld = std::max(mostHeld, bricked.Bricks->ComputedBricks());
+  }
+  std::cout << "a surface travelling across the box: at most " << mostHeld
+            << " bricks held, the whole field's size " << budget << " bricks" << std::endl;
+  DS_CHECK_LE(mostHeld, budget, "bricks held by a travelling surface, at most the whole field");
+  DS_CHECK(LargestDifference(bricked, whole, PointsWithinReach(surface, c, reach)) == 0.0,
+    "dropped bricks computed again = whole-box field bit for bit");
 
   // Outside the box (the surface's neighbourhood) but inside the image, and outside the image.
   const Vec3 corner{ g.Origin[0] + 2.0, 2.0, 2.0 }, away{ g.Origin[0] - 5.0, 2.0, 2.0 };
