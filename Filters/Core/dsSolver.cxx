@@ -361,7 +361,7 @@ Vec3 Solver::Umbrella(int v) const
                               : UmbrellaOf<false>(view, v, -1, &unused);
 }
 
-inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
+Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
     this->LocalWeights.data(), this->LocalPoints.data() };
@@ -403,7 +403,7 @@ inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   return tau * c1 + ((1.0 - tau) * alpha) * c2;
 }
 
-inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
+Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
 {
   Vec3 force{ 0, 0, 0 };
   const Vec3& p = this->LocalPoints[v];
@@ -437,18 +437,46 @@ inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveN
   return force;
 }
 
-void Solver::UpdateVertex(int v)
+void Solver::UpdateRange(int first, int last)
 {
-  Vec3 force{ 0, 0, 0 };
-  Vec3 normal{ 0, 0, 0 };
-  int outside = 0;
-  bool haveNormal = false;
-  const bool external = this->HasExternalForce();
-  if (external)
+  const int* vertices = this->LocalColors.Vertices.data();
+  if (!this->HasExternalForce())
   {
-    force = this->ExternalForce(v, outside, normal, haveNormal);
+    for (int k = first; k < last; ++k)
+    {
+      this->CorrectVertex(vertices[k], false, Vec3{ 0, 0, 0 }, 0, nullptr);
+    }
+    return;
   }
-  this->CorrectVertex(v, external, force, outside, haveNormal ? &normal : nullptr);
+  // A batch's forces are sampled in a loop of their own, then its vertices corrected: the
+  // samples are independent, so the processor overlaps their cache misses in the force field
+  // and the image (one at a time when each sample waited behind a vertex's whole update). The
+  // same results: a vertex's force depends only on its own position and its fan, which no
+  // vertex of its colour moves (the distance-2 colouring, as for the force exchange).
+  constexpr int Batch = 32;
+  struct Sampled
+  {
+    Vec3 Force, Normal;
+    int Outside;
+    bool HaveNormal;
+  } batch[Batch];
+  for (int b = first; b < last; b += Batch)
+  {
+    const int n = std::min(Batch, last - b);
+    for (int i = 0; i < n; ++i)
+    {
+      Sampled& s = batch[i];
+      s.Outside = 0;
+      s.HaveNormal = false;
+      s.Force = this->ExternalForce(vertices[b + i], s.Outside, s.Normal, s.HaveNormal);
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      const Sampled& s = batch[i];
+      this->CorrectVertex(
+        vertices[b + i], true, s.Force, s.Outside, s.HaveNormal ? &s.Normal : nullptr);
+    }
+  }
 }
 
 void Solver::SampleVertexForce(int v, VertexForce& out) const
@@ -466,8 +494,7 @@ void Solver::SampleVertexForce(int v, VertexForce& out) const
   }
 }
 
-inline void Solver::CorrectVertex(
-  int v, bool external, const Vec3& force, int outside, const Vec3* normal)
+void Solver::CorrectVertex(int v, bool external, const Vec3& force, int outside, const Vec3* normal)
 {
   Vec3 u;
   const Vec3 internal = this->InternalCorrection(v, u);
@@ -666,9 +693,9 @@ int Solver::SerialSweeps(
     }
     else
     {
-      for (int k = 0; k < total; ++k)
+      for (int color = 0; color < this->NumberOfColors(); ++color)
       {
-        this->UpdateVertex(this->LocalColors.Vertices[k]);
+        this->UpdateRange(this->LocalColors.Offsets[color], this->LocalColors.Offsets[color + 1]);
       }
     }
     for (int c = 0; c < numChunks; ++c)
@@ -730,10 +757,7 @@ public:
       this->S.LocalColors.Offsets[color + 1] - cBegin, block, this->Blocks, first, last);
     if (this->PhasesPerColor == 1)
     {
-      for (int k = cBegin + first; k < cBegin + last; ++k)
-      {
-        this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
-      }
+      this->S.UpdateRange(cBegin + first, cBegin + last);
     }
     else if (phase % 2 == 0)
     {

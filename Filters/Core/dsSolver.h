@@ -178,12 +178,13 @@ private:
   void OrderBreadthFirst();   ///< Original and Local
   void CopyTopologyToLocal(); ///< neighbour lists and fans in local ids
   void BuildLocalColors();    ///< LocalColors from Colors
-  /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
-  /// mesh; records the per-vertex values under the mesh's id.
-  void UpdateVertex(int v);
+  /// Corrects the vertices [first, last) of LocalColors.Vertices (of one colour) in place, in
+  /// the local copy; records the per-vertex values. The external forces of a batch of them are
+  /// sampled before any of the batch is corrected (see UpdateRange in dsSolver.cxx).
+  void UpdateRange(int first, int last);
   /// Phase (a) of a colour with a force exchange: v's force into `out`.
   void SampleVertexForce(int v, VertexForce& out) const;
-  /// Phase (c), and the second half of UpdateVertex: correct v with the external force
+  /// Phase (c), and the second half of UpdateRange: correct v with the external force
   /// `force` (applied through the §5 rule when `external`); `normal` is v's fan normal when
   /// already known, else nullptr.
   void CorrectVertex(int v, bool external, const Vec3& force, int outside, const Vec3* normal);
