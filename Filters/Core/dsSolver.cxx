@@ -331,6 +331,11 @@ void Solver::BuildLocalColors()
     std::sort(this->LocalColors.Vertices.begin() + this->Colors.Offsets[c],
       this->LocalColors.Vertices.begin() + this->Colors.Offsets[c + 1]);
   }
+  this->ColorSlot.assign(this->Mesh->NumberOfPoints(), -1);
+  for (int k = 0; k < this->Colors.Offsets.back(); ++k)
+  {
+    this->ColorSlot[this->LocalColors.Vertices[k]] = k;
+  }
 }
 
 void Solver::BuildLocalLayout()
@@ -344,7 +349,7 @@ void Solver::BuildLocalLayout()
   this->ErrorIndicatorValues.assign(n, 0.0);
   this->DisplacementValues.assign(n, 0.0);
   this->ForceValues.assign(n, 0.0);
-  this->LocalResults.assign(n, VertexResult());
+  this->LocalResults.assign(this->Colors.Offsets.back(), VertexResult());
 }
 
 Vec3 Solver::Umbrella(int v) const
@@ -444,7 +449,7 @@ void Solver::UpdateRange(int first, int last)
   {
     for (int k = first; k < last; ++k)
     {
-      this->CorrectVertex(vertices[k], false, Vec3{ 0, 0, 0 }, 0, nullptr);
+      this->CorrectVertex(k, false, Vec3{ 0, 0, 0 }, 0, nullptr);
     }
     return;
   }
@@ -473,8 +478,7 @@ void Solver::UpdateRange(int first, int last)
     for (int i = 0; i < n; ++i)
     {
       const Sampled& s = batch[i];
-      this->CorrectVertex(
-        vertices[b + i], true, s.Force, s.Outside, s.HaveNormal ? &s.Normal : nullptr);
+      this->CorrectVertex(b + i, true, s.Force, s.Outside, s.HaveNormal ? &s.Normal : nullptr);
     }
   }
 }
@@ -494,8 +498,9 @@ void Solver::SampleVertexForce(int v, VertexForce& out) const
   }
 }
 
-void Solver::CorrectVertex(int v, bool external, const Vec3& force, int outside, const Vec3* normal)
+void Solver::CorrectVertex(int k, bool external, const Vec3& force, int outside, const Vec3* normal)
 {
+  const int v = this->LocalColors.Vertices[k];
   Vec3 u;
   const Vec3 internal = this->InternalCorrection(v, u);
 
@@ -512,7 +517,7 @@ void Solver::CorrectVertex(int v, bool external, const Vec3& force, int outside,
   const Vec3 c = gamma * (internal + applied);
   Vec3& point = this->LocalPoints[v];
   point = point + c;
-  VertexResult& result = this->LocalResults[v];
+  VertexResult& result = this->LocalResults[k];
   result.Outside = outside;
   result.ErrorIndicator = gamma * Norm(internal);
   result.Displacement = Norm(c);
@@ -532,7 +537,7 @@ void Solver::CorrectRange(int colorBegin, int first, int last)
   for (int k = first; k < last; ++k)
   {
     const VertexForce& f = this->ColorForces[k - colorBegin];
-    this->CorrectVertex(this->LocalColors.Vertices[k], true, f.Force, f.Outside, nullptr);
+    this->CorrectVertex(k, true, f.Force, f.Outside, nullptr);
   }
 }
 
@@ -555,7 +560,8 @@ void Solver::CopyOut(int first, int last)
   for (int l = first; l < last; ++l)
   {
     const int v = this->Original[l];
-    const VertexResult& result = this->LocalResults[l];
+    const int k = this->ColorSlot[l];
+    const VertexResult result = k >= 0 ? this->LocalResults[k] : VertexResult();
     m.Points[v] = this->LocalPoints[l];
     this->ErrorIndicatorValues[v] = result.ErrorIndicator;
     this->DisplacementValues[v] = result.Displacement;
@@ -591,7 +597,7 @@ void Solver::ChunkStatistics(int chunk, ChunkSums& out) const
   int outside = 0;
   for (int k = first; k < last; ++k)
   {
-    const VertexResult& result = this->LocalResults[this->LocalColors.Vertices[k]];
+    const VertexResult& result = this->LocalResults[k];
     sum += result.Displacement;
     maxC = std::max(maxC, result.Displacement);
     outside += result.Outside;

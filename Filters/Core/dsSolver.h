@@ -184,10 +184,10 @@ private:
   void UpdateRange(int first, int last);
   /// Phase (a) of a colour with a force exchange: v's force into `out`.
   void SampleVertexForce(int v, VertexForce& out) const;
-  /// Phase (c), and the second half of UpdateRange: correct v with the external force
-  /// `force` (applied through the §5 rule when `external`); `normal` is v's fan normal when
-  /// already known, else nullptr.
-  void CorrectVertex(int v, bool external, const Vec3& force, int outside, const Vec3* normal);
+  /// Phase (c), and the second half of UpdateRange: correct the vertex v =
+  /// LocalColors.Vertices[k] with the external force `force` (applied through the §5 rule when
+  /// `external`); `normal` is v's fan normal when already known, else nullptr.
+  void CorrectVertex(int k, bool external, const Vec3& force, int outside, const Vec3* normal);
   /// Phases (a) and (c) on the vertices [first, last) of LocalColors.Vertices, of the colour
   /// whose vertices start at `colorBegin` there (ColorForces[k - colorBegin] is vertex k's).
   void SampleRange(int colorBegin, int first, int last);
@@ -246,8 +246,13 @@ private:
     double ErrorIndicator = 0, Displacement = 0, Force = 0;
     int Outside = 0;
   };
-  std::vector<VertexResult> LocalResults; ///< copied to the mesh order after a call
-  ColorClasses LocalColors;               ///< the same classes in local ids
+  /// Per vertex that moves, in the order of LocalColors.Vertices: a colour's results are
+  /// written side by side (not one cache line per vertex, a colour's vertices being spread
+  /// over the surface) and summed by the statistics in that order. Copied to the mesh order
+  /// after a call.
+  std::vector<VertexResult> LocalResults;
+  ColorClasses LocalColors;   ///< the same classes in local ids
+  std::vector<int> ColorSlot; ///< per local vertex: its index in LocalColors.Vertices, or -1
 };
 } // namespace dsurf
 
