@@ -6,28 +6,32 @@
 #include "dsThreads.h"
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
+#include <map>
 
 namespace dsurf
 {
 namespace
 {
 /// What the umbrella operators read: the mesh itself (Solver::Umbrella) or the
-/// solver's breadth-first copy (the sweeps). Same arithmetic either way. Weights holds the
-/// normalised weight of every neighbour slot (docs/METHOD.md §6.4); nullptr when every
+/// solver's breadth-first copy (the sweeps). Same arithmetic either way. The normalised weight
+/// of neighbour slot i (docs/METHOD.md §6.4) is WeightValues[WeightIds[i]]; not read when every
 /// weight is 1 (AllN).
 struct MeshView
 {
   const int* NeighborOffsets;
   const int* Neighbors;
-  const double* Weights;
+  const double* WeightValues;
+  const std::uint32_t* WeightIds;
   const Vec3* Points;
 };
 
 template <bool AllN>
 inline double SlotWeight(const MeshView& m, int v, int slot)
 {
-  return AllN ? 1.0 / (m.NeighborOffsets[v + 1] - m.NeighborOffsets[v]) : m.Weights[slot];
+  return AllN ? 1.0 / (m.NeighborOffsets[v + 1] - m.NeighborOffsets[v])
+              : m.WeightValues[m.WeightIds[slot]];
 }
 
 /// U(v) and the normalised weight that v gives the vertex `other` (0 if not a neighbour).
@@ -184,6 +188,27 @@ int ColorAtDistanceTwo(const TriangleMesh& m, std::vector<int>& color)
   return numColors;
 }
 
+/// Each weight's index into `values`, its distinct values (told apart by their bits, so the
+/// lookup gives back each weight exactly).
+void IndexWeights(
+  const std::vector<double>& weights, std::vector<std::uint32_t>& ids, std::vector<double>& values)
+{
+  std::map<std::uint64_t, std::uint32_t> index;
+  ids.resize(weights.size());
+  values.clear();
+  for (std::size_t i = 0; i < weights.size(); ++i)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, &weights[i], sizeof bits);
+    const auto inserted = index.try_emplace(bits, static_cast<std::uint32_t>(values.size()));
+    if (inserted.second)
+    {
+      values.push_back(weights[i]);
+    }
+    ids[i] = inserted.first->second;
+  }
+}
+
 /// Whether vertex v moves in a sweep: not on an open boundary, not isolated.
 bool Moves(const TriangleMesh& m, int v)
 {
@@ -208,15 +233,17 @@ void Solver::BuildColoring()
   this->ColoredPoints = n;
   this->UniformWeights =
     std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
-  this->Weights.clear();
+  this->WeightIds.clear();
+  this->WeightValues.clear();
   if (!this->UniformWeights)
   {
-    this->Weights.resize(m.Neighbors.size());
+    std::vector<double> weights(m.Neighbors.size());
     std::vector<int> greens;
     for (int v = 0; v < n; ++v)
     {
-      RingWeights(m, v, this->Weights.data(), greens);
+      RingWeights(m, v, weights.data(), greens);
     }
+    IndexWeights(weights, this->WeightIds, this->WeightValues);
   }
   std::vector<int> color;
   const int numColors = ColorAtDistanceTwo(m, color);
@@ -290,7 +317,7 @@ void Solver::CopyTopologyToLocal()
   this->LocalNeighbors.resize(m.Neighbors.size());
   this->LocalFanOffsets.assign(n + 1, 0);
   this->LocalFan.resize(m.VertexTriangles.size());
-  this->LocalWeights.resize(this->Weights.size());
+  this->LocalWeightIds.resize(this->WeightIds.size());
   this->LocalPoints.resize(n);
   for (int l = 0; l < n; ++l)
   {
@@ -298,9 +325,9 @@ void Solver::CopyTopologyToLocal()
     int k = this->LocalNeighborOffsets[l];
     for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
     {
-      if (!this->Weights.empty())
+      if (!this->WeightIds.empty())
       {
-        this->LocalWeights[k] = this->Weights[i];
+        this->LocalWeightIds[k] = this->WeightIds[i];
       }
       this->LocalNeighbors[k++] = this->Local[m.Neighbors[i]];
     }
@@ -360,8 +387,8 @@ Vec3 Solver::Umbrella(int v) const
   {
     return { 0, 0, 0 };
   }
-  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), this->Weights.data(),
-    m.Points.data() };
+  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), this->WeightValues.data(),
+    this->WeightIds.data(), m.Points.data() };
   return this->UniformWeights ? UmbrellaOf<true>(view, v, -1, &unused)
                               : UmbrellaOf<false>(view, v, -1, &unused);
 }
@@ -369,7 +396,7 @@ Vec3 Solver::Umbrella(int v) const
 Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
-    this->LocalWeights.data(), this->LocalPoints.data() };
+    this->WeightValues.data(), this->LocalWeightIds.data(), this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau;
 

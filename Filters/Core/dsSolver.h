@@ -25,6 +25,7 @@
 #include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -223,8 +224,11 @@ private:
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
   /// Otherwise the normalised weight of every neighbour slot of the mesh (aligned with
-  /// TriangleMesh::Neighbors), from the labels per triangle (docs/METHOD.md §6.4).
-  std::vector<double> Weights;
+  /// TriangleMesh::Neighbors), from the labels per triangle (docs/METHOD.md §6.4), as the index
+  /// of its value in WeightValues: the weights take few distinct values, and an index is half
+  /// the bytes of a double for the sweep, which reads the weights of a whole 2-ring per vertex.
+  std::vector<std::uint32_t> WeightIds;
+  std::vector<double> WeightValues;
   /// Vertices of colour k: Vertices[Offsets[k] .. Offsets[k+1]) (CSR), ascending ids.
   struct ColorClasses
   {
@@ -237,10 +241,10 @@ private:
   // Local (breadth-first) layout: Original[local] = mesh id, Local[mesh id] = local id.
   std::vector<int> Original, Local;
   std::vector<int> LocalNeighborOffsets, LocalNeighbors;
-  std::vector<int> LocalFanOffsets;         ///< triangles around each local vertex
-  std::vector<std::array<int, 3>> LocalFan; ///< their corners (local ids, mesh order)
-  std::vector<double> LocalWeights; ///< Weights in the local layout (same slot order per vertex)
-  std::vector<Vec3> LocalPoints;    ///< refreshed from the mesh by every call
+  std::vector<int> LocalFanOffsets;          ///< triangles around each local vertex
+  std::vector<std::array<int, 3>> LocalFan;  ///< their corners (local ids, mesh order)
+  std::vector<std::uint32_t> LocalWeightIds; ///< WeightIds in the local layout (same slot order)
+  std::vector<Vec3> LocalPoints;             ///< refreshed from the mesh by every call
   struct VertexResult
   {
     double ErrorIndicator = 0, Displacement = 0, Force = 0;
