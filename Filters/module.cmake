@@ -23,3 +23,12 @@ vtk_module_include(DeformableSurface::Filters
   PUBLIC
     "$<BUILD_INTERFACE:${_ds_filters_dir}>"
     "$<BUILD_INTERFACE:${_ds_filters_dir}/Core>")
+
+# The sweep calls small functions of this library per vertex (the force and image samples, the
+# fan normal, the umbrellas). An exported function of a shared library is called through the PLT,
+# and within its own file is not inlined, unless it cannot be interposed: these options bind the
+# library's calls to its own functions directly (its exported interface is unchanged).
+if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang" AND NOT APPLE AND NOT WIN32)
+  vtk_module_compile_options(DeformableSurface::Filters PRIVATE -fno-semantic-interposition)
+  vtk_module_link_options(DeformableSurface::Filters PRIVATE -Wl,-Bsymbolic-functions)
+endif()

@@ -17,16 +17,6 @@ double ImageGeometry::MeanExtent() const
   return sum / 3.0;
 }
 
-void ImageGeometry::WorldToIndex(const double x[3], double ijk[3]) const
-{
-  const double d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
-  const double* D = this->Direction;
-  // Orthonormal direction: its inverse is its transpose.
-  ijk[0] = (D[0] * d[0] + D[3] * d[1] + D[6] * d[2]) / this->Spacing[0];
-  ijk[1] = (D[1] * d[0] + D[4] * d[1] + D[7] * d[2]) / this->Spacing[1];
-  ijk[2] = (D[2] * d[0] + D[5] * d[1] + D[8] * d[2]) / this->Spacing[2];
-}
-
 void ImageGeometry::IndexToWorld(const double ijk[3], double x[3]) const
 {
   const double s[3] = { ijk[0] * this->Spacing[0], ijk[1] * this->Spacing[1],
@@ -146,31 +136,5 @@ bool IsConstant(const ImageView& image, double& value)
       value = static_cast<double>(reference);
     });
   return constant && !first; // no number at all is not a constant image
-}
-
-double SampleCell(const ImageView& image, const TrilinearCell& cell)
-{
-  double v = 0.0;
-  VisitValues(image,
-    [&](const auto* values)
-    {
-      for (int corner = 0; corner < 8; ++corner)
-      {
-        v += cell.Weight(corner) * AsFloat(values[cell.Corner(corner)]);
-      }
-    });
-  return v;
-}
-
-double SampleVolume(const ImageView& image, const double x[3], bool* inside)
-{
-  TrilinearCell c;
-  const std::ptrdiff_t increments[3] = { 1, image.RowStride, image.SliceStride };
-  const bool in = image.Data && LocateImageCell(image.Geometry, x, c, increments);
-  if (inside)
-  {
-    *inside = in;
-  }
-  return in ? SampleCell(image, c) : 0.0;
 }
 } // namespace dsurf

@@ -38,8 +38,17 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry
   {
     return (this->Spacing[0] + this->Spacing[1] + this->Spacing[2]) / 3.0;
   }
-  /// World point -> continuous index (i,j,k).
-  void WorldToIndex(const double x[3], double ijk[3]) const;
+  /// World point -> continuous index (i,j,k). Inline: every force and image sample of the
+  /// sweep starts here (an exported member is otherwise called through the PLT).
+  void WorldToIndex(const double x[3], double ijk[3]) const
+  {
+    const double d[3] = { x[0] - this->Origin[0], x[1] - this->Origin[1], x[2] - this->Origin[2] };
+    const double* D = this->Direction;
+    // Orthonormal direction: its inverse is its transpose.
+    ijk[0] = (D[0] * d[0] + D[3] * d[1] + D[6] * d[2]) / this->Spacing[0];
+    ijk[1] = (D[1] * d[0] + D[4] * d[1] + D[7] * d[2]) / this->Spacing[1];
+    ijk[2] = (D[2] * d[0] + D[5] * d[1] + D[8] * d[2]) / this->Spacing[2];
+  }
   /// Continuous index -> world point.
   void IndexToWorld(const double ijk[3], double x[3]) const;
 };
@@ -204,13 +213,35 @@ inline bool LocateImageCell(const ImageGeometry& geometry, const double x[3], Tr
 /// loop runs with vtkSMPTools: the caller's SMP scope sets the threads.
 DEFORMABLESURFACEFILTERS_EXPORT void CopyToFloat(const ImageView& image, float* out);
 
-/// The trilinear sample of the view's values in `cell` (ids into the view's values).
-DEFORMABLESURFACEFILTERS_EXPORT double SampleCell(const ImageView& image, const TrilinearCell& cell);
+/// The trilinear sample of the view's values in `cell` (ids into the view's values). Inline, as
+/// SampleVolume, for the solver's per-vertex region sample.
+inline double SampleCell(const ImageView& image, const TrilinearCell& cell)
+{
+  double v = 0.0;
+  VisitValues(image,
+    [&](const auto* values)
+    {
+      for (int corner = 0; corner < 8; ++corner)
+      {
+        v += cell.Weight(corner) * AsFloat(values[cell.Corner(corner)]);
+      }
+    });
+  return v;
+}
 
 /// Trilinear sample of the view at world point x, reaching half a voxel past the outermost
 /// centres (there the border value is used); 0 and *inside = false further out.
-DEFORMABLESURFACEFILTERS_EXPORT double SampleVolume(
-  const ImageView& image, const double x[3], bool* inside);
+inline double SampleVolume(const ImageView& image, const double x[3], bool* inside)
+{
+  TrilinearCell c;
+  const std::ptrdiff_t increments[3] = { 1, image.RowStride, image.SliceStride };
+  const bool in = image.Data && LocateImageCell(image.Geometry, x, c, increments);
+  if (inside)
+  {
+    *inside = in;
+  }
+  return in ? SampleCell(image, c) : 0.0;
+}
 } // namespace dsurf
 
 #endif

@@ -6,28 +6,32 @@
 #include "dsThreads.h"
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
+#include <map>
 
 namespace dsurf
 {
 namespace
 {
 /// What the umbrella operators read: the mesh itself (Solver::Umbrella) or the
-/// solver's breadth-first copy (the sweeps). Same arithmetic either way. Weights holds the
-/// normalised weight of every neighbour slot (docs/METHOD.md §6.4); nullptr when every
+/// solver's breadth-first copy (the sweeps). Same arithmetic either way. The normalised weight
+/// of neighbour slot i (docs/METHOD.md §6.4) is WeightValues[WeightIds[i]]; not read when every
 /// weight is 1 (AllN).
 struct MeshView
 {
   const int* NeighborOffsets;
   const int* Neighbors;
-  const double* Weights;
+  const double* WeightValues;
+  const std::uint32_t* WeightIds;
   const Vec3* Points;
 };
 
 template <bool AllN>
 inline double SlotWeight(const MeshView& m, int v, int slot)
 {
-  return AllN ? 1.0 / (m.NeighborOffsets[v + 1] - m.NeighborOffsets[v]) : m.Weights[slot];
+  return AllN ? 1.0 / (m.NeighborOffsets[v + 1] - m.NeighborOffsets[v])
+              : m.WeightValues[m.WeightIds[slot]];
 }
 
 /// U(v) and the normalised weight that v gives the vertex `other` (0 if not a neighbour).
@@ -184,6 +188,27 @@ int ColorAtDistanceTwo(const TriangleMesh& m, std::vector<int>& color)
   return numColors;
 }
 
+/// Each weight's index into `values`, its distinct values (told apart by their bits, so the
+/// lookup gives back each weight exactly).
+void IndexWeights(
+  const std::vector<double>& weights, std::vector<std::uint32_t>& ids, std::vector<double>& values)
+{
+  std::map<std::uint64_t, std::uint32_t> index;
+  ids.resize(weights.size());
+  values.clear();
+  for (std::size_t i = 0; i < weights.size(); ++i)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, &weights[i], sizeof bits);
+    const auto inserted = index.try_emplace(bits, static_cast<std::uint32_t>(values.size()));
+    if (inserted.second)
+    {
+      values.push_back(weights[i]);
+    }
+    ids[i] = inserted.first->second;
+  }
+}
+
 /// Whether vertex v moves in a sweep: not on an open boundary, not isolated.
 bool Moves(const TriangleMesh& m, int v)
 {
@@ -208,15 +233,17 @@ void Solver::BuildColoring()
   this->ColoredPoints = n;
   this->UniformWeights =
     std::all_of(m.Labels.begin(), m.Labels.end(), [](unsigned char l) { return l == LabelN; });
-  this->Weights.clear();
+  this->WeightIds.clear();
+  this->WeightValues.clear();
   if (!this->UniformWeights)
   {
-    this->Weights.resize(m.Neighbors.size());
+    std::vector<double> weights(m.Neighbors.size());
     std::vector<int> greens;
     for (int v = 0; v < n; ++v)
     {
-      RingWeights(m, v, this->Weights.data(), greens);
+      RingWeights(m, v, weights.data(), greens);
     }
+    IndexWeights(weights, this->WeightIds, this->WeightValues);
   }
   std::vector<int> color;
   const int numColors = ColorAtDistanceTwo(m, color);
@@ -290,7 +317,7 @@ void Solver::CopyTopologyToLocal()
   this->LocalNeighbors.resize(m.Neighbors.size());
   this->LocalFanOffsets.assign(n + 1, 0);
   this->LocalFan.resize(m.VertexTriangles.size());
-  this->LocalWeights.resize(this->Weights.size());
+  this->LocalWeightIds.resize(this->WeightIds.size());
   this->LocalPoints.resize(n);
   for (int l = 0; l < n; ++l)
   {
@@ -298,9 +325,9 @@ void Solver::CopyTopologyToLocal()
     int k = this->LocalNeighborOffsets[l];
     for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
     {
-      if (!this->Weights.empty())
+      if (!this->WeightIds.empty())
       {
-        this->LocalWeights[k] = this->Weights[i];
+        this->LocalWeightIds[k] = this->WeightIds[i];
       }
       this->LocalNeighbors[k++] = this->Local[m.Neighbors[i]];
     }
@@ -331,6 +358,11 @@ void Solver::BuildLocalColors()
     std::sort(this->LocalColors.Vertices.begin() + this->Colors.Offsets[c],
       this->LocalColors.Vertices.begin() + this->Colors.Offsets[c + 1]);
   }
+  this->ColorSlot.assign(this->Mesh->NumberOfPoints(), -1);
+  for (int k = 0; k < this->Colors.Offsets.back(); ++k)
+  {
+    this->ColorSlot[this->LocalColors.Vertices[k]] = k;
+  }
 }
 
 void Solver::BuildLocalLayout()
@@ -344,7 +376,7 @@ void Solver::BuildLocalLayout()
   this->ErrorIndicatorValues.assign(n, 0.0);
   this->DisplacementValues.assign(n, 0.0);
   this->ForceValues.assign(n, 0.0);
-  this->LocalResults.assign(n, VertexResult());
+  this->LocalResults.assign(this->Colors.Offsets.back(), VertexResult());
 }
 
 Vec3 Solver::Umbrella(int v) const
@@ -355,16 +387,16 @@ Vec3 Solver::Umbrella(int v) const
   {
     return { 0, 0, 0 };
   }
-  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), this->Weights.data(),
-    m.Points.data() };
+  const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), this->WeightValues.data(),
+    this->WeightIds.data(), m.Points.data() };
   return this->UniformWeights ? UmbrellaOf<true>(view, v, -1, &unused)
                               : UmbrellaOf<false>(view, v, -1, &unused);
 }
 
-inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
+Vec3 Solver::InternalCorrection(int v, Vec3& u) const
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
-    this->LocalWeights.data(), this->LocalPoints.data() };
+    this->WeightValues.data(), this->LocalWeightIds.data(), this->LocalPoints.data() };
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau;
 
@@ -403,7 +435,7 @@ inline Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   return tau * c1 + ((1.0 - tau) * alpha) * c2;
 }
 
-inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
+Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const
 {
   Vec3 force{ 0, 0, 0 };
   const Vec3& p = this->LocalPoints[v];
@@ -437,18 +469,45 @@ inline Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveN
   return force;
 }
 
-void Solver::UpdateVertex(int v)
+void Solver::UpdateRange(int first, int last)
 {
-  Vec3 force{ 0, 0, 0 };
-  Vec3 normal{ 0, 0, 0 };
-  int outside = 0;
-  bool haveNormal = false;
-  const bool external = this->HasExternalForce();
-  if (external)
+  const int* vertices = this->LocalColors.Vertices.data();
+  if (!this->HasExternalForce())
   {
-    force = this->ExternalForce(v, outside, normal, haveNormal);
+    for (int k = first; k < last; ++k)
+    {
+      this->CorrectVertex(k, false, Vec3{ 0, 0, 0 }, 0, nullptr);
+    }
+    return;
   }
-  this->CorrectVertex(v, external, force, outside, haveNormal ? &normal : nullptr);
+  // A batch's forces are sampled in a loop of their own, then its vertices corrected: the
+  // samples are independent, so the processor overlaps their cache misses in the force field
+  // and the image (one at a time when each sample waited behind a vertex's whole update). The
+  // same results: a vertex's force depends only on its own position and its fan, which no
+  // vertex of its colour moves (the distance-2 colouring, as for the force exchange).
+  constexpr int Batch = 32;
+  struct Sampled
+  {
+    Vec3 Force, Normal;
+    int Outside;
+    bool HaveNormal;
+  } batch[Batch];
+  for (int b = first; b < last; b += Batch)
+  {
+    const int n = std::min(Batch, last - b);
+    for (int i = 0; i < n; ++i)
+    {
+      Sampled& s = batch[i];
+      s.Outside = 0;
+      s.HaveNormal = false;
+      s.Force = this->ExternalForce(vertices[b + i], s.Outside, s.Normal, s.HaveNormal);
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      const Sampled& s = batch[i];
+      this->CorrectVertex(b + i, true, s.Force, s.Outside, s.HaveNormal ? &s.Normal : nullptr);
+    }
+  }
 }
 
 void Solver::SampleVertexForce(int v, VertexForce& out) const
@@ -466,9 +525,9 @@ void Solver::SampleVertexForce(int v, VertexForce& out) const
   }
 }
 
-inline void Solver::CorrectVertex(
-  int v, bool external, const Vec3& force, int outside, const Vec3* normal)
+void Solver::CorrectVertex(int k, bool external, const Vec3& force, int outside, const Vec3* normal)
 {
+  const int v = this->LocalColors.Vertices[k];
   Vec3 u;
   const Vec3 internal = this->InternalCorrection(v, u);
 
@@ -485,7 +544,7 @@ inline void Solver::CorrectVertex(
   const Vec3 c = gamma * (internal + applied);
   Vec3& point = this->LocalPoints[v];
   point = point + c;
-  VertexResult& result = this->LocalResults[v];
+  VertexResult& result = this->LocalResults[k];
   result.Outside = outside;
   result.ErrorIndicator = gamma * Norm(internal);
   result.Displacement = Norm(c);
@@ -505,7 +564,7 @@ void Solver::CorrectRange(int colorBegin, int first, int last)
   for (int k = first; k < last; ++k)
   {
     const VertexForce& f = this->ColorForces[k - colorBegin];
-    this->CorrectVertex(this->LocalColors.Vertices[k], true, f.Force, f.Outside, nullptr);
+    this->CorrectVertex(k, true, f.Force, f.Outside, nullptr);
   }
 }
 
@@ -528,7 +587,8 @@ void Solver::CopyOut(int first, int last)
   for (int l = first; l < last; ++l)
   {
     const int v = this->Original[l];
-    const VertexResult& result = this->LocalResults[l];
+    const int k = this->ColorSlot[l];
+    const VertexResult result = k >= 0 ? this->LocalResults[k] : VertexResult();
     m.Points[v] = this->LocalPoints[l];
     this->ErrorIndicatorValues[v] = result.ErrorIndicator;
     this->DisplacementValues[v] = result.Displacement;
@@ -564,7 +624,7 @@ void Solver::ChunkStatistics(int chunk, ChunkSums& out) const
   int outside = 0;
   for (int k = first; k < last; ++k)
   {
-    const VertexResult& result = this->LocalResults[this->LocalColors.Vertices[k]];
+    const VertexResult& result = this->LocalResults[k];
     sum += result.Displacement;
     maxC = std::max(maxC, result.Displacement);
     outside += result.Outside;
@@ -666,9 +726,9 @@ int Solver::SerialSweeps(
     }
     else
     {
-      for (int k = 0; k < total; ++k)
+      for (int color = 0; color < this->NumberOfColors(); ++color)
       {
-        this->UpdateVertex(this->LocalColors.Vertices[k]);
+        this->UpdateRange(this->LocalColors.Offsets[color], this->LocalColors.Offsets[color + 1]);
       }
     }
     for (int c = 0; c < numChunks; ++c)
@@ -730,10 +790,7 @@ public:
       this->S.LocalColors.Offsets[color + 1] - cBegin, block, this->Blocks, first, last);
     if (this->PhasesPerColor == 1)
     {
-      for (int k = cBegin + first; k < cBegin + last; ++k)
-      {
-        this->S.UpdateVertex(this->S.LocalColors.Vertices[k]);
-      }
+      this->S.UpdateRange(cBegin + first, cBegin + last);
     }
     else if (phase % 2 == 0)
     {

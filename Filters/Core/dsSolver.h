@@ -25,6 +25,7 @@
 #include "dsScaleSpace.h"
 #include "dsTriangleMesh.h"
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -178,15 +179,16 @@ private:
   void OrderBreadthFirst();   ///< Original and Local
   void CopyTopologyToLocal(); ///< neighbour lists and fans in local ids
   void BuildLocalColors();    ///< LocalColors from Colors
-  /// Correct vertex v (local, breadth-first id) in place, in the local copy and in the
-  /// mesh; records the per-vertex values under the mesh's id.
-  void UpdateVertex(int v);
+  /// Corrects the vertices [first, last) of LocalColors.Vertices (of one colour) in place, in
+  /// the local copy; records the per-vertex values. The external forces of a batch of them are
+  /// sampled before any of the batch is corrected (see UpdateRange in dsSolver.cxx).
+  void UpdateRange(int first, int last);
   /// Phase (a) of a colour with a force exchange: v's force into `out`.
   void SampleVertexForce(int v, VertexForce& out) const;
-  /// Phase (c), and the second half of UpdateVertex: correct v with the external force
-  /// `force` (applied through the §5 rule when `external`); `normal` is v's fan normal when
-  /// already known, else nullptr.
-  void CorrectVertex(int v, bool external, const Vec3& force, int outside, const Vec3* normal);
+  /// Phase (c), and the second half of UpdateRange: correct the vertex v =
+  /// LocalColors.Vertices[k] with the external force `force` (applied through the §5 rule when
+  /// `external`); `normal` is v's fan normal when already known, else nullptr.
+  void CorrectVertex(int k, bool external, const Vec3& force, int outside, const Vec3* normal);
   /// Phases (a) and (c) on the vertices [first, last) of LocalColors.Vertices, of the colour
   /// whose vertices start at `colorBegin` there (ColorForces[k - colorBegin] is vertex k's).
   void SampleRange(int colorBegin, int first, int last);
@@ -222,8 +224,11 @@ private:
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
   /// Otherwise the normalised weight of every neighbour slot of the mesh (aligned with
-  /// TriangleMesh::Neighbors), from the labels per triangle (docs/METHOD.md §6.4).
-  std::vector<double> Weights;
+  /// TriangleMesh::Neighbors), from the labels per triangle (docs/METHOD.md §6.4), as the index
+  /// of its value in WeightValues: the weights take few distinct values, and an index is half
+  /// the bytes of a double for the sweep, which reads the weights of a whole 2-ring per vertex.
+  std::vector<std::uint32_t> WeightIds;
+  std::vector<double> WeightValues;
   /// Vertices of colour k: Vertices[Offsets[k] .. Offsets[k+1]) (CSR), ascending ids.
   struct ColorClasses
   {
@@ -236,17 +241,22 @@ private:
   // Local (breadth-first) layout: Original[local] = mesh id, Local[mesh id] = local id.
   std::vector<int> Original, Local;
   std::vector<int> LocalNeighborOffsets, LocalNeighbors;
-  std::vector<int> LocalFanOffsets;         ///< triangles around each local vertex
-  std::vector<std::array<int, 3>> LocalFan; ///< their corners (local ids, mesh order)
-  std::vector<double> LocalWeights; ///< Weights in the local layout (same slot order per vertex)
-  std::vector<Vec3> LocalPoints;    ///< refreshed from the mesh by every call
+  std::vector<int> LocalFanOffsets;          ///< triangles around each local vertex
+  std::vector<std::array<int, 3>> LocalFan;  ///< their corners (local ids, mesh order)
+  std::vector<std::uint32_t> LocalWeightIds; ///< WeightIds in the local layout (same slot order)
+  std::vector<Vec3> LocalPoints;             ///< refreshed from the mesh by every call
   struct VertexResult
   {
     double ErrorIndicator = 0, Displacement = 0, Force = 0;
     int Outside = 0;
   };
-  std::vector<VertexResult> LocalResults; ///< copied to the mesh order after a call
-  ColorClasses LocalColors;               ///< the same classes in local ids
+  /// Per vertex that moves, in the order of LocalColors.Vertices: a colour's results are
+  /// written side by side (not one cache line per vertex, a colour's vertices being spread
+  /// over the surface) and summed by the statistics in that order. Copied to the mesh order
+  /// after a call.
+  std::vector<VertexResult> LocalResults;
+  ColorClasses LocalColors;   ///< the same classes in local ids
+  std::vector<int> ColorSlot; ///< per local vertex: its index in LocalColors.Vertices, or -1
 };
 } // namespace dsurf
 

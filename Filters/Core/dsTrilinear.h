@@ -47,6 +47,14 @@ inline void AddTrilinearVector(const float* values, const TrilinearCell& cell, d
   }
 }
 
+/// floor(v) for a finite v within the range of long long, without the libm call that std::floor
+/// is on the baseline x86-64 (no SSE4.1 round instruction): truncation, one less below zero.
+inline long long Floor(double v)
+{
+  const long long t = static_cast<long long>(v);
+  return t - (static_cast<double>(t) > v ? 1 : 0);
+}
+
 /// The cell of continuous index ijk in a grid whose samples are lo[a] .. hi[a] along axis a
 /// (x fastest; linear ids count from lo). An index up to `tolerance` beyond the first or last
 /// sample is clamped onto it (the border value); further out, or an empty axis: false.
@@ -69,7 +77,7 @@ inline bool LocateTrilinearCell(const double ijk[3], const int lo[3], const int 
     {
       const double v =
         std::min(std::max(ijk[a], static_cast<double>(lo[a])), static_cast<double>(hi[a]));
-      i0 = std::min(static_cast<long long>(std::floor(v)), static_cast<long long>(hi[a] - 1));
+      i0 = std::min(Floor(v), static_cast<long long>(hi[a] - 1));
       t = v - static_cast<double>(i0);
     }
     const long long step = increments ? static_cast<long long>(increments[a]) : stride;
