@@ -532,6 +532,22 @@ void ForEachRowBlock(const RowBlocks& g, Body&& body)
       }
     });
 }
+
+/// body(l, scratch) for every line l of `lines` x lines of n voxels, in parallel, scratch
+/// holding n doubles.
+template <typename Body>
+void ForEachXLine(long long lines, int n, Body&& body)
+{
+  vtkSMPTools::For(0LL, lines,
+    [&](long long begin, long long end)
+    {
+      std::vector<double> scratch(n);
+      for (long long l = begin; l < end; ++l)
+      {
+        body(l, scratch.data());
+      }
+    });
+}
 } // namespace
 
 void RecursiveAxisPass::Forward(
@@ -543,24 +559,21 @@ void RecursiveAxisPass::Forward(
   if (this->Axis == 0)
   {
     const int n = this->Dims[0];
-    vtkSMPTools::For(0, this->NumberOfLines,
-      [&](long long begin, long long end)
+    ForEachXLine(this->NumberOfLines, n,
+      [&](long long l, double*)
       {
-        for (long long l = begin; l < end; ++l)
+        const float* in = this->Volume + l * n;
+        double* st = this->Saved.data() + l * K;
+        for (int j = 0; j < K; ++j)
         {
-          const float* in = this->Volume + l * n;
-          double* st = this->Saved.data() + l * K;
-          for (int j = 0; j < K; ++j)
-          {
-            st[j] = start ? start[l * K + j] : static_cast<double>(in[0]);
-          }
-          double run[K];
-          std::copy(st, st + K, run);
-          for (int i = 0; i < n; ++i)
-          {
-            CascadeStep(s, in[i], run);
-            RecordLine(run, slot[i], l, recorded);
-          }
+          st[j] = start ? start[l * K + j] : static_cast<double>(in[0]);
+        }
+        double run[K];
+        std::copy(st, st + K, run);
+        for (int i = 0; i < n; ++i)
+        {
+          CascadeStep(s, in[i], run);
+          RecordLine(run, slot[i], l, recorded);
         }
       });
     return;
@@ -600,33 +613,29 @@ void RecursiveAxisPass::Backward(
   if (this->Axis == 0)
   {
     const int n = this->Dims[0];
-    vtkSMPTools::For(0, this->NumberOfLines,
-      [&](long long begin, long long end)
+    ForEachXLine(this->NumberOfLines, n,
+      [&](long long l, double* w)
       {
-        std::vector<double> w(n);
-        for (long long l = begin; l < end; ++l)
+        // The forward outputs again, as doubles as IIRLine keeps them.
+        float* line = this->Volume + l * n;
+        double st[K];
+        std::copy(this->Saved.data() + l * K, this->Saved.data() + (l + 1) * K, st);
+        for (int i = 0; i < n; ++i)
         {
-          // The forward outputs again, as doubles as IIRLine keeps them.
-          float* line = this->Volume + l * n;
-          double st[K];
-          std::copy(this->Saved.data() + l * K, this->Saved.data() + (l + 1) * K, st);
-          for (int i = 0; i < n; ++i)
-          {
-            w[i] = CascadeStep(s, line[i], st);
-          }
-          if (ahead)
-          {
-            std::copy(ahead + l * K, ahead + (l + 1) * K, st);
-          }
-          else
-          {
-            StartBackward(s, line[n - 1], st);
-          }
-          for (int i = n - 1; i >= 0; --i)
-          {
-            line[i] = static_cast<float>(CascadeStep(s, w[i], st));
-            RecordLine(st, slot[i], l, recorded);
-          }
+          w[i] = CascadeStep(s, line[i], st);
+        }
+        if (ahead)
+        {
+          std::copy(ahead + l * K, ahead + (l + 1) * K, st);
+        }
+        else
+        {
+          StartBackward(s, line[n - 1], st);
+        }
+        for (int i = n - 1; i >= 0; --i)
+        {
+          line[i] = static_cast<float>(CascadeStep(s, w[i], st));
+          RecordLine(st, slot[i], l, recorded);
         }
       });
     return;
