@@ -38,10 +38,10 @@
 // or the next step over MaxVertices: a warning, once) still goes on to the next, smaller
 // sigma with the same mesh, so the surface always ends at the fine scale rather than on
 // the blurred edge of a coarse sigma. The run ends (GetStopReason) after the level solved at
-// sigma's floor (2/3 of a voxel, SigmaFloorVoxels; hierarchical sigma only), when a level would change neither the
-// mesh nor sigma (constant sigma, nothing marked), at the cap of MaxLevels levels past the
-// first, after MaxSweeps sweeps, or when a callback asks to abort (the surface is valid at
-// every moment).
+// sigma's floor (2/3 of a voxel, SigmaFloorVoxels; hierarchical sigma only), when a level
+// would change neither the mesh nor sigma (constant sigma, nothing marked), at the cap of
+// MaxLevels levels past the first, after MaxSweeps sweeps, or when a callback asks to abort
+// (the surface is valid at every moment).
 //
 // Beyond the paper (docs/METHOD.md §9): sigma_0 can follow the start (dsInitialSigma.h); a
 // region force (dsRegion.h), RegionWeight * h * min(1, sigma_l / sigma_0) * speed * normal,
