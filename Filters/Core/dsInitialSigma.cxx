@@ -16,6 +16,18 @@ constexpr double DistanceQuantile = 0.9;
 /// Rays cast at most (about): larger starts cast from every k-th vertex and triangle.
 constexpr std::size_t MaxRays = 100000;
 
+/// How far a ray looks each way for an edge: twice the paper's sigma_0.
+double RayReach(double paperSigma)
+{
+  return 2.0 * paperSigma;
+}
+
+/// The rays' step: half a voxel.
+double RayStep(const ImageGeometry& geometry)
+{
+  return 0.5 * geometry.MeanSpacing();
+}
+
 /// Axis-aligned world bounds of the image (its corner voxel centres, half a voxel out).
 void ImageBounds(const ImageGeometry& g, double lo[3], double hi[3])
 {
@@ -175,8 +187,8 @@ std::vector<RayWalk> CastRays(const TriangleMesh& mesh)
 }
 
 /// Walks every ray to its end, `batch` steps of each still walking per call of sample.
-void WalkRays(std::vector<RayWalk>& rays, const EdgeStrengthSampler& sample, int batch,
-  double step, double reach)
+void WalkRays(std::vector<RayWalk>& rays, const EdgeStrengthSampler& sample, int batch, double step,
+  double reach)
 {
   std::vector<Vec3> points;
   std::vector<double> g;
@@ -232,6 +244,12 @@ void WalkRays(std::vector<RayWalk>& rays, const EdgeStrengthSampler& sample, int
 }
 } // namespace
 
+double InitialSigmaProbeReach(const ImageGeometry& geometry, double paperSigma)
+{
+  // A ray walks while its next step lies within reach + step (RayWalk::CanGoOn).
+  return RayReach(paperSigma) + RayStep(geometry);
+}
+
 ScaleSpaceParameters InitialSigmaProbeParameters(const ImageGeometry& geometry, int numberOfThreads)
 {
   ScaleSpaceParameters probeParameters;
@@ -252,7 +270,7 @@ void ChooseInitialSigmaWith(const ImageGeometry& geometry, const TriangleMesh& m
     return;
   }
   const double voxel = geometry.MeanSpacing();
-  const double reach = 2.0 * paperSigma, step = 0.5 * voxel;
+  const double reach = RayReach(paperSigma), step = RayStep(geometry);
   std::vector<RayWalk> rays = CastRays(mesh);
   if (rays.empty())
   {

@@ -11,7 +11,9 @@
 //   - any other start is near its object: along the unit normal of every vertex and triangle
 //     centre (every k-th on a start of more than 100 000 of them), inward and outward up to 2 * the
 //     paper's sigma_0, the nearest local maximum of the edge strength (at a probe sigma of 1 voxel,
-//     locally normalised, at least 0.2 of the strongest) is found; D is the 90th percentile of
+//     locally normalised, at least 0.2 of the strongest within that reach of the start: one
+//     click in a head probes its own neighbourhood, not the whole image) is found; D is the
+//     90th percentile of
 //     those distances (2 * the paper's sigma_0 where no edge was met), and sigma_0 = D, between one
 //     voxel and the paper's sigma_0.
 // sigma_0 = D leaves a factor of two to the basin (~2 sigma): the nearest edge is not always the
@@ -42,6 +44,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT InitialSigmaChoice
 /// (a box around the whole volume).
 DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(
   const ImageGeometry& geometry, const TriangleMesh& mesh);
+
+/// How far from the start (world units) a ray's samples reach: 2 * paperSigma and one step. The
+/// probe field is computed only within it (its maxima too), so what lies farther from the start
+/// does not change sigma_0.
+DEFORMABLESURFACEFILTERS_EXPORT double InitialSigmaProbeReach(
+  const ImageGeometry& geometry, double paperSigma);
 
 /// The probe field's parameters: sigma one voxel (the mean spacing), locally normalised.
 DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters InitialSigmaProbeParameters(

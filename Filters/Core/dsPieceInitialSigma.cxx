@@ -1,5 +1,6 @@
 #include "dsPieceInitialSigma.h"
 
+#include "dsFieldGrid.h"
 #include "dsGaussianSmoother.h"
 
 #include <algorithm>
@@ -15,11 +16,30 @@ namespace
 /// steps; most end at their first edge, a few voxels out).
 constexpr int StepsPerRound = 16;
 
-/// The owned voxels and the probe's ghosts around them, within the image.
-VoxelBox ProbeRegion(const ImagePiece& piece)
+/// The owned voxels the rays can reach (InitialSigmaProbeReach of the start); none (an empty
+/// box) when they reach none of the piece's.
+VoxelBox ReachedOwnedVoxels(const ImagePiece& piece, const TriangleMesh& mesh, double paperSigma)
 {
-  VoxelBox region = piece.Owned;
+  const VoxelBox near =
+    SurfaceNeighbourhood(mesh, piece.Whole, InitialSigmaProbeReach(piece.Whole, paperSigma));
+  VoxelBox reached;
   for (int a = 0; a < 3; ++a)
+  {
+    reached.Begin[a] = std::max(piece.Owned.Begin[a], near.Begin[a]);
+    reached.End[a] = std::min(piece.Owned.End[a], near.End[a]);
+    if (reached.End[a] <= reached.Begin[a])
+    {
+      return VoxelBox();
+    }
+  }
+  return reached;
+}
+
+/// `reached` and the probe's ghosts around it, within the image (empty when reached is).
+VoxelBox ProbeRegion(const ImagePiece& piece, const VoxelBox& reached)
+{
+  VoxelBox region = reached;
+  for (int a = 0; a < 3 && reached.NumberOfVoxels() > 0; ++a)
   {
     const int ghost = InitialSigmaProbeGhostVoxels(piece.Whole, a);
     region.Begin[a] = std::max(0, region.Begin[a] - ghost);
@@ -28,12 +48,22 @@ VoxelBox ProbeRegion(const ImagePiece& piece)
   return region;
 }
 
-/// The probe's potential over `region` of the piece, normalised as the whole image's (both
-/// maxima over every process). A process that fails still makes both reductions (with an
-/// infinite maximum, which the others' fields then carry); the caller agrees on the outcome.
-bool PieceProbe(const ImagePiece& piece, const VoxelBox& region, int numberOfThreads,
-  const PieceReductions& reduce, ForceField& probe, std::string& problem)
+/// The probe's potential over `region` of the piece, normalised as the whole reach's (both
+/// maxima over the `reached` voxels of every process). A process that fails still makes both
+/// reductions (with an infinite maximum, which the others' fields then carry); one the rays do
+/// not reach computes nothing and makes them with 0 (the second only when the first maximum is
+/// positive, as ComputeScaleSpaceForce does). The caller agrees on the outcome.
+bool PieceProbe(const ImagePiece& piece, const VoxelBox& reached, const VoxelBox& region,
+  int numberOfThreads, const PieceReductions& reduce, ForceField& probe, std::string& problem)
 {
+  if (problem.empty() && region.NumberOfVoxels() == 0)
+  {
+    if (reduce.Max(0.0) > 0.0)
+    {
+      reduce.Max(0.0);
+    }
+    return true;
+  }
   ScaleSpaceParameters parameters = InitialSigmaProbeParameters(piece.Whole, numberOfThreads);
   int reductions = 0;
   parameters.GradientMaximum = [&](double ownedMaximum)
@@ -43,8 +73,8 @@ bool PieceProbe(const ImagePiece& piece, const VoxelBox& region, int numberOfThr
   };
   for (int a = 0; a < 3; ++a)
   {
-    parameters.MaximumBegin[a] = piece.Owned.Begin[a] - region.Begin[a];
-    parameters.MaximumEnd[a] = piece.Owned.End[a] - region.Begin[a];
+    parameters.MaximumBegin[a] = reached.Begin[a] - region.Begin[a];
+    parameters.MaximumEnd[a] = reached.End[a] - region.Begin[a];
   }
   VoxelBox inHeld = region;
   for (int a = 0; a < 3; ++a)
@@ -52,8 +82,8 @@ bool PieceProbe(const ImagePiece& piece, const VoxelBox& region, int numberOfThr
     inHeld.Begin[a] -= piece.Held.Begin[a];
     inHeld.End[a] -= piece.Held.Begin[a];
   }
-  const bool ok = problem.empty() &&
-    ComputeScaleSpaceForce(piece.Image.Box(inHeld), parameters, probe, &problem);
+  const bool ok =
+    problem.empty() && ComputeScaleSpaceForce(piece.Image.Box(inHeld), parameters, probe, &problem);
   // The normalisations take the largest g, then the largest locally normalised g; a process
   // that failed before them sends infinity to both, which every process then receives.
   for (; reductions < 2 && !ok; ++reductions)
@@ -75,8 +105,9 @@ int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a)
     ? PieceGhostVoxels(sigma, whole, a)
     : whole.Dimensions[a];
   const double wide = 2.0 * sigma / whole.Spacing[a];
-  const int second =
-    wide < GaussianRecursiveFromSigmaVoxels ? static_cast<int>(std::ceil(4.0 * wide)) : whole.Dimensions[a];
+  const int second = wide < GaussianRecursiveFromSigmaVoxels
+    ? static_cast<int>(std::ceil(4.0 * wide))
+    : whole.Dimensions[a];
   return std::min(whole.Dimensions[a], first + second);
 }
 
@@ -91,13 +122,15 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     choice.SpansVolume = true;
     return true;
   }
-  const VoxelBox region = ProbeRegion(piece);
-  std::string problem = piece.Held.Contains(region) ? std::string()
-                                                    : "the piece holds too few ghost layers for "
-                                                      "the probe of sigma_0 (" +
+  const VoxelBox reached = ReachedOwnedVoxels(piece, mesh, paperSigma);
+  const VoxelBox region = ProbeRegion(piece, reached);
+  std::string problem = region.NumberOfVoxels() == 0 || piece.Held.Contains(region)
+    ? std::string()
+    : "the piece holds too few ghost layers for "
+      "the probe of sigma_0 (" +
       std::to_string(InitialSigmaProbeGhostVoxels(piece.Whole, 0)) + " voxels needed)";
   ForceField probe;
-  const bool ok = PieceProbe(piece, region, numberOfThreads, reduce, probe, problem);
+  const bool ok = PieceProbe(piece, reached, region, numberOfThreads, reduce, probe, problem);
   if (reduce.Max(ok ? 0.0 : 1.0) > 0.0)
   {
     if (error)
@@ -119,7 +152,9 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     for (std::size_t i = 0; i < points.size(); ++i)
     {
       TrilinearCell c;
-      if (piece.LocateOwnedCell(points[i].data(), region.Begin, increments, c))
+      // Every ray's samples lie within its reach, so an owned cell they fall in was reached.
+      if (!probe.Potential.empty() &&
+        piece.LocateOwnedCell(points[i].data(), region.Begin, increments, c))
       {
         strengths[i] = -SampleCell(potential, c);
       }

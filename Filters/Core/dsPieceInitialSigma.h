@@ -1,6 +1,7 @@
 // sigma_0 from the start (docs/METHOD.md §9.1) on a distributed image (§9.8): the probe field
-// (sigma one voxel, locally normalised) computed on each process's piece, equal to the whole
-// image's on the voxels the piece owns, and the rays' strengths sampled by the owners of their
+// (sigma one voxel, locally normalised) computed on each process's piece within the rays' reach
+// of the start (InitialSigmaProbeReach; nothing on a piece beyond it), equal to the serial one on
+// the voxels the piece owns, and the rays' strengths sampled by the owners of their
 // cells and summed, so every process chooses the serial sigma_0 exactly. Plain C++: the
 // processes' reductions come in as callbacks (dsPieceField.h).
 #ifndef dsPieceInitialSigma_h

@@ -8,6 +8,8 @@
 //   sigma_0 exactly (the same 90th-percentile distance, rays and rays that met an edge), and
 //   no rank holds the whole image; the same for the image as uint16, read in its own type.
 // - A start spanning the image keeps extent / 6 on every rank without a probe.
+// - What lies beyond the rays' reach of the start does not change sigma_0 (a block 1 000 times
+//   brighter at the far end), serial or on slabs; a slab beyond it computes no probe.
 // - The intensity range estimated from a start around the first ball (object against
 //   background), a click inside it (no contrast: median -+ 3 s), a start enclosing too few voxel
 //   centres (sampled at its vertices) and one across the slabs' borders: every rank's estimate
@@ -93,9 +95,9 @@ void SameAsSerial(const ImageGeometry& g, const std::vector<T>& image, const Tri
         same[r] = SameChoice(choices[r], serial);
       });
     const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
-    std::cout << l << ": sigma_0 " << serial.Sigma << " (distance " << serial.StartDistance
-              << ", " << serial.RaysWithEdge << " of " << serial.Rays
-              << " rays met an edge); rank 0 " << choices[0].Sigma << "; held voxels";
+    std::cout << l << ": sigma_0 " << serial.Sigma << " (distance " << serial.StartDistance << ", "
+              << serial.RaysWithEdge << " of " << serial.Rays << " rays met an edge); rank 0 "
+              << choices[0].Sigma << "; held voxels";
     for (long long h : held)
     {
       std::cout << " " << h;
@@ -150,14 +152,40 @@ void SameRange(const ImageGeometry& g, const std::vector<T>& image, const Triang
     const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
     std::cout << l << ": range [" << serial.Range[0] << ", " << serial.Range[1] << "] from "
               << serial.Samples << (serial.FromVertices ? " vertices" : " voxels") << " inside, "
-              << serial.OutsideSamples << " outside, contrast " << serial.Contrast
-              << "; rank 0 [" << estimates[0].Range[0] << ", " << estimates[0].Range[1] << "]"
-              << std::endl;
+              << serial.OutsideSamples << " outside, contrast " << serial.Contrast << "; rank 0 ["
+              << estimates[0].Range[0] << ", " << estimates[0].Range[1] << "]" << std::endl;
     DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, l + ": every rank estimated");
     DS_CHECK(std::count(same.begin(), same.end(), 1) == nRanks,
       l + ": every rank's estimate equals the serial one exactly");
     DS_CHECK(ranks.Mismatches() == 0, l + ": the ranks reduced vectors of one size");
   }
+}
+
+/// sigma_0 depends only on the image within the rays' reach of the start
+/// (InitialSigmaProbeReach): a block 1 000 times brighter than the balls beyond it (its edge, in
+/// a probe of the whole image, set the floor of the local normalisation and left the balls'
+/// edges below the significance: sigma_0 became extent / 6) changes nothing, serial or on slabs
+/// (a slab beyond the reach computes no probe).
+void BeyondReach(const ImageGeometry& g, const std::vector<float>& image, const TriangleMesh& start)
+{
+  const double paper = g.MeanExtent() / 6.0;
+  const int firstBright = 95; // z from 90.5, the start and its reach end below z 67
+  std::vector<float> bright = image;
+  const std::size_t slice = static_cast<std::size_t>(g.Dimensions[0]) * g.Dimensions[1];
+  for (std::size_t v = firstBright * slice; v < bright.size(); ++v)
+  {
+    bright[v] += 1.0e5f;
+  }
+  InitialSigmaChoice plain, withBlock;
+  std::string error;
+  DS_CHECK(ChooseInitialSigma(ImageView::Of(image.data(), g), start, paper, 1, plain, &error) &&
+      ChooseInitialSigma(ImageView::Of(bright.data(), g), start, paper, 1, withBlock, &error),
+    "beyond reach: " + error);
+  std::cout << "a bright block beyond reach: sigma_0 " << withBlock.Sigma << " (without it "
+            << plain.Sigma << ", extent / 6 " << paper << ")" << std::endl;
+  DS_CHECK(SameChoice(plain, withBlock), "a bright block beyond reach: the same sigma_0");
+  DS_CHECK_LE(plain.Sigma, 0.5 * paper, "sigma_0 from the start's own edge");
+  SameAsSerial(g, bright, start, "a start near the first ball, a bright block beyond reach");
 }
 
 void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const TriangleMesh& start)
@@ -169,18 +197,19 @@ void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const Tri
     [&](int r)
     {
       std::vector<float> values;
-      const ImagePiece piece = dstest::Slab<float>(g, image, r, 3,
-        [&](int a) { return r == 1 ? 0 : InitialSigmaProbeGhostVoxels(g, a); }, values);
+      const ImagePiece piece = dstest::Slab<float>(
+        g, image, r, 3, [&](int a) { return r == 1 ? 0 : InitialSigmaProbeGhostVoxels(g, a); },
+        values);
       InitialSigmaChoice choice;
       failed[r] = !ChoosePieceInitialSigma(piece, start, g.MeanExtent() / 6.0, 1,
         dstest::ReductionsOf(ranks, r), choice, &messages[r]);
-      said[r] = messages[r].find(r == 1 ? "too few ghost layers" : "another process") !=
-        std::string::npos;
+      said[r] =
+        messages[r].find(r == 1 ? "too few ghost layers" : "another process") != std::string::npos;
     });
   std::cout << "rank 1 without ghosts: " << messages[1] << " / rank 0: " << messages[0]
             << std::endl;
-  DS_CHECK(std::count(failed.begin(), failed.end(), 1) == 3,
-    "a piece without ghosts fails every rank");
+  DS_CHECK(
+    std::count(failed.begin(), failed.end(), 1) == 3, "a piece without ghosts fails every rank");
   DS_CHECK(std::count(said.begin(), said.end(), 1) == 3, "each rank says why");
 }
 } // namespace
@@ -206,6 +235,7 @@ int TestDistributedStart(int, char*[])
   SameRange(g, image, Sphere(1.2, { 17.3, 24.2, 30.1 }), "the range from a start around a voxel");
   SameRange(g, image, across, "the range from a start across the slabs' borders");
   SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
+  BeyondReach(g, image, nearBall);
   BadPiece(g, image, nearBall);
   return dstest::Result("TestDistributedStart");
 }
