@@ -48,28 +48,45 @@ VoxelBox ProbeRegion(const ImagePiece& piece, const VoxelBox& reached)
   return region;
 }
 
+/// The probe's normalisation reductions this process has not made (`made` of them, the first
+/// giving `firstMaximum`), each with `value`: the largest g, then the largest locally normalised
+/// g only when the first maximum is positive, as ComputeScaleSpaceForce skips the second when
+/// it is 0 (a probe that failed after it must not make a reduction the others do not).
+void FinishProbeReductions(
+  const PieceReductions& reduce, int made, double firstMaximum, double value)
+{
+  if (made == 0)
+  {
+    firstMaximum = reduce.Max(value);
+    made = 1;
+  }
+  if (made == 1 && firstMaximum > 0.0)
+  {
+    reduce.Max(value);
+  }
+}
+
 /// The probe's potential over `region` of the piece, normalised as the whole reach's (both
-/// maxima over the `reached` voxels of every process). A process that fails still makes both
-/// reductions (with an infinite maximum, which the others' fields then carry); one the rays do
-/// not reach computes nothing and makes them with 0 (the second only when the first maximum is
-/// positive, as ComputeScaleSpaceForce does). The caller agrees on the outcome.
+/// maxima over the `reached` voxels of every process). A process that fails makes the
+/// reductions it has not made with an infinite maximum, which the others' fields then carry;
+/// one the rays do not reach computes nothing and makes them with 0 (FinishProbeReductions).
+/// The caller agrees on the outcome.
 bool PieceProbe(const ImagePiece& piece, const VoxelBox& reached, const VoxelBox& region,
   int numberOfThreads, const PieceReductions& reduce, ForceField& probe, std::string& problem)
 {
   if (problem.empty() && region.NumberOfVoxels() == 0)
   {
-    if (reduce.Max(0.0) > 0.0)
-    {
-      reduce.Max(0.0);
-    }
+    FinishProbeReductions(reduce, 0, 0.0, 0.0);
     return true;
   }
   ScaleSpaceParameters parameters = InitialSigmaProbeParameters(piece.Whole, numberOfThreads);
   int reductions = 0;
+  double firstMaximum = 0.0;
   parameters.GradientMaximum = [&](double ownedMaximum)
   {
-    ++reductions;
-    return reduce.Max(ownedMaximum);
+    const double maximum = reduce.Max(ownedMaximum);
+    firstMaximum = reductions++ == 0 ? maximum : firstMaximum;
+    return maximum;
   };
   for (int a = 0; a < 3; ++a)
   {
@@ -84,11 +101,10 @@ bool PieceProbe(const ImagePiece& piece, const VoxelBox& reached, const VoxelBox
   }
   const bool ok =
     problem.empty() && ComputeScaleSpaceForce(piece.Image.Box(inHeld), parameters, probe, &problem);
-  // The normalisations take the largest g, then the largest locally normalised g; a process
-  // that failed before them sends infinity to both, which every process then receives.
-  for (; reductions < 2 && !ok; ++reductions)
+  if (!ok)
   {
-    reduce.Max(std::numeric_limits<double>::infinity());
+    FinishProbeReductions(
+      reduce, reductions, firstMaximum, std::numeric_limits<double>::infinity());
   }
   probe.Force.clear(); // only the potential is sampled
   probe.Force.shrink_to_fit();

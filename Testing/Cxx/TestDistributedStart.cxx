@@ -15,8 +15,9 @@
 //   centres (sampled at its vertices) and one across the slabs' borders: every rank's estimate
 //   (range, median, spread, separation, sample counts) equals the serial one exactly, float
 //   and uint16 images.
-// - Bad input: a rank holding no ghost layers fails every rank with a message (no rank waits in
-//   a reduction: a hang would hit the ctest timeout).
+// - Bad input: a rank holding no ghost layers fails every rank with a message, and so does a
+//   rank whose probe fails after the first maximum of its normalisation, a 0 that skips the
+//   second (no rank waits in a reduction: a hang would hit the ctest timeout).
 #include "DSTestHelpers.h"
 #include "PieceSlabs.h"
 #include "TestSolverMeshes.h"
@@ -26,6 +27,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -188,7 +190,12 @@ void BeyondReach(const ImageGeometry& g, const std::vector<float>& image, const 
   SameAsSerial(g, bright, start, "a start near the first ball, a bright block beyond reach");
 }
 
-void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const TriangleMesh& start)
+/// ChoosePieceInitialSigma on 3 slabs, rank r holding ghost(r, a) ghost layers along axis a:
+/// every rank fails, rank `culprit` saying `why` and the others that another process could not
+/// compute its probe (none is left waiting in a reduction: a hang would hit the ctest timeout).
+void EveryRankFails(const ImageGeometry& g, const std::vector<float>& image,
+  const TriangleMesh& start, const std::function<int(int, int)>& ghost, int culprit,
+  const std::string& why, const std::string& label)
 {
   dstest::EmulatedRanks ranks(3);
   std::vector<int> failed(3, 0), said(3, 0);
@@ -198,19 +205,48 @@ void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const Tri
     {
       std::vector<float> values;
       const ImagePiece piece = dstest::Slab<float>(
-        g, image, r, 3, [&](int a) { return r == 1 ? 0 : InitialSigmaProbeGhostVoxels(g, a); },
-        values);
+        g, image, r, 3, [&](int a) { return ghost(r, a); }, values);
       InitialSigmaChoice choice;
       failed[r] = !ChoosePieceInitialSigma(piece, start, g.MeanExtent() / 6.0, 1,
         dstest::ReductionsOf(ranks, r), choice, &messages[r]);
-      said[r] =
-        messages[r].find(r == 1 ? "too few ghost layers" : "another process") != std::string::npos;
+      said[r] = messages[r].find(r == culprit ? why : "another process") != std::string::npos;
     });
-  std::cout << "rank 1 without ghosts: " << messages[1] << " / rank 0: " << messages[0]
-            << std::endl;
-  DS_CHECK(
-    std::count(failed.begin(), failed.end(), 1) == 3, "a piece without ghosts fails every rank");
-  DS_CHECK(std::count(said.begin(), said.end(), 1) == 3, "each rank says why");
+  const int other = culprit == 2 ? 0 : 2;
+  std::cout << label << ": rank " << culprit << ": " << messages[culprit] << " / rank " << other
+            << ": " << messages[other] << std::endl;
+  DS_CHECK(std::count(failed.begin(), failed.end(), 1) == 3, label + ": every rank fails");
+  DS_CHECK(std::count(said.begin(), said.end(), 1) == 3, label + ": each rank says why");
+}
+
+void BadPiece(const ImageGeometry& g, const std::vector<float>& image, const TriangleMesh& start)
+{
+  EveryRankFails(
+    g, image, start, [&](int r, int a) { return r == 1 ? 0 : InitialSigmaProbeGhostVoxels(g, a); },
+    1, "too few ghost layers", "rank 1 without ghosts");
+}
+
+/// A probe that fails after its first maximum: a flat image within the reach (its largest g is
+/// 0, so ComputeScaleSpaceForce makes no second reduction) and, beyond it in rank 0's ghost
+/// layers, a step between -+3.3e38 on a grid of half the spacing, whose g overflows single
+/// precision (the potential is not finite). Rank 0 fails; the slabs beyond the reach, which
+/// compute no probe, make the same reductions.
+void FailsAfterFirstMaximum()
+{
+  ImageGeometry g = dstest::AnisotropicGeometry(24, 24, 120);
+  for (double& s : g.Spacing)
+  {
+    s *= 0.5;
+  }
+  const TriangleMesh start = Sphere(2.0, { 3.0, 8.0, 9.0 }); // its reach ends below z index 37
+  const std::size_t slice = static_cast<std::size_t>(g.Dimensions[0]) * g.Dimensions[1];
+  std::vector<float> image(slice * g.Dimensions[2], 0.0f);
+  for (std::size_t v = 43 * slice; v < image.size(); ++v)
+  {
+    image[v] = v < 46 * slice ? 3.3e38f : -3.3e38f;
+  }
+  EveryRankFails(
+    g, image, start, [&](int, int a) { return InitialSigmaProbeGhostVoxels(g, a); }, 0,
+    "not finite", "a probe not finite beyond the reach, its maximum 0");
 }
 } // namespace
 
@@ -237,6 +273,7 @@ int TestDistributedStart(int, char*[])
   SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
   BeyondReach(g, image, nearBall);
   BadPiece(g, image, nearBall);
+  FailsAfterFirstMaximum();
   return dstest::Result("TestDistributedStart");
 }
 
