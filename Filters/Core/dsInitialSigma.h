@@ -12,10 +12,9 @@
 //     centre (every k-th on a start of more than 100 000 of them), inward and outward up to 2 * the
 //     paper's sigma_0, the nearest local maximum of the edge strength (at a probe sigma of 1 voxel,
 //     locally normalised, at least 0.2 of the strongest within that reach of the start: one
-//     click in a head probes its own neighbourhood, not the whole image) is found; D is the
-//     90th percentile of
-//     those distances (2 * the paper's sigma_0 where no edge was met), and sigma_0 = D, between one
-//     voxel and the paper's sigma_0.
+//     click in a head probes its own neighbourhood, not the whole image) is found; D is the 90th
+//     percentile of those distances (2 * the paper's sigma_0 where no edge was met), and
+//     sigma_0 = D, between one voxel and the paper's sigma_0.
 // sigma_0 = D leaves a factor of two to the basin (~2 sigma): the nearest edge is not always the
 // object's (the skull's lies as near to a seed around a brain as the brain's own).
 #ifndef dsInitialSigma_h
@@ -46,8 +45,9 @@ DEFORMABLESURFACEFILTERS_EXPORT bool StartSpansImage(
   const ImageGeometry& geometry, const TriangleMesh& mesh);
 
 /// How far from the start (world units) a ray's samples reach: 2 * paperSigma and one step. The
-/// probe field is computed only within it (its maxima too), so what lies farther from the start
-/// does not change sigma_0.
+/// probe field's two maxima are taken over the voxels within it of the start's bounding box
+/// (SurfaceNeighbourhood, in index space), and the field is computed there and in its ghosts
+/// only, so what lies farther from the start does not change sigma_0.
 DEFORMABLESURFACEFILTERS_EXPORT double InitialSigmaProbeReach(
   const ImageGeometry& geometry, double paperSigma);
 
@@ -56,9 +56,10 @@ DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters InitialSigmaProbeParameters
   const ImageGeometry& geometry, int numberOfThreads);
 
 /// The probe's edge strength -P at world points: strengths[i] for points[i], -1 outside the
-/// image. Serial, sampled from the probe field of the whole image; on a distributed image each
-/// process samples the points in its piece and one sum gives every process all of them
-/// (ChoosePieceInitialSigma, dsPieceReaders.h).
+/// image. Serial, sampled from the probe field within the rays' reach (InitialSigmaProbeReach;
+/// every sample lies there); on a distributed image each process samples the points in its
+/// piece and one sum gives every process all of them (ChoosePieceInitialSigma,
+/// dsPieceInitialSigma.h).
 using EdgeStrengthSampler =
   std::function<void(const std::vector<Vec3>& points, std::vector<double>& strengths)>;
 

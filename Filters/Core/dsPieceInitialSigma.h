@@ -1,7 +1,7 @@
 // sigma_0 from the start (docs/METHOD.md §9.1) on a distributed image (§9.8): the probe field
 // (sigma one voxel, locally normalised) computed on each process's piece within the rays' reach
 // of the start (InitialSigmaProbeReach; nothing on a piece beyond it), equal to the serial one on
-// the voxels the piece owns, and the rays' strengths sampled by the owners of their
+// the reached voxels the piece owns, and the rays' strengths sampled by the owners of their
 // cells and summed, so every process chooses the serial sigma_0 exactly. Plain C++: the
 // processes' reductions come in as callbacks (dsPieceField.h).
 #ifndef dsPieceInitialSigma_h
@@ -15,16 +15,17 @@
 
 namespace dsurf
 {
-/// Ghost voxels along axis a the probe field needs around a piece's owned voxels: the first
-/// Gaussian's (PieceGhostVoxels at one voxel of sigma) and the local normalisation's second
-/// Gaussian at twice that sigma (its sampled radius); the whole axis where either is recursive
-/// (an axis 3 times finer than the mean spacing, or 1.5 times for the second).
+/// Ghost voxels along axis a the probe field needs around the owned voxels the rays reach: the
+/// first Gaussian's (PieceGhostVoxels at one voxel of sigma) and the local normalisation's
+/// second Gaussian at twice that sigma (its sampled radius); the whole axis where either is
+/// recursive (an axis 3 times finer than the mean spacing, or 1.5 times for the second).
 DEFORMABLESURFACEFILTERS_EXPORT int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a);
 
 /// ChooseInitialSigma of the whole image whose piece this process holds: the same choice on
 /// every process. Collective (every process calls it with the same mesh and parameters); false
-/// with a message on every process when a piece holds too few ghost layers or its probe field
-/// cannot be computed, none left waiting in a reduction.
+/// with a message on every process when a piece the rays reach holds too few ghost layers (one
+/// beyond the reach needs none) or its probe field cannot be computed, none left waiting in a
+/// reduction.
 DEFORMABLESURFACEFILTERS_EXPORT bool ChoosePieceInitialSigma(const ImagePiece& piece,
   const TriangleMesh& mesh, double paperSigma, int numberOfThreads, const PieceReductions& reduce,
   InitialSigmaChoice& choice, std::string* error);
