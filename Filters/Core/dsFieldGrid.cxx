@@ -184,9 +184,11 @@ VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geo
     const double grow = reach / geometry.Spacing[a] + 1.0;
     if (lo[a] <= hi[a]) // an empty mesh keeps the whole image
     {
-      box.Begin[a] = static_cast<int>(std::max(0.0, std::floor(lo[a] - grow)));
-      box.End[a] = static_cast<int>(
-        std::min(static_cast<double>(geometry.Dimensions[a]), std::ceil(hi[a] + grow) + 1.0));
+      // Clamped to the image in double before the cast: a start far outside it (sigma_0's probe
+      // sees every start) has indices beyond int.
+      const double n = geometry.Dimensions[a];
+      box.Begin[a] = static_cast<int>(std::min(n, std::max(0.0, std::floor(lo[a] - grow))));
+      box.End[a] = static_cast<int>(std::max(0.0, std::min(n, std::ceil(hi[a] + grow) + 1.0)));
       // at least two voxels, for a 3-D image
       box.Begin[a] = std::min(box.Begin[a], geometry.Dimensions[a] - 2);
       box.End[a] = std::max(box.End[a], box.Begin[a] + 2);

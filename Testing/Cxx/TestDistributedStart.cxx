@@ -7,7 +7,8 @@
 // - Starts near the first ball and across the slabs' borders: every rank chooses the serial
 //   sigma_0 exactly (the same 90th-percentile distance, rays and rays that met an edge), and
 //   no rank holds the whole image; the same for the image as uint16, read in its own type.
-// - A start spanning the image keeps extent / 6 on every rank without a probe.
+// - A start spanning the image keeps extent / 6 on every rank without a probe, and so does one
+//   far outside it (no ray meets the image; its reach clamped to the image's border).
 // - What lies beyond the rays' reach of the start does not change sigma_0 (a block 1 000 times
 //   brighter at the far end), serial or on slabs; a slab beyond it computes no probe.
 // - The intensity range estimated from a start around the first ball (object against
@@ -68,10 +69,10 @@ bool SameChoice(const InitialSigmaChoice& a, const InitialSigmaChoice& b)
     a.RaysWithEdge == b.RaysWithEdge && a.SpansVolume == b.SpansVolume;
 }
 
-/// The serial choice against every rank's, on 2 and 3 slabs.
+/// The serial choice against every rank's, on 2 and 3 slabs; returns the serial one.
 template <typename T>
-void SameAsSerial(const ImageGeometry& g, const std::vector<T>& image, const TriangleMesh& start,
-  const std::string& label, int ghostOverride = -1)
+InitialSigmaChoice SameAsSerial(const ImageGeometry& g, const std::vector<T>& image,
+  const TriangleMesh& start, const std::string& label, int ghostOverride = -1)
 {
   const double paper = g.MeanExtent() / 6.0;
   InitialSigmaChoice serial;
@@ -115,6 +116,7 @@ void SameAsSerial(const ImageGeometry& g, const std::vector<T>& image, const Tri
         l + ": voxels held by the largest piece");
     }
   }
+  return serial;
 }
 
 bool SameEstimate(const RangeEstimate& a, const RangeEstimate& b)
@@ -266,6 +268,12 @@ int TestDistributedStart(int, char*[])
   }
   SameAsSerial(g, image16, nearBall, "uint16, a start near the first ball");
   SameAsSerial(g, image, Sphere(200.0, { 17.0, 24.0, 60.0 }), "a start spanning the image");
+  // Its reach clamped to the image's first two slices (indices beyond int: no cast of them), the
+  // other slabs beyond it; no ray meets the image.
+  const InitialSigmaChoice far =
+    SameAsSerial(g, image, Sphere(13.0, { 17.0, 24.0, -1.0e12 }), "a start far outside the image");
+  DS_CHECK(far.Sigma == g.MeanExtent() / 6.0 && far.RaysWithEdge == 0 && far.Rays > 0,
+    "a start far outside the image: extent / 6, no ray met an edge");
   SameRange(g, image, nearBall, "the range from a start around the first ball");
   SameRange(g, image, Sphere(4.0, { 17.0, 24.0, 30.0 }), "the range from a click in it");
   SameRange(g, image, Sphere(1.2, { 17.3, 24.2, 30.1 }), "the range from a start around a voxel");
