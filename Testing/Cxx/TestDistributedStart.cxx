@@ -6,7 +6,8 @@
 // InitialSigmaProbeGhostVoxels() around it.
 // - Starts near the first ball and across the slabs' borders: every rank chooses the serial
 //   sigma_0 exactly (the same 90th-percentile distance, rays and rays that met an edge), and
-//   no rank holds the whole image; the same for the image as uint16, read in its own type.
+//   no rank holds the whole image; the same for the image as uint16, read in its own type, and
+//   for the image turned about x (a direction matrix).
 // - A start spanning the image keeps extent / 6 on every rank without a probe, and so does one
 //   far outside it (no ray meets the image; its reach clamped to the image's border).
 // - What lies beyond the rays' reach of the start does not change sigma_0 (a block 1 000 times
@@ -267,6 +268,16 @@ int TestDistributedStart(int, char*[])
     image16.push_back(static_cast<std::uint16_t>(std::lround(100.0 * v)));
   }
   SameAsSerial(g, image16, nearBall, "uint16, a start near the first ball");
+  // The image turned about x (a direction matrix): the reach is a box in index space.
+  ImageGeometry turned = g;
+  const double c = std::cos(0.5), s = std::sin(0.5);
+  const double rotation[9] = { 1, 0, 0, 0, c, -s, 0, s, c };
+  std::copy(rotation, rotation + 9, turned.Direction);
+  const double ballIndex[3] = { 20.0, 22.0 / 1.1, 25.0 / 0.9 };
+  double ball[3];
+  turned.IndexToWorld(ballIndex, ball);
+  SameAsSerial(turned, image, Sphere(13.0, { ball[0], ball[1], ball[2] }),
+    "a turned image, a start near the first ball");
   SameAsSerial(g, image, Sphere(200.0, { 17.0, 24.0, 60.0 }), "a start spanning the image");
   // Its reach clamped to the image's first two slices (indices beyond int: no cast of them), the
   // other slabs beyond it; no ray meets the image.
