@@ -370,6 +370,7 @@ void Solver::BuildLocalLayout()
   this->OrderBreadthFirst();
   this->CopyTopologyToLocal();
   this->BuildLocalColors();
+  this->RingCoefficientsMode = -1; // for the weights the next sweeps use (Sweeps)
 
   const int n = this->Mesh->NumberOfPoints();
   // Fixed vertices keep 0; moving ones are overwritten by every sweep.
@@ -400,22 +401,16 @@ Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   const double tau = this->Parameters.Tau;
 
-  // U(p), U^2(p) and alpha (docs/METHOD.md §3 with the §6.4 weights).
+  // U(p), U^2(p) = sum_i w_i U(q_i) - U(p) and alpha (docs/METHOD.md §3 with the §6.4 weights),
+  // the ring's umbrellas read from LocalUmbrellas.
+  u = this->LocalUmbrellas[v];
   Vec3 u2acc{ 0, 0, 0 };
-  double alpha = 1.0;
-  double unused = 0;
   const auto accumulate = [&](auto allN)
   {
     constexpr bool AllN = decltype(allN)::value;
-    u = UmbrellaOf<AllN>(m, v, -1, &unused);
     for (int i = begin; i < end; ++i)
     {
-      const int q = m.Neighbors[i];
-      const double w = SlotWeight<AllN>(m, v, i);
-      double back = 0; // the normalised weight q gives p
-      const Vec3 uq = UmbrellaOf<AllN>(m, q, v, &back);
-      u2acc = u2acc + w * uq;
-      alpha += w * back;
+      u2acc = u2acc + SlotWeight<AllN>(m, v, i) * this->LocalUmbrellas[m.Neighbors[i]];
     }
   };
   if (this->UniformWeights || !this->Parameters.UseLabelWeights)
@@ -426,6 +421,7 @@ Vec3 Solver::InternalCorrection(int v, Vec3& u) const
   {
     accumulate(std::false_type{});
   }
+  const double alpha = this->LocalAlpha[v];
   const Vec3 u2 = u2acc - u;
   const Vec3& c1 = u;
   const Vec3 c2 = (-1.0 / alpha) * u2;
@@ -544,6 +540,14 @@ void Solver::CorrectVertex(int k, bool external, const Vec3& force, int outside,
   const Vec3 c = gamma * (internal + applied);
   Vec3& point = this->LocalPoints[v];
   point = point + c;
+  // The umbrellas the move changes: v's own and its ring's. No other vertex of v's colour
+  // reads or moves them (the distance-2 colouring), so the threads never share one.
+  this->LocalUmbrellas[v] = this->LocalUmbrellas[v] - c;
+  for (int i = this->LocalNeighborOffsets[v]; i < this->LocalNeighborOffsets[v + 1]; ++i)
+  {
+    Vec3& uq = this->LocalUmbrellas[this->LocalNeighbors[i]];
+    uq = uq + this->LocalBackWeights[i] * c;
+  }
   VertexResult& result = this->LocalResults[k];
   result.Outside = outside;
   result.ErrorIndicator = gamma * Norm(internal);
@@ -650,6 +654,49 @@ SweepStatistics Solver::CombineStatistics(const std::vector<ChunkSums>& chunks) 
   return stats;
 }
 
+void Solver::ComputeUmbrellas(int first, int last)
+{
+  const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
+    this->WeightValues.data(), this->LocalWeightIds.data(), this->LocalPoints.data() };
+  const bool allN = this->UniformWeights || !this->Parameters.UseLabelWeights;
+  double unused = 0;
+  for (int l = first; l < last; ++l)
+  {
+    this->LocalUmbrellas[l] = m.NeighborOffsets[l + 1] == m.NeighborOffsets[l]
+      ? Vec3{ 0, 0, 0 }
+      : (allN ? UmbrellaOf<true>(m, l, -1, &unused) : UmbrellaOf<false>(m, l, -1, &unused));
+  }
+}
+
+void Solver::BuildRingCoefficients()
+{
+  const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
+    this->WeightValues.data(), this->LocalWeightIds.data(), this->LocalPoints.data() };
+  const bool allN = this->UniformWeights || !this->Parameters.UseLabelWeights;
+  this->RingCoefficientsMode = allN ? 1 : 0;
+  const int n = static_cast<int>(this->LocalNeighborOffsets.size()) - 1;
+  this->LocalBackWeights.assign(this->LocalNeighbors.size(), 0.0);
+  this->LocalAlpha.assign(n, 1.0);
+  this->LocalUmbrellas.assign(n, Vec3{ 0, 0, 0 });
+  for (int v = 0; v < n; ++v)
+  {
+    for (int i = m.NeighborOffsets[v]; i < m.NeighborOffsets[v + 1]; ++i)
+    {
+      const int q = m.Neighbors[i];
+      double back = 0; // the normalised weight q gives v (0 if v is not in q's ring)
+      for (int j = m.NeighborOffsets[q]; j < m.NeighborOffsets[q + 1]; ++j)
+      {
+        if (m.Neighbors[j] == v)
+        {
+          back = allN ? SlotWeight<true>(m, q, j) : SlotWeight<false>(m, q, j);
+        }
+      }
+      this->LocalBackWeights[i] = back;
+      this->LocalAlpha[v] += (allN ? SlotWeight<true>(m, v, i) : SlotWeight<false>(m, v, i)) * back;
+    }
+  }
+}
+
 void Solver::RefreshLocal(int first, int last)
 {
   // The caller may have moved points since the last call (labels are read by SetMesh()).
@@ -686,6 +733,10 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   {
     return 0;
   }
+  if (this->RingCoefficientsMode != (this->UniformWeights || !this->Parameters.UseLabelWeights))
+  {
+    this->BuildRingCoefficients(); // a new mesh, or the label weights switched
+  }
   if (this->Exchange)
   {
     int largest = 0;
@@ -713,6 +764,7 @@ int Solver::SerialSweeps(
   this->RefreshLocal(0, n);
   for (int sweep = 1;; ++sweep)
   {
+    this->ComputeUmbrellas(0, n);
     if (this->Exchange)
     {
       for (int color = 0; color < this->NumberOfColors(); ++color)
@@ -744,10 +796,10 @@ int Solver::SerialSweeps(
 }
 
 /// The parallel sweeps as steps of a StepScheduler: step 0 copies the mesh into the local
-/// layout; then per sweep one step per colour (its vertices updated in place; with a force
-/// exchange two: the forces sampled, ending with the exchange, then the vertices corrected) and
-/// one for the statistics, which ends with the caller's callback; the step after the last sweep
-/// copies the results back to the mesh.
+/// layout; then per sweep one step for the umbrellas, one per colour (its vertices updated in
+/// place; with a force exchange two: the forces sampled, ending with the exchange, then the
+/// vertices corrected) and one for the statistics, which ends with the caller's callback; the
+/// step after the last sweep copies the results back to the mesh.
 class Solver::SweepJob : public StepScheduler::Job
 {
 public:
@@ -759,7 +811,7 @@ public:
     , AfterSweep(afterSweep)
     , Points(solver.Mesh->NumberOfPoints())
     , PhasesPerColor(solver.Exchange ? 2 : 1)
-    , StepsPerSweep(solver.NumberOfColors() * PhasesPerColor + 1)
+    , StepsPerSweep(1 + solver.NumberOfColors() * PhasesPerColor + 1)
     , Chunks((solver.Colors.Offsets.back() + StatisticsChunk - 1) / StatisticsChunk)
   {
   }
@@ -774,6 +826,12 @@ public:
       return;
     }
     const int phase = this->Phase(step);
+    if (phase == 0)
+    {
+      StepScheduler::BlockRange(this->Points, block, this->Blocks, first, last);
+      this->S.ComputeUmbrellas(first, last);
+      return;
+    }
     if (phase == this->StepsPerSweep - 1)
     {
       StepScheduler::BlockRange(
@@ -784,7 +842,7 @@ public:
       }
       return;
     }
-    const int color = phase / this->PhasesPerColor;
+    const int color = (phase - 1) / this->PhasesPerColor;
     const int cBegin = this->S.LocalColors.Offsets[color];
     StepScheduler::BlockRange(
       this->S.LocalColors.Offsets[color + 1] - cBegin, block, this->Blocks, first, last);
@@ -792,7 +850,7 @@ public:
     {
       this->S.UpdateRange(cBegin + first, cBegin + last);
     }
-    else if (phase % 2 == 0)
+    else if ((phase - 1) % 2 == 0)
     {
       this->S.SampleRange(cBegin, cBegin + first, cBegin + last);
     }
@@ -809,7 +867,8 @@ public:
       return false;
     }
     const int phase = this->Phase(step);
-    return phase == this->StepsPerSweep - 1 || (this->PhasesPerColor == 2 && phase % 2 == 0);
+    return phase == this->StepsPerSweep - 1 ||
+      (this->PhasesPerColor == 2 && phase > 0 && (phase - 1) % 2 == 0);
   }
 
   bool EndStep(long long step) override
@@ -817,7 +876,7 @@ public:
     const int phase = this->Phase(step);
     if (phase != this->StepsPerSweep - 1)
     {
-      this->S.ExchangeColor(phase / 2); // every force of the colour is sampled
+      this->S.ExchangeColor((phase - 1) / 2); // every force of the colour is sampled
       return false;
     }
     // Every chunk is summed: combine and report; the other threads wait meanwhile.

@@ -196,8 +196,13 @@ private:
   /// Phase (b): the hook on the colour's forces.
   void ExchangeColor(int color);
   /// The internal part of the correction of local vertex v, tau c1 + (1 - tau) alpha c2
-  /// (docs/METHOD.md §3-4), and its umbrella vector U(v) in `umbrella`.
+  /// (docs/METHOD.md §3-4), and its umbrella vector U(v) in `umbrella`, from the umbrellas
+  /// kept up to date in LocalUmbrellas.
   Vec3 InternalCorrection(int v, Vec3& umbrella) const;
+  /// U of the local vertices [first, last) from LocalPoints (at the start of every sweep).
+  void ComputeUmbrellas(int first, int last);
+  /// LocalBackWeights and LocalAlpha from the local topology and weights.
+  void BuildRingCoefficients();
   /// The external force F at local vertex v before the docs/METHOD.md §5 rule: the edge force
   /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
   /// region force's fan normal is returned in `normal` (haveNormal) for the rule to reuse.
@@ -245,6 +250,19 @@ private:
   std::vector<std::array<int, 3>> LocalFan;  ///< their corners (local ids, mesh order)
   std::vector<std::uint32_t> LocalWeightIds; ///< WeightIds in the local layout (same slot order)
   std::vector<Vec3> LocalPoints;             ///< refreshed from the mesh by every call
+  /// U of every local vertex: computed at the start of a sweep, then moved with the points (a
+  /// vertex moved by c moves its own U by -c and each neighbour q's by w_qv c), so that a
+  /// vertex's U^2 reads its ring's umbrellas instead of recomputing them from the 2-ring.
+  std::vector<Vec3> LocalUmbrellas;
+  /// Per local neighbour slot (aligned with LocalNeighbors): the normalised weight the
+  /// neighbour gives the slot's vertex (w_qv).
+  std::vector<double> LocalBackWeights;
+  /// Per local vertex: alpha = 1 + sum_i w_i w_(q_i)v, U^2's coefficient of the vertex itself
+  /// (fixed for a mesh and its labels).
+  std::vector<double> LocalAlpha;
+  /// The weights LocalBackWeights and LocalAlpha were built with: 1 every neighbour weighs
+  /// the same, 0 the label weights, -1 not built for this mesh.
+  int RingCoefficientsMode = -1;
   struct VertexResult
   {
     double ErrorIndicator = 0, Displacement = 0, Force = 0;
