@@ -119,11 +119,11 @@ int TestHierarchySchedule(int, char*[])
   std::copy(ball.begin(), ball.end(), values->GetPointer(0));
   image->GetPointData()->SetScalars(values);
 
-  // A fine start (an icosahedron split 5 times, 10 242 points: edges ~0.5 voxel after it
+  // A fine start (an icosahedron split 5 times, 10 242 points: edges ~0.6 voxel after it
   // shrinks onto the ball, so nothing is refined): sigma still goes 10.7 -> 5.3 -> 2.7 -> 1.3
   // -> 0.67, its floor (2/3 voxel). (A UV sphere of resolution 120 was the start before: its
   // poles' fans of 120 slivers fold at level 0, ~6 000 crossing pairs, and the smoothing of
-  // the later levels leaves 0 to ~70 of them depending on the resolution and on rounding:
+  // the later levels leaves 0 to 54 of them depending on the resolution and on rounding:
   // docs/METHOD.md §9.4.)
   const Run fine = Solve(image, StartSphere(0, 5), 2000000);
   std::cout << "fine start: " << fine.Points << " points, " << fine.Levels
