@@ -201,7 +201,8 @@ private:
   Vec3 InternalCorrection(int v, Vec3& umbrella) const;
   /// U of the local vertices [first, last) from LocalPoints (at the start of every sweep).
   void ComputeUmbrellas(int first, int last);
-  /// LocalBackWeights and LocalAlpha from the local topology and weights.
+  /// LocalBackWeights and LocalAlpha from the local topology and the weights the sweeps use
+  /// (label weights or all neighbours alike); LocalUmbrellas sized.
   void BuildRingCoefficients();
   /// The external force F at local vertex v before the docs/METHOD.md §5 rule: the edge force
   /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
@@ -258,7 +259,7 @@ private:
   /// neighbour gives the slot's vertex (w_qv).
   std::vector<double> LocalBackWeights;
   /// Per local vertex: alpha = 1 + sum_i w_i w_(q_i)v, U^2's coefficient of the vertex itself
-  /// (fixed for a mesh and its labels).
+  /// (fixed for a mesh, its labels and UseLabelWeights).
   std::vector<double> LocalAlpha;
   /// The weights LocalBackWeights and LocalAlpha were built with: 1 every neighbour weighs
   /// the same, 0 the label weights, -1 not built for this mesh.
