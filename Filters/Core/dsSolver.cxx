@@ -34,9 +34,9 @@ inline double SlotWeight(const MeshView& m, int v, int slot)
               : m.WeightValues[m.WeightIds[slot]];
 }
 
-/// U(v) and the normalised weight that v gives the vertex `other` (0 if not a neighbour).
+/// U(v) = sum_i w_i q_i - v (the weights normalised).
 template <bool AllN>
-inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOther)
+inline Vec3 UmbrellaOf(const MeshView& m, int v)
 {
   const int begin = m.NeighborOffsets[v], end = m.NeighborOffsets[v + 1];
   double s0 = 0, s1 = 0, s2 = 0;
@@ -48,10 +48,6 @@ inline Vec3 UmbrellaOf(const MeshView& m, int v, int other, double* weightOfOthe
     s0 += w * x[0];
     s1 += w * x[1];
     s2 += w * x[2];
-    if (q == other)
-    {
-      *weightOfOther = w;
-    }
   }
   const Vec3& p = m.Points[v];
   return { s0 - p[0], s1 - p[1], s2 - p[2] };
@@ -382,7 +378,6 @@ void Solver::BuildLocalLayout()
 
 Vec3 Solver::Umbrella(int v) const
 {
-  double unused = 0;
   const TriangleMesh& m = *this->Mesh;
   if (m.NeighborOffsets[v + 1] == m.NeighborOffsets[v])
   {
@@ -390,8 +385,7 @@ Vec3 Solver::Umbrella(int v) const
   }
   const MeshView view{ m.NeighborOffsets.data(), m.Neighbors.data(), this->WeightValues.data(),
     this->WeightIds.data(), m.Points.data() };
-  return this->UniformWeights ? UmbrellaOf<true>(view, v, -1, &unused)
-                              : UmbrellaOf<false>(view, v, -1, &unused);
+  return this->UniformWeights ? UmbrellaOf<true>(view, v) : UmbrellaOf<false>(view, v);
 }
 
 Vec3 Solver::InternalCorrection(int v, Vec3& u) const
@@ -413,7 +407,7 @@ Vec3 Solver::InternalCorrection(int v, Vec3& u) const
       u2acc = u2acc + SlotWeight<AllN>(m, v, i) * this->LocalUmbrellas[m.Neighbors[i]];
     }
   };
-  if (this->UniformWeights || !this->Parameters.UseLabelWeights)
+  if (this->AllNeighboursAlike())
   {
     accumulate(std::true_type{});
   }
@@ -658,13 +652,12 @@ void Solver::ComputeUmbrellas(int first, int last)
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
     this->WeightValues.data(), this->LocalWeightIds.data(), this->LocalPoints.data() };
-  const bool allN = this->UniformWeights || !this->Parameters.UseLabelWeights;
-  double unused = 0;
+  const bool allN = this->AllNeighboursAlike();
   for (int l = first; l < last; ++l)
   {
     this->LocalUmbrellas[l] = m.NeighborOffsets[l + 1] == m.NeighborOffsets[l]
       ? Vec3{ 0, 0, 0 }
-      : (allN ? UmbrellaOf<true>(m, l, -1, &unused) : UmbrellaOf<false>(m, l, -1, &unused));
+      : (allN ? UmbrellaOf<true>(m, l) : UmbrellaOf<false>(m, l));
   }
 }
 
@@ -672,7 +665,7 @@ void Solver::BuildRingCoefficients()
 {
   const MeshView m{ this->LocalNeighborOffsets.data(), this->LocalNeighbors.data(),
     this->WeightValues.data(), this->LocalWeightIds.data(), this->LocalPoints.data() };
-  const bool allN = this->UniformWeights || !this->Parameters.UseLabelWeights;
+  const bool allN = this->AllNeighboursAlike();
   this->RingCoefficientsMode = allN ? 1 : 0;
   const int n = static_cast<int>(this->LocalNeighborOffsets.size()) - 1;
   this->LocalBackWeights.assign(this->LocalNeighbors.size(), 0.0);
@@ -733,7 +726,7 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   {
     return 0;
   }
-  if (this->RingCoefficientsMode != (this->UniformWeights || !this->Parameters.UseLabelWeights))
+  if (this->RingCoefficientsMode != (this->AllNeighboursAlike() ? 1 : 0))
   {
     this->BuildRingCoefficients(); // a new mesh, or the label weights switched
   }

@@ -229,6 +229,11 @@ private:
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped
+  /// The sweeps weigh every neighbour alike: all labels N, or the label weights switched off.
+  bool AllNeighboursAlike() const
+  {
+    return this->UniformWeights || !this->Parameters.UseLabelWeights;
+  }
   /// Otherwise the normalised weight of every neighbour slot of the mesh (aligned with
   /// TriangleMesh::Neighbors), from the labels per triangle (docs/METHOD.md §6.4), as the index
   /// of its value in WeightValues: the weights take few distinct values, and an index is half
