@@ -64,7 +64,9 @@
  * average, as the distance in voxels at which the image force balances it, exceeds
  * RefinementThreshold (all triangles with
  * UniformRefinement; adaptively, never a triangle whose edges are all shorter than a
- * voxel, nor, with the region force, than the level's sigma); the marked triangles are red-green refined (no T-vertices,
+ * voxel, nor, with the region force, than the level's sigma, or twice that once sigma is at most
+ * sigma_0 / 8 and the region force has faded: UnsplitEdgeLength); the marked triangles are
+ * red-green refined (no T-vertices,
  * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
  * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
  * Sigma never goes below 2/3 of a voxel, and goes straight there when half would be less than

@@ -555,21 +555,32 @@ void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
   }
 }
 
+double UnsplitEdgeLength(double voxel, double sigma, double firstSigma, bool region)
+{
+  // Adaptively, triangles whose edges are all shorter than a voxel are not split again: the
+  // image has no finer detail for their children to follow. With the region force, nor are
+  // triangles whose edges are all shorter than this level's sigma: the image at sigma shows
+  // nothing finer, and the next level (sigma / 2) is still sampled at least once per sigma.
+  // The region force carries the surface far (a clicked 5 mm seed grows ~14-fold), so its
+  // edges follow the growth, not sigma; at a coarse sigma the estimator, a distance in voxels,
+  // marks nearly everything and each split of such a mesh multiplies vertices the image cannot
+  // use. Once the force has faded the edge force holds the surface, and the bound doubles
+  // (docs/METHOD.md §9.3). Without the region force the schedule is the paper's: the box
+  // shrunk onto the cube phantom has edges near sigma too, and its early splits are what
+  // resolve its corners.
+  if (!region)
+  {
+    return voxel;
+  }
+  const bool faded = sigma <= RegionFadedShare * firstSigma * (1 + 1e-9);
+  return std::max(voxel, (faded ? FadedEdgeSigmaRatio : 1.0) * sigma);
+}
+
 std::vector<char> MultilevelSolver::MarkForRefinement(
-  const TriangleMesh& mesh, const LevelRecord& rec, double voxel, bool region) const
+  const TriangleMesh& mesh, const LevelRecord& rec, double voxel, double unsplit) const
 {
   const MultilevelParameters& P = this->Parameters;
-  // Adaptively, triangles whose edges are all shorter than a voxel are not split again: the
-  // image has no finer detail for their children to follow. (UniformRefinement splits
-  // everything, as asked.) With the region force, nor are triangles whose edges are all
-  // shorter than this level's sigma: the image at sigma shows nothing finer, and the next
-  // level (sigma / 2) is still sampled at least once per sigma. The region force carries the
-  // surface far (a clicked 5 mm seed grows ~14-fold), so its edges follow the growth, not
-  // sigma; at a coarse sigma the estimator, a distance in voxels, marks nearly everything and
-  // each split of such a mesh multiplies vertices the image cannot use (docs/METHOD.md §9.3).
-  // Without it the schedule is the paper's: the box shrunk onto the cube phantom has edges
-  // near sigma too, and its early splits are what resolve its corners.
-  const double finest = region ? std::max(voxel, rec.Sigma) : voxel;
+  // (UniformRefinement splits everything, as asked.)
   // Detail is present where a large internal force balances an equal external one
   // (docs/METHOD.md §6.2). The external force is F = h sigma (-grad P) (§6b), which grows as
   // about h d / sigma with the distance d from the edge it pulls to: at rest the estimator
@@ -589,7 +600,7 @@ std::vector<char> MultilevelSolver::MarkForRefinement(
       {
         longest = std::max(longest, Norm(mesh.Points[tri[(k + 1) % 3]] - mesh.Points[tri[k]]));
       }
-      if (longest < finest)
+      if (longest < unsplit)
       {
         marks[t] = 0;
       }
@@ -602,7 +613,8 @@ bool MultilevelSolver::RefineLevel(
   TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error)
 {
   const MultilevelParameters& P = this->Parameters;
-  const std::vector<char> marks = this->MarkForRefinement(mesh, rec, state.Voxel, state.Region);
+  const std::vector<char> marks = this->MarkForRefinement(mesh, rec, state.Voxel,
+    UnsplitEdgeLength(state.Voxel, rec.Sigma, state.FirstSigma, state.Region));
   std::unordered_set<int> splitEdges;
   for (size_t t = 0; t < marks.size(); ++t)
   {

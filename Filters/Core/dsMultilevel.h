@@ -24,10 +24,11 @@
 //      of radius 128 in 512^3 with ~11 000 at 0.034 (0.05: 23 000 triangles for 0.031). Adaptively,
 //      a triangle whose edges are all shorter than a voxel (mean spacing) is never marked: the
 //      image has no finer detail; with the region force on, nor one whose edges are all shorter
-//      than sigma_l (the image at sigma_l shows nothing finer): the region force carries the
-//      surface far, so its edges follow the travel rather than sigma (a clicked seed grown to the
-//      brain has edges ~sigma_0), and at a coarse sigma the absolute estimator marks nearly every
-//      triangle (docs/METHOD.md §9.3);
+//      than sigma_l (the image at sigma_l shows nothing finer), or than 2 sigma_l once the force
+//      has faded to an eighth (UnsplitEdgeLength): the region force carries the surface far, so
+//      its edges follow the travel rather than sigma (a clicked seed grown to the brain has edges
+//      ~sigma_0), and at a coarse sigma the absolute estimator marks nearly every triangle
+//      (docs/METHOD.md §9.3);
 //   4. red-green refinement (dsRedGreen.h), new points by butterfly prolongation
 //      (dsButterfly.h; at edge midpoints with ButterflyProlongation off);
 //   5. sigma_{l+1} = sigma_l / 2 when HierarchicalSigma (the kernel support follows
@@ -157,6 +158,28 @@ DEFORMABLESURFACEFILTERS_EXPORT double PotentialEdgeWidth(double sigma, double v
 /// Colin27 click's sigma went 1.59, 0.80, 0.67 mm; now 1.59, 0.67). Half an octave was too much:
 /// the level it merged held a refinement a capsule phantom needed (docs/METHOD.md §6.6).
 DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, double floor);
+
+/// The region force's fade min(1, sigma_l / sigma_0) (dsRegion.h) at or below which adaptive
+/// refinement leaves coarser triangles unsplit (UnsplitEdgeLength): three halvings after
+/// sigma_0, where the force pushes with an eighth of its strength.
+constexpr double RegionFadedShare = 1.0 / 8.0;
+/// Below RegionFadedShare, triangles whose edges are all shorter than this many sigma_l are
+/// not split (above it: one sigma_l).
+constexpr double FadedEdgeSigmaRatio = 2.0;
+
+/// Adaptive refinement leaves a triangle unsplit when its edges are all shorter than this
+/// (docs/METHOD.md §9.3): the voxel (mean spacing), below which the image shows no detail;
+/// with the region force on (region), sigma, and once the force has faded to RegionFadedShare
+/// (sigma <= sigma_0 / 8) FadedEdgeSigmaRatio * sigma. The region force carries a surface far
+/// and its edges follow the travel, not sigma; while it is strong a mesh coarser than sigma
+/// lets it bulge through narrow gaps (a click in KmeansTest leaked with 2 sigma on every
+/// level), so there the bound is sigma. Once it has faded the edge force holds the surface,
+/// and splitting it to sigma mostly multiplies vertices: the Colin27 click 31 364 -> 18 223
+/// vertices, 0.75 -> 0.80 mm, 3.1 -> 1.3 s. Measured choices (METHOD §9.3): the paper's
+/// proportion, 4 sigma, lost the detail of a ridged ball (max 0.96 -> 2.33 voxels; 2 sigma:
+/// 1.28); from sigma_0 / 4 on, the KmeansTest click changed.
+DEFORMABLESURFACEFILTERS_EXPORT double UnsplitEdgeLength(
+  double voxel, double sigma, double firstSigma, bool region);
 
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
 enum class StopReason
@@ -335,10 +358,10 @@ private:
   void EndSweeps(const Solver& solver, TriangleMesh& mesh, LevelRecord& rec, bool lastLevel);
   /// Untangle (rec.Folds), with a warning for what remains.
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
-  /// Step 3's marks without the triangles already below a voxel, or with the region force on
-  /// (region) below the level's sigma (adaptive refinement only).
+  /// Step 3's marks without the triangles whose edges are all shorter than `unsplit`
+  /// (UnsplitEdgeLength; adaptive refinement only).
   std::vector<char> MarkForRefinement(
-    const TriangleMesh& mesh, const LevelRecord& rec, double voxel, bool region) const;
+    const TriangleMesh& mesh, const LevelRecord& rec, double voxel, double unsplit) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(

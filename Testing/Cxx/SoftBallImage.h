@@ -1,6 +1,7 @@
 // A soft ball phantom as vtkImageData, shared by the filter-level tests: value
 // height / (1 + exp(2 (|x - c| - radius))) on an n^3 grid (unit spacing, origin 0), centre c
-// on every axis, float point array "density" as the active scalars.
+// on every axis, float point array "density" as the active scalars; SoftRadialImage the same
+// with a radius that depends on the direction.
 #ifndef SoftBallImage_h
 #define SoftBallImage_h
 
@@ -11,11 +12,14 @@
 #include "vtkSmartPointer.h"
 
 #include <cmath>
+#include <functional>
 
 namespace dstest
 {
-inline vtkSmartPointer<vtkImageData> SoftBallImage(
-  int n, double c, double radius, double height = 1.0)
+/// A soft star-shaped object: height / (1 + exp(2 (|x - c| - radius(x - c)))) with the radius a
+/// function of the direction (the offset from the centre).
+inline vtkSmartPointer<vtkImageData> SoftRadialImage(
+  int n, double c, const std::function<double(double, double, double)>& radius, double height = 1.0)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(n, n, n);
@@ -26,12 +30,20 @@ inline vtkSmartPointer<vtkImageData> SoftBallImage(
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
       {
-        const double d = std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c));
+        const double x = i - c, y = j - c, z = k - c;
+        const double d = std::sqrt(x * x + y * y + z * z) - radius(x, y, z);
         values->SetValue(i + n * (j + n * static_cast<vtkIdType>(k)),
-          static_cast<float>(height / (1.0 + std::exp(2.0 * (d - radius)))));
+          static_cast<float>(height / (1.0 + std::exp(2.0 * d))));
       }
   image->GetPointData()->SetScalars(values);
   return image;
+}
+
+inline vtkSmartPointer<vtkImageData> SoftBallImage(
+  int n, double c, double radius, double height = 1.0)
+{
+  return SoftRadialImage(
+    n, c, [radius](double, double, double) { return radius; }, height);
 }
 } // namespace dstest
 

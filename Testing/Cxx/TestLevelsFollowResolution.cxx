@@ -191,11 +191,29 @@ void AbsoluteMarks()
 }
 } // namespace
 
+void UnsplitEdges()
+{
+  // Adaptive refinement leaves triangles whose edges are all shorter than UnsplitEdgeLength
+  // (docs/METHOD.md §9.3): the voxel; with the region force sigma, and 2 sigma from the level
+  // where the force has faded to an eighth (sigma_0 / 8: the Colin27 click's 25 -> 3.125 mm).
+  const double voxel = 1.0, s0 = 25.0;
+  DS_CHECK(UnsplitEdgeLength(voxel, 12.5, s0, false) == voxel, "no region force: the voxel");
+  DS_CHECK(UnsplitEdgeLength(voxel, 0.5, s0, true) == voxel, "below a voxel: the voxel");
+  DS_CHECK(
+    UnsplitEdgeLength(voxel, 25.0, s0, true) == 25.0, "region force at full strength: sigma");
+  DS_CHECK(UnsplitEdgeLength(voxel, 6.25, s0, true) == 6.25, "region force at a quarter: sigma");
+  DS_CHECK(UnsplitEdgeLength(voxel, 3.125, s0, true) == 6.25, "faded to an eighth: 2 sigma");
+  DS_CHECK(UnsplitEdgeLength(voxel, 1.5625, s0, true) == 3.125, "faded further: 2 sigma");
+  DS_CHECK(UnsplitEdgeLength(voxel, 0.4, s0, true) == voxel, "2 sigma below a voxel: the voxel");
+  DS_CHECK(UnsplitEdgeLength(voxel, 3.0, 3.0, true) == 3.0, "constant sigma never fades: sigma");
+}
+
 int TestLevelsFollowResolution(int, char*[])
 {
   std::cout << "hierarchical sigma, defaults:" << std::endl;
   HierarchyFollowsResolution();
   LastStepToTheFloor();
+  UnsplitEdges();
   std::cout << "caps:" << std::endl;
   CapAndBudget();
   std::cout << "constant sigma:" << std::endl;
