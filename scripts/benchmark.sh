@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
 # Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Accuracy|Scale ...]
-#   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Accuracy (our filter,
+#   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Heads (the README's
+#   whole-head solves in VTK Python against vtkFlyingEdges3D; about a minute; BENCH_ARGS = runs),
+#   Accuracy (our filter,
 #   vtkFlyingEdges3D and ITK's geodesic active contour on the accuracy phantoms; about 10
 #   minutes) and Scale (128^3..1024^3 CT-like volumes, time and peak memory; about 5 minutes)
 #   run when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
@@ -31,7 +33,14 @@ echo "commit:  $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unkno
 echo "load:    $(cut -d' ' -f1-3 /proc/loadavg) (1, 5, 15 min)"
 for n in "${names[@]}"; do
   exe="$build/bin/Bench$n"
-  if [ -x "$exe" ]; then
+  script="$root/Testing/Benchmarks/Bench$n.py"
+  if [ -f "$script" ]; then
+    echo
+    echo "== Bench$n"
+    # shellcheck disable=SC2086
+    PYTHONPATH="$build/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+      /usr/bin/python3 "$script" ${BENCH_ARGS:-}
+  elif [ -x "$exe" ]; then
     echo
     echo "== Bench$n"
     # shellcheck disable=SC2086
