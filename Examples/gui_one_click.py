@@ -21,7 +21,10 @@ lut = GetColorTransferFunction("NIFTI"); lut.ApplyPreset("Grayscale", True); lut
 d.SetScalarBarVisibility(view, False)
 table = CSVReader(registrationName="clicked point", FileName=[os.path.join(root, "Examples", "colin27_click.csv")])
 pts = TableToPoints(registrationName="TableToPoints", Input=table, XColumn="x", YColumn="y", ZColumn="z")
-pd = Show(pts, view); pd.SetRepresentationType("Points"); pd.PointSize = 14; pd.RenderPointsAsSpheres = 1; pd.AmbientColor = pd.DiffuseColor = [1, 0.2, 0.2]
+# The click as a small sphere of triangles (points rendered as spheres draw nothing on some hosts).
+marker = Glyph(registrationName="click marker", Input=pts, GlyphType="Sphere")
+marker.ScaleArray = ["POINTS", "No scale array"]; marker.ScaleFactor = 4.0; marker.GlyphMode = "All Points"
+pd = Show(marker, view); pd.ColorArrayName = ["POINTS", ""]; pd.AmbientColor = pd.DiffuseColor = [1, 0.2, 0.2]
 seed = DelaunaySeedSurface(registrationName="DelaunaySeedSurface", Input=pts)
 sd = Show(seed, view); sd.SetRepresentationType("Wireframe"); sd.AmbientColor = sd.DiffuseColor = [1, 1, 0.3]
 ds = DeformableSurface(registrationName="DeformableSurface", Input=head, InitialSurface=seed)

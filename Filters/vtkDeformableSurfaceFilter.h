@@ -60,15 +60,14 @@
  * InitialSubdivisions).
  *
  * Hierarchy (docs/METHOD.md §6, dsMultilevel.h): after a level converges, the error estimator
- * (|internal part of the correction| per vertex) marks every triangle whose corner
- * average, as the distance in voxels at which the image force balances it, exceeds
- * RefinementThreshold (all triangles with
- * UniformRefinement; adaptively, never a triangle whose edges are all shorter than a
- * voxel, nor, with the region force, than the level's sigma, or twice that once sigma is at most
- * sigma_0 / 8 and the region force has faded: UnsplitEdgeLength); the marked triangles are
- * red-green refined (no T-vertices,
- * vertex labels N/C/M/D choose the umbrella weights), new vertices are placed by the
- * butterfly scheme, sigma is halved (HierarchicalSigma) and the force field rebuilt.
+ * (|internal part of the correction| per vertex) marks every triangle whose corner average, as
+ * the distance in voxels at which the image force balances it, exceeds RefinementThreshold (all
+ * triangles with UniformRefinement; adaptively, never a triangle whose edges are all shorter
+ * than a voxel, nor, with the region force, than the level's sigma, or than 2 sigma once
+ * sigma <= sigma_0 / 8: the region force faded to an eighth, docs/METHOD.md §9.3); the marked
+ * triangles are red-green refined (no T-vertices, vertex labels N/C/M/D choose the umbrella
+ * weights), new vertices are placed by the butterfly scheme, sigma is halved
+ * (HierarchicalSigma) and the force field rebuilt.
  * Sigma never goes below 2/3 of a voxel, and goes straight there when half would be less than
  * 1.26 times that (a third of an octave: NextHierarchicalSigma); the level solved there is the
  * last (finer meshes would follow detail the image does not show), so the number of levels

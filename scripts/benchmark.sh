@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
-# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Accuracy|Scale ...]
+# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Heads|Accuracy|Scale ...]
 #   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Heads (the README's
-#   whole-head solves in VTK Python against vtkFlyingEdges3D; about a minute; BENCH_ARGS = runs),
-#   Accuracy (our filter,
-#   vtkFlyingEdges3D and ITK's geodesic active contour on the accuracy phantoms; about 10
-#   minutes) and Scale (128^3..1024^3 CT-like volumes, time and peak memory; about 5 minutes)
-#   run when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
+#   whole-head solves in VTK Python against vtkFlyingEdges3D; about a minute; BENCH_ARGS = the
+#   runs of each), Accuracy (our filter, vtkFlyingEdges3D and ITK's geodesic active contour on
+#   the accuracy phantoms; about 10 minutes) and Scale (128^3..1024^3 CT-like volumes, time and
+#   peak memory; about 5 minutes) run when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
 #   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
 #   its column is skipped and why).
 # Arguments for one program: BENCH_ARGS, e.g. BENCH_ARGS="128 256" scripts/benchmark.sh Scale

@@ -508,7 +508,7 @@ bool MultilevelSolver::SetUpLevel(
     // The balloon brings the surface to its object at the coarse scales; as sigma shrinks
     // the edge force takes over the detail, so the region force shrinks with sigma (at full
     // strength it presses the surface into every narrow dark gap of the object).
-    const double decay = std::min(1.0, sigma / state.FirstSigma);
+    const double decay = RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
     state.LevelSolver.SetRegionForce(this->Distributed ? this->Piece.Image : image,
       this->UsedRange[0], this->UsedRange[1], decay * P.RegionWeight * h, this->RegionOutwardOnly);
@@ -555,6 +555,11 @@ void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
   }
 }
 
+double RegionFade(double sigma, double firstSigma)
+{
+  return std::min(1.0, sigma / firstSigma);
+}
+
 double UnsplitEdgeLength(double voxel, double sigma, double firstSigma, bool region)
 {
   // Adaptively, triangles whose edges are all shorter than a voxel are not split again: the
@@ -572,7 +577,9 @@ double UnsplitEdgeLength(double voxel, double sigma, double firstSigma, bool reg
   {
     return voxel;
   }
-  const bool faded = sigma <= RegionFadedShare * firstSigma * (1 + 1e-9);
+  // The 1e-9: sigma_0 / 8 reached by three halvings is exact, but a sigma_0 / 8 written by hand
+  // (or a ratio rounded once) must count as faded too.
+  const bool faded = RegionFade(sigma, firstSigma) <= RegionFadedShare * (1 + 1e-9);
   return std::max(voxel, (faded ? FadedEdgeSigmaRatio : 1.0) * sigma);
 }
 
@@ -580,7 +587,8 @@ std::vector<char> MultilevelSolver::MarkForRefinement(
   const TriangleMesh& mesh, const LevelRecord& rec, double voxel, double unsplit) const
 {
   const MultilevelParameters& P = this->Parameters;
-  // (UniformRefinement splits everything, as asked.)
+  // UniformRefinement splits everything, as asked; adaptively, a triangle whose edges are all
+  // shorter than `unsplit` (UnsplitEdgeLength) is not split.
   // Detail is present where a large internal force balances an equal external one
   // (docs/METHOD.md §6.2). The external force is F = h sigma (-grad P) (§6b), which grows as
   // about h d / sigma with the distance d from the edge it pulls to: at rest the estimator

@@ -159,7 +159,11 @@ DEFORMABLESURFACEFILTERS_EXPORT double PotentialEdgeWidth(double sigma, double v
 /// the level it merged held a refinement a capsule phantom needed (docs/METHOD.md §6.6).
 DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, double floor);
 
-/// The region force's fade min(1, sigma_l / sigma_0) (dsRegion.h) at or below which adaptive
+/// The region force's fade at level sigma: min(1, sigma / sigma_0) (dsRegion.h; the force
+/// shrinks with sigma once below sigma_0).
+DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigma);
+
+/// The region force's fade (RegionFade) at or below which adaptive
 /// refinement leaves coarser triangles unsplit (UnsplitEdgeLength): three halvings after
 /// sigma_0, where the force pushes with an eighth of its strength.
 constexpr double RegionFadedShare = 1.0 / 8.0;
@@ -175,7 +179,8 @@ constexpr double FadedEdgeSigmaRatio = 2.0;
 /// lets it bulge through narrow gaps (a click in KmeansTest leaked with 2 sigma on every
 /// level), so there the bound is sigma. Once it has faded the edge force holds the surface,
 /// and splitting it to sigma mostly multiplies vertices: the Colin27 click 31 364 -> 18 223
-/// vertices, 0.75 -> 0.80 mm, 3.1 -> 1.3 s. Measured choices (METHOD §9.3): the paper's
+/// vertices, 0.75 -> 0.80 mm, the solve about half as long (README.md, BENCHMARKS.md).
+/// Measured choices (docs/METHOD.md §9.3): the paper's
 /// proportion, 4 sigma, lost the detail of a ridged ball (max 0.96 -> 2.33 voxels; 2 sigma:
 /// 1.28); from sigma_0 / 4 on, the KmeansTest click changed.
 DEFORMABLESURFACEFILTERS_EXPORT double UnsplitEdgeLength(

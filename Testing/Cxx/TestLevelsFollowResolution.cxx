@@ -3,6 +3,7 @@
 // detail is present and ends at the level solved at sigma's floor, so a larger volume gets more
 // levels; MaxLevels only caps them. The reason the levels ended is reported. With constant sigma
 // (HierarchicalSigma off) and no Sigma given, sigma is the paper's small one: one voxel.
+// UnsplitEdgeLength: the voxel; with the region force sigma, 2 sigma from sigma_0 / 8 on.
 #include "DSTestHelpers.h"
 #include "HierarchyPhantoms.h"
 #include "TestSolverMeshes.h"
@@ -189,8 +190,6 @@ void AbsoluteMarks()
   DS_CHECK(count(0.5) == m.VertexTriangleOffsets[1] - m.VertexTriangleOffsets[0],
     "one busy vertex: its fan is marked");
 }
-} // namespace
-
 void UnsplitEdges()
 {
   // Adaptive refinement leaves triangles whose edges are all shorter than UnsplitEdgeLength
@@ -206,7 +205,10 @@ void UnsplitEdges()
   DS_CHECK(UnsplitEdgeLength(voxel, 1.5625, s0, true) == 3.125, "faded further: 2 sigma");
   DS_CHECK(UnsplitEdgeLength(voxel, 0.4, s0, true) == voxel, "2 sigma below a voxel: the voxel");
   DS_CHECK(UnsplitEdgeLength(voxel, 3.0, 3.0, true) == 3.0, "constant sigma never fades: sigma");
+  DS_CHECK(RegionFade(3.125, s0) == RegionFadedShare, "three halvings: the fade is an eighth");
+  DS_CHECK(RegionFade(50.0, s0) == 1.0, "above sigma_0 the force does not grow");
 }
+} // namespace
 
 int TestLevelsFollowResolution(int, char*[])
 {

@@ -3,7 +3,8 @@
 // radius 16 (intensity 100 inside, 0 outside) in a 64^3 image:
 // - one click: vtkDelaunaySeedSurface makes a sphere of radius 3 around one point inside the
 //   ball; the region force (range estimated from the click) grows it to the boundary;
-// - one click in a ridged ball of radius 30 in 96^3 with RegionWeight 1 (the README's click):
+// - one click in a ridged ball of radius 30 in 96^3 with RegionWeight 1 and the range estimated
+//   from the click:
 //   the ridges kept with fewer points once the force has faded (UnsplitEdgeLength);
 // - a sphere of radius 26 around the ball shrinks onto it (range estimated: object vs
 //   background);
@@ -143,8 +144,9 @@ struct RidgedResult
   int SelfIntersections = -1;
 };
 
-// The README's one-click settings (RegionWeight 1, every other property default); |d| is the
-// radial distance to the ridged boundary (at most a little more than the true distance).
+// RegionWeight 1, every other property default (the range estimated from the click); |d| is the
+// radial distance to the ridged boundary (on the ridges' flanks up to ~2x the true distance:
+// the bounds are conservative).
 RidgedResult GrowInRidgedBall(vtkImageData* image, vtkPolyData* seed)
 {
   vtkNew<vtkDeformableSurfaceFilter> filter;
