@@ -127,9 +127,7 @@ const double RC = 47.5, RR = 30.0, RA = 3.0;
 
 double RidgedRadius(double x, double y, double z)
 {
-  const double rho = std::sqrt(x * x + y * y + z * z);
-  const double s2 = rho > 0 ? (x * x + y * y) / (rho * rho) : 0.0;
-  return RR + RA * std::cos(12.0 * std::atan2(y, x)) * s2 * std::cos(0.6 * z);
+  return dstest::RidgedRadius(x, y, z, RR, RA);
 }
 
 vtkSmartPointer<vtkImageData> RidgedBall()
