@@ -4,8 +4,8 @@
 // - one click: vtkDelaunaySeedSurface makes a sphere of radius 3 around one point inside the
 //   ball; the region force (range estimated from the click) grows it to the boundary;
 // - one click in a ridged ball of radius 30 in 96^3 with RegionWeight 1 and the range estimated
-//   from the click:
-//   the ridges kept with fewer points once the force has faded (UnsplitEdgeLength);
+//   from the click: the ridges kept with fewer points once the force has faded
+//   (UnsplitEdgeLength);
 // - a sphere of radius 26 around the ball shrinks onto it (range estimated: object vs
 //   background);
 // - an IntensityRange that matches nothing: a warning, the force off, finite coordinates and
@@ -71,8 +71,16 @@ struct Result
   bool Finite = true, RangeReported = false;
 };
 
+// |distance| of a point to the ball's boundary.
+double BallDistance(const double p[3])
+{
+  return std::abs(
+    std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
+}
+
 Result Deform(vtkImageData* image, vtkPolyData* start,
-  const std::function<void(vtkDeformableSurfaceFilter*)>& configure)
+  const std::function<void(vtkDeformableSurfaceFilter*)>& configure,
+  const std::function<double(const double*)>& distance = BallDistance)
 {
   vtkNew<vtkDeformableSurfaceFilter> filter;
   vtkNew<Counter> warnings, errors;
@@ -95,8 +103,7 @@ Result Deform(vtkImageData* image, vtkPolyData* start,
     double p[3];
     out->GetPoint(i, p);
     r.Finite = r.Finite && std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-    const double d = std::abs(
-      std::sqrt((p[0] - C) * (p[0] - C) + (p[1] - C) * (p[1] - C) + (p[2] - C) * (p[2] - C)) - R);
+    const double d = distance(p);
     r.Mean += d;
     r.Max = std::max(r.Max, d);
   }
@@ -120,6 +127,7 @@ Result Deform(vtkImageData* image, vtkPolyData* start,
             << std::endl;
   return r;
 }
+
 // A ball whose radius ripples with direction: RR + RA cos(12 phi) sin(theta)^2 cos(0.6 z)
 // around RC in an RN^3 image (ridges 10-16 voxels apart), value 100 inside.
 const int RN = 96;
@@ -135,43 +143,12 @@ vtkSmartPointer<vtkImageData> RidgedBall()
   return dstest::SoftRadialImage(RN, RC, RidgedRadius, 100.0);
 }
 
-struct RidgedResult
+// |d| is the radial distance to the ridged boundary (on the ridges' flanks up to ~2x the true
+// distance: the bounds are conservative).
+double RidgedDistance(const double p[3])
 {
-  double Mean = 0, Max = 0;
-  vtkIdType Points = 0;
-  int SelfIntersections = -1;
-};
-
-// RegionWeight 1, every other property default (the range estimated from the click); |d| is the
-// radial distance to the ridged boundary (on the ridges' flanks up to ~2x the true distance:
-// the bounds are conservative).
-RidgedResult GrowInRidgedBall(vtkImageData* image, vtkPolyData* seed)
-{
-  vtkNew<vtkDeformableSurfaceFilter> filter;
-  filter->SetInputData(0, image);
-  filter->SetInitialSurfaceData(seed);
-  filter->SetRegionWeight(1.0);
-  dstest::UpdateAndCheckSurface(filter, "click in the ridged ball");
-  vtkPolyData* out = filter->GetOutput();
-  RidgedResult r;
-  r.Points = out->GetNumberOfPoints();
-  for (vtkIdType i = 0; i < r.Points; ++i)
-  {
-    double p[3];
-    out->GetPoint(i, p);
-    const double x = p[0] - RC, y = p[1] - RC, z = p[2] - RC;
-    const double d = std::abs(std::sqrt(x * x + y * y + z * z) - RidgedRadius(x, y, z));
-    r.Mean += d;
-    r.Max = std::max(r.Max, d);
-  }
-  r.Mean /= std::max<vtkIdType>(1, r.Points);
-  if (vtkDataArray* a = out->GetFieldData()->GetArray("SelfIntersections"))
-  {
-    r.SelfIntersections = static_cast<int>(a->GetTuple1(0));
-  }
-  std::cout << "  " << r.Points << " points, mean radial |d| " << r.Mean << ", max " << r.Max
-            << std::endl;
-  return r;
+  const double x = p[0] - RC, y = p[1] - RC, z = p[2] - RC;
+  return std::abs(std::sqrt(x * x + y * y + z * z) - RidgedRadius(x, y, z));
 }
 } // namespace
 
@@ -213,7 +190,9 @@ int TestRegionForce(int, char*[])
     seed->SetInputData(picked);
     seed->SetSeedRadius(3.0);
     dstest::UpdateWithInputsUnchanged(seed, "one-click seed in the ridged ball");
-    const RidgedResult r = GrowInRidgedBall(ridged, seed->GetOutput());
+    const Result r = Deform(
+      ridged, seed->GetOutput(), [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(1.0); },
+      RidgedDistance);
     DS_CHECK_LE(r.Mean, 0.32, "ridged ball: mean radial |d| (voxels)");
     DS_CHECK_LE(r.Max, 1.6, "ridged ball: max radial |d| (voxels), the ridges kept");
     DS_CHECK(r.SelfIntersections == 0, "ridged ball: no self-intersections");
