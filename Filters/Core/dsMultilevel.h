@@ -163,9 +163,9 @@ DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, doubl
 /// shrinks with sigma once below sigma_0).
 DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigma);
 
-/// The region force's fade (RegionFade) at or below which adaptive
-/// refinement leaves coarser triangles unsplit (UnsplitEdgeLength): three halvings after
-/// sigma_0, where the force pushes with an eighth of its strength.
+/// The region force's fade (RegionFade) at or below which adaptive refinement leaves coarser
+/// triangles unsplit (UnsplitEdgeLength): three halvings after sigma_0, where the force pushes
+/// with an eighth of its strength.
 constexpr double RegionFadedShare = 1.0 / 8.0;
 /// Below RegionFadedShare, triangles whose edges are all shorter than this many sigma_l are
 /// not split (above it: one sigma_l).
@@ -180,9 +180,9 @@ constexpr double FadedEdgeSigmaRatio = 2.0;
 /// level), so there the bound is sigma. Once it has faded the edge force holds the surface,
 /// and splitting it to sigma mostly multiplies vertices: the Colin27 click 31 364 -> 18 223
 /// vertices, 0.75 -> 0.80 mm, the solve about half as long (README.md, BENCHMARKS.md).
-/// Measured choices (docs/METHOD.md §9.3): the paper's
-/// proportion, 4 sigma, lost the detail of a ridged ball (max 0.96 -> 2.33 voxels; 2 sigma:
-/// 1.28); from sigma_0 / 4 on, the KmeansTest click changed.
+/// Measured choices (docs/METHOD.md §9.3): the paper's proportion, 4 sigma, lost the detail of
+/// a ridged ball (max 0.96 -> 2.33 voxels; 2 sigma: 1.28); from sigma_0 / 4 on, the KmeansTest
+/// click changed.
 DEFORMABLESURFACEFILTERS_EXPORT double UnsplitEdgeLength(
   double voxel, double sigma, double firstSigma, bool region);
 
