@@ -1,5 +1,5 @@
 # pvbatch (under xvfb-run): the README's main job on real data, checked with numbers.
-# Runs the pipeline of Examples/demo.py (Colin27 brain from ch2bet.nii.gz, DeformableSurface
+# Runs the pipeline of Examples/demo.py --skull-stripped (Colin27 brain from ch2bet.nii.gz, DeformableSurface
 # started from the box around the volume) and checks the surface against the truth, the
 # boundary of the brain mask ch2bet > 0.
 #
@@ -20,6 +20,8 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "Examples"))
 sys.path.insert(0, here)
 import demo  # noqa: E402
+import ds_pictures  # noqa: E402
+import ds_scoring  # noqa: E402
 import ds_invariants  # noqa: E402
 
 try:
@@ -33,12 +35,12 @@ result = demo.segment_brain()
 # The invariants every surface keeps (m's topology checks below say the same in its own terms).
 from paraview import servermanager  # noqa: E402
 ds_invariants.check_surface(servermanager.Fetch(result["box"]), result["polydata"], "Colin27 brain")
-m = demo.measure(result)
-print(demo.summary(m))
+m = ds_scoring.measure(result)
+print(ds_scoring.summary(m))
 
 out = os.environ.get("DS_TEST_OUTPUT", ".")
 os.makedirs(out, exist_ok=True)
-png = demo.render(result, os.path.join(out, "pvbatch_colin27_brain.png"), (800, 400), m)
+png = ds_pictures.render(result, os.path.join(out, "pvbatch_colin27_brain.png"), (800, 400), m)
 
 failures = []
 

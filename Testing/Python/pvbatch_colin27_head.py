@@ -21,6 +21,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "Examples"))
 sys.path.insert(0, here)
 import demo  # noqa: E402
+import ds_scoring  # noqa: E402
 import ds_invariants  # noqa: E402
 
 demo.load_plugin(os.environ.get("DS_PLUGIN"))
@@ -42,7 +43,7 @@ for start in ("picks", "click"):
     # The shared invariants (finite, closed 2-manifold oriented like the seed, its Euler
     # characteristic, SelfIntersections 0) on the surface against its seed.
     ds_invariants.check_surface(result["seed_polydata"], result["polydata"], start)
-    m = demo.measure_head(result, iso=False)
+    m = ds_scoring.measure_head(result, iso=False)
     runs.append((start, m))
     volume_error = m["surface_volume"] / m["mask_volume"] - 1.0
     check(start + ": one closed 2-manifold piece, genus 0",
