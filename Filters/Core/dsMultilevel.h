@@ -179,7 +179,7 @@ constexpr double FadedEdgeSigmaRatio = 2.0;
 /// lets it bulge through narrow gaps (a click in KmeansTest leaked with 2 sigma on every
 /// level), so there the bound is sigma. Once it has faded the edge force holds the surface,
 /// and splitting it to sigma mostly multiplies vertices: the Colin27 click 31 364 -> 18 223
-/// vertices, 0.75 -> 0.80 mm, the solve about half as long (README.md, BENCHMARKS.md).
+/// vertices, 0.75 -> 0.80 mm, the solve about half as long (docs/RESULTS.md, BENCHMARKS.md).
 /// Measured choices (docs/METHOD.md §9.3): the paper's proportion, 4 sigma, lost the detail of
 /// a ridged ball (max 0.96 -> 2.33 voxels; 2 sigma: 1.28); from sigma_0 / 4 on, the KmeansTest
 /// click changed.
