@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Segment the brain in a whole-head MRI, as the README's main job does.
+"""Segment the brain in a whole-head MRI: the job of ./scripts/demo.sh (the README's picture).
 
     xvfb-run -a pvbatch Examples/demo.py --plugin <DeformableSurface.so> --output out/
 
