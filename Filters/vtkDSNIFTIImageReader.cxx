@@ -29,7 +29,7 @@ bool IsRotation(const double r[9])
     {
       const double dot =
         r[3 * a] * r[3 * b] + r[3 * a + 1] * r[3 * b + 1] + r[3 * a + 2] * r[3 * b + 2];
-      if (std::abs(dot - (a == b ? 1.0 : 0.0)) > 1e-4)
+      if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) <= 1e-4)) // NaN is no rotation either
       {
         return false;
       }
@@ -57,32 +57,42 @@ bool vtkDSNIFTIImageReader::FileOrientation(double rotation[9], double translati
 {
   // The sform first when the file says it is meant (sform_code > 0): templates and atlases
   // put their standard space there (MNI for Colin27) and often an unrelated qform beside it;
-  // then the qform; a matrix is used only when it is a rotation.
+  // then the qform; a matrix is used only when it is a rotation (rotation and translation are
+  // left as they are otherwise: a refused matrix must not place the image).
   this->OrientationSource = "none";
   vtkNIFTIImageHeader* header = this->GetNIFTIHeader();
   vtkMatrix4x4* sform = header && header->GetSFormCode() > 0 ? this->GetSFormMatrix() : nullptr;
   vtkMatrix4x4* qform = header && header->GetQFormCode() > 0 ? this->GetQFormMatrix() : nullptr;
-  if (sform)
+  double r[9], t[3];
+  auto usable = [&r, &t](vtkMatrix4x4* m)
   {
-    Split(sform, rotation, translation);
-    if (IsRotation(rotation))
+    if (!m)
     {
-      this->OrientationSource = "sform";
-      return true;
+      return false;
     }
-    vtkWarningMacro("The sform of " << (this->GetFileName() ? this->GetFileName() : "the file")
-                                    << " scales or shears; the qform is used if there is one.");
-  }
-  if (qform)
+    Split(m, r, t);
+    return IsRotation(r) && std::isfinite(t[0] + t[1] + t[2]);
+  };
+  if (usable(sform))
   {
-    Split(qform, rotation, translation);
-    if (IsRotation(rotation))
-    {
-      this->OrientationSource = "qform";
-      return true;
-    }
+    this->OrientationSource = "sform";
   }
-  return false;
+  else
+  {
+    if (sform)
+    {
+      vtkWarningMacro("The sform of " << (this->GetFileName() ? this->GetFileName() : "the file")
+                                      << " scales or shears; the qform is used if there is one.");
+    }
+    if (!usable(qform))
+    {
+      return false;
+    }
+    this->OrientationSource = "qform";
+  }
+  std::copy(r, r + 9, rotation);
+  std::copy(t, t + 3, translation);
+  return true;
 }
 
 bool vtkDSNIFTIImageReader::FilesToRead(std::string& headerFile, std::string& dataFile)

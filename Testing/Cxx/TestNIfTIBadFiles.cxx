@@ -357,6 +357,20 @@ void CheckOtherLayouts(const Bytes& valid, const Outcome& reference)
     "the NIfTI-2 header is decoded");
   const Outcome two = Read(reader, log, Write("nifti_version2", v2, false));
   DS_CHECK(log->Errors.empty() && two.Scalars == reference.Scalars, "NIfTI-2 reads as NIfTI-1");
+  // quatern_c 1e200: b^2 + c^2 + d^2 overflows and VTK's qform matrix is NaN; not a rotation,
+  // so the image stays at the origin (the refused matrix must not place it).
+  Bytes v2wild = v2;
+  Put<int32_t>(v2wild, 348, 0);          // sform_code: the qform alone
+  Put<double>(v2wild, 352 + 8, 1.0e200); // quatern_c
+  const Outcome wild = Read(reader, log, Write("nifti_version2_wild_quatern", v2wild, false));
+  double origin[3];
+  reader->GetOutput()->GetOrigin(origin);
+  std::cout << "NIfTI-2, quatern_c 1e200: " << wild.Points << " points, origin " << origin[0] << " "
+            << origin[1] << " " << origin[2] << ", placed by " << reader->GetOrientationSource()
+            << std::endl;
+  DS_CHECK(wild.Points == 960 && origin[0] == 0 && origin[1] == 0 && origin[2] == 0 &&
+      std::string(reader->GetOrientationSource()) == "none",
+    "a NaN qform matrix does not place the image");
   Bytes v2bad = v2;
   Put<int64_t>(v2bad, 16 + 8 * 3, 0); // dim[3]
   ExpectRefused("nifti_version2_zero_dim", v2bad, false, "dim[3] is 0");
