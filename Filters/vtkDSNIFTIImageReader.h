@@ -19,12 +19,12 @@
  * read in part. Refused with an error naming the field, and an empty output: a datatype VTK does
  * not read or a bitpix that does not match it; dim[0] outside 1..7, a dim not positive; data
  * (the product of the dims times the bytes per voxel) beyond the file (a gzip stream is
- * decompressed up to the data's end to tell) or beyond MaximumDataSize; a negative vox_offset
- * or one beyond the file; a non-finite pixdim, quatern/qoffset (qform_code > 0) or srow
- * (sform_code > 0); a file that is not NIfTI-1, NIfTI-2 or Analyze 7.5 at all. Accepted with a
- * warning: pixdim 0 or negative on a used spatial axis, read with spacing 1 there. Both byte
- * orders. An error while VTK reads (e.g. a damaged gzip stream) also leaves the output empty,
- * so nothing downstream runs on part of a file.
+ * decompressed up to the data's end to tell, so a .nii.gz takes twice as long to read) or beyond
+ * MaximumDataSize; a negative vox_offset or one beyond the file; a non-finite pixdim,
+ * quatern/qoffset (qform_code > 0) or srow (sform_code > 0); a file that is not NIfTI-1, NIfTI-2 or
+ * Analyze 7.5 at all. Accepted with a warning: pixdim 0 or negative on a used spatial axis, read
+ * with spacing 1 there. Both byte orders. An error while VTK reads (e.g. a damaged gzip stream)
+ * also leaves the output empty, so nothing downstream runs on part of a file.
  *
  * The plugin's "NIfTI Image Reader (Deformable Surface)" is this class.
  */

@@ -13,8 +13,8 @@
 # Usage: scripts/fuzz.sh [target ...]
 #   (default: RedGreen DelaunaySeed DeformableSurfaceInput NIfTIReader)
 # FUZZ_SECONDS (default 25) is the time per target, FUZZ_SECONDS_NIFTI (default 60) that of
-# NIfTIReader (the file reader: each input goes through a file, gzip and VTK's reader, ~10x
-# slower per input than the filter targets); FUZZ_SEED (default 1) fixes libFuzzer's
+# NIfTIReader (the file reader gets a minute: its inputs are whole files, a header of many
+# fields and gzip streams); FUZZ_SEED (default 1) fixes libFuzzer's
 # random seed (runs still differ somewhat: its schedule depends on timing, so a finding can
 # show in one run and not the next); FUZZ_SEED=0 takes a random seed for exploring locally. BUILD_ASAN_DIR as for scripts/sanitize.sh.
 set -euo pipefail

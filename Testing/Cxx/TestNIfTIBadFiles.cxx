@@ -379,8 +379,38 @@ void CheckOtherLayouts(const Bytes& valid, const Outcome& reference)
 }
 } // namespace
 
+/// The field checks on decoded headers, without files: the size product saturates instead of
+/// wrapping, types VTK has no scalar type for are refused, dims above dim[0] do not count.
+void CheckCore()
+{
+  dsurf::NiftiHeader header;
+  header.Version = 1;
+  header.DataType = 16; // FLOAT32
+  header.BitPix = 32;
+  header.Dim[0] = 7;
+  std::fill(header.Dim + 1, header.Dim + 8, 32767);
+  dsurf::NiftiVerdict verdict = dsurf::CheckNiftiHeader(header, uint64_t(1) << 34);
+  std::cout << "seven dims of 32767: " << verdict.Error << std::endl;
+  DS_CHECK(verdict.Error.find("more than 2^64 bytes") != std::string::npos,
+    "32767^7 voxels: the size saturates, it does not wrap to a small number");
+  header.Dim[0] = 2;
+  header.Dim[3] = -5; // beyond dim[0]: unused
+  header.PixDim[1] = header.PixDim[2] = 1.0;
+  header.PixDim[3] = 0.0; // unused axis: spacing 1, no warning
+  verdict = dsurf::CheckNiftiHeader(header, uint64_t(1) << 34);
+  DS_CHECK(verdict.Error.empty() && verdict.Warnings.empty() && verdict.UnitSpacing[2] &&
+      verdict.DataSize == 4ull * 32767 * 32767,
+    "a 2-D header: dims and pixdim past dim[0] are not checked, its data size 4 x 32767^2");
+  for (int unread : { 1, 1536, 2048 }) // BINARY, FLOAT128, COMPLEX256
+  {
+    DS_CHECK(
+      dsurf::NiftiBytesPerVoxel(unread) == 0, "no VTK type for datatype " + std::to_string(unread));
+  }
+}
+
 int TestNIfTIBadFiles(int, char*[])
 {
+  CheckCore();
   const Bytes valid = ValidFile(1);
   DS_CHECK(valid.size() == 352 + 1920, "the synthetic file: 352 bytes of header, 1 920 of data");
 
