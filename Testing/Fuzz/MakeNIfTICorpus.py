@@ -11,9 +11,8 @@ import struct
 import tempfile
 
 from vtkmodules.vtkCommonMath import vtkMatrix4x4
-from vtkmodules.vtkImagingCore import vtkImageCast
+from vtkmodules.vtkImagingCore import vtkImageCast, vtkRTAnalyticSource
 from vtkmodules.vtkImagingSources import vtkImageCanvasSource2D
-from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.vtkIOImage import vtkNIFTIImageWriter
 
 out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus", "NIfTIReader")
@@ -32,6 +31,8 @@ def volume(extent, scalar_type, components=1):
         canvas.SetExtent(*extent)
         canvas.SetNumberOfScalarComponents(components)
         canvas.SetScalarTypeToUnsignedChar()
+        canvas.SetDrawColor(0, 0, 0, 0)  # the canvas starts uninitialized: clear it first
+        canvas.FillBox(extent[0], extent[1], extent[2], extent[3])
         canvas.SetDrawColor(200, 100, 50, 255)
         canvas.FillBox(0, extent[1] // 2, 0, extent[3] // 2)
         canvas.Update()
@@ -73,7 +74,7 @@ placed.SetElement(2, 3, 4.5)
 
 save("valid-uint8", 0, nifti_bytes(volume((0, 3, 0, 2, 0, 1), VTK_UNSIGNED_CHAR)))
 save("valid-float-2d", 0, nifti_bytes(volume((0, 5, 0, 4, 0, 0), VTK_FLOAT)))
-save("valid-rgb", 0, nifti_bytes(volume((0, 2, 0, 1, 0, 1), VTK_UNSIGNED_CHAR, 3)))
+save("valid-rgb", 0, nifti_bytes(volume((0, 2, 0, 1, 0, 0), VTK_UNSIGNED_CHAR, 3)))  # one slice: FillBox draws on one
 save("valid-nifti2", 0, nifti_bytes(volume((0, 2, 0, 2, 0, 2), VTK_SHORT), version=2))
 base = nifti_bytes(volume((0, 9, 0, 9, 0, 5), VTK_SHORT), qform=placed)  # 1 200 bytes of data
 save("valid-int16-placed-gz", 1, base)

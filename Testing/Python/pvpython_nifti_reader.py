@@ -5,7 +5,9 @@ where the file says (a known voxel's world position, the direction matrix); and 
 template of the demo opens with its known size, range and place (its sform: MNI coordinates).
 The header checks of the reader change nothing of a valid file: Colin27, ITK's KmeansTest, the
 oblique file and the others read as with VTK's own reader (voxels, spacing, origin, direction);
-its Maximum Data Size property refuses a file above it with an empty output."""
+its Maximum Data Size property refuses a file above it with an empty output. Colin27 with a
+spoiled datatype, and cut in half, leave the reader and Deformable Surface empty (issue 29's path:
+OpenDataFile, then the filter with a box)."""
 import os
 import sys
 
@@ -193,3 +195,26 @@ assert reader.GetDataInformation().GetNumberOfPoints() == 0
 reader.MaximumDataSize = a.nbytes
 reader.UpdatePipeline()
 assert reader.GetDataInformation().GetNumberOfPoints() == a.size, reader.GetDataInformation().GetNumberOfPoints()
+
+# The user's path of issue 29 on Colin27 itself: OpenDataFile, then Deformable Surface with a
+# box. A spoiled datatype (which killed the process) and a file cut in half (which was solved on
+# in part) must both leave the reader and the filter empty, the process alive.
+import gzip  # noqa: E402
+import struct  # noqa: E402
+from paraview.simple import Box  # noqa: E402
+
+with gzip.open("/usr/share/mricron/templates/ch2.nii.gz", "rb") as f:
+    colin_bytes = f.read()
+spoiled = bytearray(colin_bytes)
+struct.pack_into("<h", spoiled, 70, 1234)  # datatype (nifti1.h offset 70)
+for name, data in (("colin_datatype_1234.nii", bytes(spoiled)), ("colin_half.nii", colin_bytes[:len(colin_bytes) // 2])):
+    bad = os.path.join(out_dir, name)
+    with open(bad, "wb") as f:
+        f.write(data)
+    reader = OpenDataFile(bad)
+    box = Box(XLength=180, YLength=216, ZLength=180, Center=[0, -17, 19])
+    surface = DeformableSurface(Input=reader, InitialSurface=box)  # noqa: F821 (from LoadPlugin)
+    surface.UpdatePipeline()
+    points = (reader.GetDataInformation().GetNumberOfPoints(), surface.GetDataInformation().GetNumberOfPoints())
+    print("%s: reader %d points, Deformable Surface %d points" % (name, points[0], points[1]))
+    assert points == (0, 0), points
