@@ -53,10 +53,10 @@ public:
   /**
    * The largest data a file may describe, in bytes (the product of its dims times the bytes per
    * voxel, every dimension counted); larger is refused before anything is allocated. A fixed
-   * number, not the machine's free memory, so a file gets the same verdict everywhere. Default
-   * 16 GiB.
+   * number, not the machine's free memory, so a file gets the same verdict everywhere; a
+   * negative value counts as 0. Default 17 179 869 184 (16 GiB).
    */
-  vtkSetClampMacro(MaximumDataSize, vtkIdType, 0, VTK_ID_MAX);
+  vtkSetMacro(MaximumDataSize, vtkIdType);
   vtkGetMacro(MaximumDataSize, vtkIdType);
   ///@}
 
