@@ -10,7 +10,9 @@ every row of docs/PROPERTIES.md (the reference the README links to, one table pe
 the XML's default, and every property has its row; and the class
 comment of each property in the class's header (Filters/<class>.h) states the class's default:
 "Default 0.1", "(default on)", "0 (default)" in a block of one property, "Defaults: A 1, B 0"
-in a block of several.
+in a block of several, except in a header whose parameters come from one table
+(<class>_PARAMETERS, docs/ADDING_A_PARAMETER.md): there the getters read the core's fields,
+whose initialisers are the defaults, and the header states none (the XML is where prose does).
 Plain VTK Python (/usr/bin/python3)."""
 import glob
 import os
@@ -177,6 +179,12 @@ def check_header(cls, obj):
     path = os.path.join(root, "Filters", cls.__name__ + ".h")
     with open(path) as f:
         header = f.read()
+    if "#define %s_PARAMETERS(" % cls.__name__ in header:
+        text = re.sub(r"\s+", " ", re.sub(r"^\s*(\*|///|//)", "", header, flags=re.M))
+        for stated in re.findall(r"[Dd]efaults?:? (?:%s)|(?:%s) \((?:the )?default\)" % (VALUE, VALUE), text):
+            failures.append("%s states a default ('%s'): the XML is the place" %
+                            (os.path.basename(path), stated))
+        return 0
     blocks = 0
     for block in re.findall(r"///@\{(.*?)///@\}", header, re.S):
         names = [a or b for a, b in re.findall(r"vtkSet\w*Macro\((\w+)|virtual void Set(\w+)\(", block)]
