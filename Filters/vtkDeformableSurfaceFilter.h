@@ -135,7 +135,7 @@ class SweepAnimation;
 class WarmStart;
 }
 
-// The parameters, one line each (docs/ADDING_A_PARAMETER.md): the property's name (Set<Name> and
+// The parameters, one line each (CONTRIBUTING.md, "Adding a parameter"): the property's name (Set<Name> and
 // Get<Name> in C++, Python and the ParaView XML), its type here, the field that holds it, whose
 // initialiser is its one default (Parameters: dsurf::MultilevelParameters, dsMultilevel.h and
 // dsSolver.h; Animation and Warm: this filter's own, dsVTKAnimation.h and dsVTKWarmStart.h), and

@@ -89,7 +89,7 @@ constexpr int CoarsenAboveTriangles = 100000;
 /// (and ParaView XML property) it comes from, its comment here is the one description of it in
 /// the code and its default initialiser the one home of that property's default: the filter
 /// holds this struct and its properties read and write these fields
-/// (vtkDeformableSurfaceFilter_PARAMETERS, docs/ADDING_A_PARAMETER.md).
+/// (vtkDeformableSurfaceFilter_PARAMETERS, CONTRIBUTING.md, "Adding a parameter").
 struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
 {
   SolverParameters Solver; ///< tau, gamma, projection, label weights, threads

@@ -11,7 +11,7 @@ the XML's default, and every property has its row; and the class
 comment of each property in the class's header (Filters/<class>.h) states the class's default:
 "Default 0.1", "(default on)", "0 (default)" in a block of one property, "Defaults: A 1, B 0"
 in a block of several, except in a header whose parameters come from one table
-(<class>_PARAMETERS, docs/ADDING_A_PARAMETER.md): there the getters read the core's fields,
+(<class>_PARAMETERS, CONTRIBUTING.md, "Adding a parameter"): there the getters read the core's fields,
 whose initialisers are the defaults, and the header states none (the XML is where prose does).
 Plain VTK Python (/usr/bin/python3)."""
 import glob
