@@ -15,6 +15,13 @@ file(GLOB _ds_bridge_headers CONFIGURE_DEPENDS "${_ds_filters_dir}/ds*.h")
 list(APPEND _ds_core_sources ${_ds_bridge_sources})
 list(APPEND _ds_core_headers ${_ds_bridge_headers})
 
+# The DICOM reader and its core are built only on GDCM (top-level DEFORMABLESURFACE_USE_GDCM).
+if (NOT DEFORMABLESURFACE_HAVE_GDCM)
+  list(FILTER _ds_classes EXCLUDE REGEX "vtkDSDICOM[^/]*$")
+  list(FILTER _ds_core_sources EXCLUDE REGEX "/dsDicom[^/]*$")
+  list(FILTER _ds_core_headers EXCLUDE REGEX "/dsDicom[^/]*$")
+endif ()
+
 vtk_module_add_module(DeformableSurface::Filters
   CLASSES         ${_ds_classes}
   SOURCES         ${_ds_core_sources}
@@ -25,6 +32,11 @@ vtk_module_include(DeformableSurface::Filters
   PUBLIC
     "$<BUILD_INTERFACE:${_ds_filters_dir}>"
     "$<BUILD_INTERFACE:${_ds_filters_dir}/Core>")
+if (DEFORMABLESURFACE_HAVE_GDCM)
+  # Private: the module's public headers name no GDCM type. gdcmMSFF brings gdcmDSED, gdcmCommon.
+  vtk_module_link(DeformableSurface::Filters PRIVATE gdcmMSFF)
+  vtk_module_include(DeformableSurface::Filters PRIVATE ${GDCM_INCLUDE_DIRS})
+endif ()
 
 # The sweep calls small functions of this library per vertex (the force and image samples, the
 # fan normal, the umbrellas). An exported function of a shared library is called through the PLT,

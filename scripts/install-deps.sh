@@ -19,6 +19,9 @@ packages=(
   libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libjsoncpp-dev libutfcpp-dev
   libpugixml-dev libeigen3-dev libglew-dev libfreetype-dev libpng-dev libjpeg-dev libtiff-dev
   zlib1g-dev libxml2-dev libgl2ps-dev libfontconfig-dev libtheora-dev libogg-dev
+  # the DICOM series reader (GDCM's core libraries: JPEG 2000 through OpenJPEG, JPEG-LS through
+  # CharLS); without it the module builds without the reader
+  libgdcm-dev
   # screenshots without a display
   xvfb xauth
   # real volumes: Colin27 T1 brain MRI (and its brain mask)

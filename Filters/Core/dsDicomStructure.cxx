@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dsDicomStructure.h"
+
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+namespace dsurf
+{
+namespace dicom
+{
+namespace
+{
+constexpr uint32_t Undefined = 0xffffffffu;
+constexpr int MaxDepth = 32; // nested sequences; deeper is taken as damage (and bounds recursion)
+
+struct Walker
+{
+  const std::vector<unsigned char>& Bytes;
+  bool Explicit = true, BigEndian = false;
+  std::string Error;
+
+  uint16_t U16(size_t p) const
+  {
+    return BigEndian ? uint16_t(Bytes[p] << 8 | Bytes[p + 1])
+                     : uint16_t(Bytes[p + 1] << 8 | Bytes[p]);
+  }
+  uint32_t U32(size_t p) const
+  {
+    return BigEndian ? uint32_t(U16(p)) << 16 | U16(p + 2) : uint32_t(U16(p + 2)) << 16 | U16(p);
+  }
+  bool Fail(const std::string& why, size_t at)
+  {
+    Error = why + " at byte " + std::to_string(at);
+    return false;
+  }
+
+  /// The element header at p: tag, value length, header size; false when it does not fit.
+  bool Header(size_t p, uint16_t& group, uint16_t& element, uint32_t& length, size_t& size,
+    bool& implicitInside)
+  {
+    if (p + 8 > Bytes.size())
+    {
+      return Fail("the file ends inside an element header", p);
+    }
+    group = U16(p);
+    element = U16(p + 2);
+    implicitInside = false;
+    if (!Explicit || group == 0xfffe) // item tags have no VR in any syntax
+    {
+      length = U32(p + 4);
+      size = 8;
+      return true;
+    }
+    const std::string vr(reinterpret_cast<const char*>(&Bytes[p + 4]), 2);
+    static const char* const longForm[] = { "OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC",
+      "UN", "UR", "UT", "UV" };
+    bool isLong = false;
+    for (const char* v : longForm)
+    {
+      isLong = isLong || vr == v;
+    }
+    if (!isLong)
+    {
+      length = U16(p + 6);
+      size = 8;
+      return true;
+    }
+    if (p + 12 > Bytes.size())
+    {
+      return Fail("the file ends inside an element header", p);
+    }
+    length = U32(p + 8);
+    size = 12;
+    implicitInside = vr == "UN"; // an undefined-length UN holds implicit VR (PS3.5 §6.2.2)
+    return true;
+  }
+
+  /// Elements from p to the end of the file, or (inItem) to an item delimiter.
+  bool Elements(size_t& p, int depth, bool inItem)
+  {
+    if (depth > MaxDepth)
+    {
+      return Fail("sequences nested too deep", p);
+    }
+    while (p < Bytes.size())
+    {
+      uint16_t group, element;
+      uint32_t length;
+      size_t size;
+      bool implicitInside;
+      if (!Header(p, group, element, length, size, implicitInside))
+      {
+        return false;
+      }
+      if (group == 0xfffe)
+      {
+        if (inItem && element == 0xe00d)
+        {
+          p += 8;
+          return true;
+        }
+        return Fail("a misplaced item or delimiter tag", p);
+      }
+      p += size;
+      if (length == Undefined)
+      {
+        const bool wasExplicit = Explicit;
+        Explicit = Explicit && !implicitInside;
+        const bool ok = Items(p, depth + 1);
+        Explicit = wasExplicit;
+        if (!ok)
+        {
+          return false;
+        }
+      }
+      else if (length > Bytes.size() - p)
+      {
+        return Fail(
+          "the file ends inside an element of " + std::to_string(length) + " bytes", p - size);
+      }
+      else
+      {
+        p += length;
+      }
+    }
+    return !inItem || Fail("the file ends inside an item", p);
+  }
+
+  /// The items of an undefined-length sequence or of encapsulated pixel data, to its delimiter.
+  bool Items(size_t& p, int depth)
+  {
+    while (true)
+    {
+      if (p + 8 > Bytes.size())
+      {
+        return Fail("the file ends inside a sequence", p);
+      }
+      const uint16_t group = U16(p), element = U16(p + 2);
+      const uint32_t length = U32(p + 4);
+      if (group != 0xfffe || (element != 0xe000 && element != 0xe0dd))
+      {
+        return Fail("a sequence holds something other than items", p);
+      }
+      p += 8;
+      if (element == 0xe0dd)
+      {
+        return true;
+      }
+      if (length == Undefined)
+      {
+        if (!Elements(p, depth, true))
+        {
+          return false;
+        }
+      }
+      else if (length > Bytes.size() - p)
+      {
+        return Fail("the file ends inside an item of " + std::to_string(length) + " bytes", p - 8);
+      }
+      else
+      {
+        p += length;
+      }
+    }
+  }
+};
+
+std::string Trimmed(const std::vector<unsigned char>& bytes, size_t p, size_t n)
+{
+  std::string s(reinterpret_cast<const char*>(&bytes[p]), n);
+  while (!s.empty() && (s.back() == '\0' || s.back() == ' '))
+  {
+    s.pop_back();
+  }
+  return s;
+}
+} // namespace
+
+Structure CheckStructure(const std::string& file, std::string& transferSyntax, std::string& error)
+{
+  transferSyntax.clear();
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<unsigned char> bytes(
+    (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < 132 || std::string(bytes.begin() + 128, bytes.begin() + 132) != "DICM")
+  {
+    error = file + " is not a DICOM file (no \"DICM\" after the 128-byte preamble)";
+    return Structure::NotDicom;
+  }
+  // The meta header: group 0002, always explicit VR little endian.
+  Walker walk{ bytes };
+  size_t p = 132;
+  while (p + 8 <= bytes.size() && walk.U16(p) == 0x0002)
+  {
+    uint16_t group, element;
+    uint32_t length;
+    size_t size;
+    bool implicitInside;
+    if (!walk.Header(p, group, element, length, size, implicitInside) || length == Undefined ||
+      length > bytes.size() - p - size)
+    {
+      error = file + " is damaged in its meta header: " +
+        (walk.Error.empty() ? "an element runs past the end" : walk.Error);
+      return Structure::Damaged;
+    }
+    if (element == 0x0010)
+    {
+      transferSyntax = Trimmed(bytes, p + size, length);
+    }
+    p += size + length;
+  }
+  if (transferSyntax == "1.2.840.10008.1.2.1.99")
+  {
+    error = file + " has a deflated data set (Deflated Explicit VR Little Endian), which this " +
+      "reader does not support";
+    return Structure::Unwalkable;
+  }
+  walk.Explicit = transferSyntax != "1.2.840.10008.1.2";
+  walk.BigEndian = transferSyntax == "1.2.840.10008.1.2.2";
+  if (!walk.Elements(p, 0, false))
+  {
+    error = file + " is truncated or damaged: " + walk.Error;
+    return Structure::Damaged;
+  }
+  return Structure::Complete;
+}
+} // namespace dicom
+} // namespace dsurf
