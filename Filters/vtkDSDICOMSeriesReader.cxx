@@ -3,6 +3,7 @@
 
 #include "dsDicomPixels.h"
 #include "dsDicomSeries.h"
+#include "dsMemory.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -151,6 +152,15 @@ bool vtkDSDICOMSeriesReader::FindVolume()
     return false;
   }
   s.ScalarType = dsurf::dicom::OutputScalarType(s.Volume.Slices);
+  const dsurf::dicom::Volume& v = s.Volume;
+  const double voxels = double(v.Dimensions[0]) * v.Dimensions[1] * v.Dimensions[2];
+  s.Error = dsurf::MemoryShortfall(voxels * vtkDataArray::GetDataTypeSize(s.ScalarType),
+    "the DICOM series' " + std::to_string(v.Dimensions[0]) + " x " +
+      std::to_string(v.Dimensions[1]) + " x " + std::to_string(v.Dimensions[2]) + " image");
+  if (!s.Error.empty())
+  {
+    return false;
+  }
   s.TransferSyntax = s.Volume.Slices.front().TransferSyntaxName;
   for (const std::string& warning : s.Volume.Warnings)
   {

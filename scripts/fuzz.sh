@@ -30,6 +30,10 @@ fi
 
 "$root/scripts/sanitize.sh" --configure-only
 cmake --build "$build" -j "$(nproc)" --target DSFuzzers
+# FuzzDICOMReader is built only when the build found GDCM (libgdcm-dev): a default target then.
+if [ $# -eq 0 ] && [ -x "$build/bin/FuzzDICOMReader" ]; then
+  targets+=(DICOMReader)
+fi
 
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:check_initialization_order=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"

@@ -3,7 +3,6 @@
 
 #include "dsDicomStructure.h"
 
-#include "gdcmAttribute.h"
 #include "gdcmDataSet.h"
 #include "gdcmReader.h"
 #include "gdcmTrace.h"
@@ -63,21 +62,21 @@ bool Decimals(const gdcm::DataSet& ds, const gdcm::Tag& tag, int count, double* 
 }
 
 /// An unsigned short element (Rows, Bits Allocated, ...); `fallback` when absent or malformed.
-unsigned int Short(const gdcm::DataSet& ds, const gdcm::Tag& tag, unsigned int fallback)
+/// Decoded here: gdcm::Attribute asserts that the tag is its own, for each tag a template.
+unsigned int Short(
+  const gdcm::DataSet& ds, const gdcm::Tag& tag, bool bigEndian, unsigned int fallback)
 {
   if (!ds.FindDataElement(tag))
   {
     return fallback;
   }
-  const gdcm::DataElement& de = ds.GetDataElement(tag);
-  const gdcm::ByteValue* bv = de.GetByteValue();
-  if (!bv || bv->GetLength() != 2)
+  const gdcm::ByteValue* bv = ds.GetDataElement(tag).GetByteValue();
+  if (!bv || bv->GetLength() != 2 || !bv->GetPointer())
   {
     return fallback;
   }
-  gdcm::Attribute<0x0028, 0x0010> us; // any US attribute decodes the same two bytes
-  us.SetFromDataElement(de);
-  return us.GetValue();
+  const auto* b = reinterpret_cast<const unsigned char*>(bv->GetPointer());
+  return bigEndian ? (b[0] << 8 | b[1]) : (b[1] << 8 | b[0]);
 }
 
 double Dot(const double a[3], const double b[3])
@@ -167,6 +166,19 @@ std::string Unusable(const SliceHeader& s)
   {
     return s.File + " has an unsupported pixel format (Bits Allocated " +
       std::to_string(s.BitsAllocated) + ", Bits Stored " + std::to_string(s.BitsStored) + ")";
+  }
+  // Sizes bounded by the file before anything is allocated for them: native pixel data must
+  // hold Rows x Columns; a compressed slice is taken to decode to at most 4096 times its file
+  // (lossless codecs reach a few hundred on blank images).
+  const double bytes = double(s.Rows) * s.Columns * (s.BitsAllocated / 8);
+  if (s.PixelDataBytes == -2)
+  {
+    return s.File + " has no Pixel Data";
+  }
+  if (s.PixelDataBytes >= 0 ? s.PixelDataBytes < bytes : bytes > 4096.0 * s.FileBytes)
+  {
+    return s.File + " has Pixel Data too short for its " + std::to_string(s.Columns) + " x " +
+      std::to_string(s.Rows) + " pixels (damaged)";
   }
   if (!(s.PixelSpacing[0] > 0 && s.PixelSpacing[1] > 0))
   {
@@ -279,8 +291,8 @@ HeaderStatus ReadHeader(const std::string& file, SliceHeader& h, std::string& er
   h = SliceHeader();
   h.File = file;
   // GDCM aborts on some damaged files (its assertions are on in Debian's build): check first.
-  std::string syntax;
-  switch (CheckStructure(file, syntax, error))
+  FileFacts facts;
+  switch (CheckStructure(file, facts, error))
   {
     case Structure::Complete:
       break;
@@ -298,6 +310,8 @@ HeaderStatus ReadHeader(const std::string& file, SliceHeader& h, std::string& er
   }
   const gdcm::File& f = reader.GetFile();
   const gdcm::DataSet& ds = f.GetDataSet();
+  h.PixelDataBytes = facts.PixelDataBytes;
+  h.FileBytes = facts.FileBytes;
   h.SeriesUID = Text(ds, gdcm::Tag(0x0020, 0x000e));
   if (h.SeriesUID.empty())
   {
@@ -320,12 +334,13 @@ HeaderStatus ReadHeader(const std::string& file, SliceHeader& h, std::string& er
   const std::string frames = Text(ds, gdcm::Tag(0x0028, 0x0008));
   h.Frames =
     frames.empty() ? 1u : static_cast<unsigned int>(std::strtoul(frames.c_str(), nullptr, 10));
-  h.Rows = Short(ds, gdcm::Tag(0x0028, 0x0010), 0);
-  h.Columns = Short(ds, gdcm::Tag(0x0028, 0x0011), 0);
-  h.SamplesPerPixel = Short(ds, gdcm::Tag(0x0028, 0x0002), 1);
-  h.BitsAllocated = Short(ds, gdcm::Tag(0x0028, 0x0100), 0);
-  h.BitsStored = Short(ds, gdcm::Tag(0x0028, 0x0101), h.BitsAllocated);
-  h.PixelRepresentation = Short(ds, gdcm::Tag(0x0028, 0x0103), 0);
+  const bool bigEndian = h.TransferSyntaxUID == "1.2.840.10008.1.2.2"; // Explicit VR Big Endian
+  h.Rows = Short(ds, gdcm::Tag(0x0028, 0x0010), bigEndian, 0);
+  h.Columns = Short(ds, gdcm::Tag(0x0028, 0x0011), bigEndian, 0);
+  h.SamplesPerPixel = Short(ds, gdcm::Tag(0x0028, 0x0002), bigEndian, 1);
+  h.BitsAllocated = Short(ds, gdcm::Tag(0x0028, 0x0100), bigEndian, 0);
+  h.BitsStored = Short(ds, gdcm::Tag(0x0028, 0x0101), bigEndian, h.BitsAllocated);
+  h.PixelRepresentation = Short(ds, gdcm::Tag(0x0028, 0x0103), bigEndian, 0);
   Decimals(ds, gdcm::Tag(0x0028, 0x1053), 1, &h.Slope);
   Decimals(ds, gdcm::Tag(0x0028, 0x1052), 1, &h.Intercept);
   if (h.Slope == 0)

@@ -34,6 +34,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SliceHeader
   unsigned int Rows = 0, Columns = 0, Frames = 1;
   unsigned int BitsAllocated = 0, BitsStored = 0, PixelRepresentation = 0, SamplesPerPixel = 1;
   double Slope = 1, Intercept = 0; ///< Rescale Slope / Intercept (CT: to Hounsfield units)
+  long long PixelDataBytes = -2;   ///< native Pixel Data's length; -1 compressed; -2 none
+  long long FileBytes = 0;
 };
 
 enum class HeaderStatus

@@ -20,6 +20,7 @@ struct Walker
   const std::vector<unsigned char>& Bytes;
   bool Explicit = true, BigEndian = false;
   std::string Error;
+  long long PixelDataBytes = -2; ///< of the top-level (7FE0,0010): -1 undefined length
 
   uint16_t U16(size_t p) const
   {
@@ -104,6 +105,10 @@ struct Walker
         return Fail("a misplaced item or delimiter tag", p);
       }
       p += size;
+      if (depth == 0 && group == 0x7fe0 && element == 0x0010)
+      {
+        PixelDataBytes = length == Undefined ? -1 : static_cast<long long>(length);
+      }
       if (length == Undefined)
       {
         const bool wasExplicit = Explicit;
@@ -178,12 +183,14 @@ std::string Trimmed(const std::vector<unsigned char>& bytes, size_t p, size_t n)
 }
 } // namespace
 
-Structure CheckStructure(const std::string& file, std::string& transferSyntax, std::string& error)
+Structure CheckStructure(const std::string& file, FileFacts& facts, std::string& error)
 {
-  transferSyntax.clear();
+  facts = FileFacts();
+  std::string& transferSyntax = facts.TransferSyntax;
   std::ifstream in(file, std::ios::binary);
   const std::vector<unsigned char> bytes(
     (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  facts.FileBytes = static_cast<long long>(bytes.size());
   if (bytes.size() < 132 || std::string(bytes.begin() + 128, bytes.begin() + 132) != "DICM")
   {
     error = file + " is not a DICOM file (no \"DICM\" after the 128-byte preamble)";
@@ -224,6 +231,7 @@ Structure CheckStructure(const std::string& file, std::string& transferSyntax, s
     error = file + " is truncated or damaged: " + walk.Error;
     return Structure::Damaged;
   }
+  facts.PixelDataBytes = walk.PixelDataBytes;
   return Structure::Complete;
 }
 } // namespace dicom

@@ -23,9 +23,17 @@ enum class Structure
   Unwalkable ///< a deflated data set: its elements cannot be checked without inflating
 };
 
-/// Checks `file`; error says why when not Complete; transferSyntax is the meta header's UID.
+/// What the walk found besides completeness.
+struct DEFORMABLESURFACEFILTERS_EXPORT FileFacts
+{
+  std::string TransferSyntax;    ///< the meta header's UID
+  long long PixelDataBytes = -2; ///< native Pixel Data's length; -1 encapsulated; -2 none
+  long long FileBytes = 0;
+};
+
+/// Checks `file`; error says why when not Complete.
 DEFORMABLESURFACEFILTERS_EXPORT Structure CheckStructure(
-  const std::string& file, std::string& transferSyntax, std::string& error);
+  const std::string& file, FileFacts& facts, std::string& error);
 } // namespace dicom
 } // namespace dsurf
 
