@@ -55,6 +55,14 @@ struct Walker
       return true;
     }
     const std::string vr(reinterpret_cast<const char*>(&Bytes[p + 4]), 2);
+    // An unknown VR: GDCM then guesses (and may read the file another way than this walk).
+    static const std::string known = "AE AS AT CS DA DS DT FD FL IS LO LT OB OD OF OL OV OW PN SH "
+                                     "SL SQ SS ST SV TM UC UI UL UN UR US UT UV";
+    if (vr.find(' ') != std::string::npos || known.find(vr) == std::string::npos ||
+      known.find(vr) % 3 != 0)
+    {
+      return Fail("an unknown value representation", p);
+    }
     static const char* const longForm[] = { "OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC",
       "UN", "UR", "UT", "UV" };
     bool isLong = false;
@@ -100,7 +108,7 @@ struct Walker
         if (inItem && element == 0xe00d)
         {
           p += 8;
-          return true;
+          return length == 0 || Fail("an item delimiter with a length", p - 8);
         }
         return Fail("a misplaced item or delimiter tag", p);
       }
@@ -151,7 +159,8 @@ struct Walker
       p += 8;
       if (element == 0xe0dd)
       {
-        return true;
+        // Delimiters have length 0 (PS3.5 §7.5); GDCM would allocate any other as a fragment.
+        return length == 0 || Fail("a sequence delimiter with a length", p - 8);
       }
       if (length == Undefined)
       {
@@ -222,6 +231,12 @@ Structure CheckStructure(const std::string& file, FileFacts& facts, std::string&
   {
     error = file + " has a deflated data set (Deflated Explicit VR Little Endian), which this " +
       "reader does not support";
+    return Structure::Unwalkable;
+  }
+  // Every standard syntax but two encodes explicit VR little endian; GDCM guesses for others.
+  if (transferSyntax.rfind("1.2.840.10008.1.2", 0) != 0)
+  {
+    error = file + " has the unknown transfer syntax \"" + transferSyntax + "\"";
     return Structure::Unwalkable;
   }
   walk.Explicit = transferSyntax != "1.2.840.10008.1.2";

@@ -20,7 +20,7 @@ enum class Structure
   Complete,  ///< every element lies within the file
   NotDicom,  ///< no "DICM" after the 128-byte preamble
   Damaged,   ///< "DICM", but an element runs past the end or the structure is broken
-  Unwalkable ///< a deflated data set: its elements cannot be checked without inflating
+  Unwalkable ///< deflated or unknown transfer syntax: its elements cannot be walked
 };
 
 /// What the walk found besides completeness.
