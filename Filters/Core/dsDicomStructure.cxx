@@ -38,8 +38,8 @@ struct Walker
   }
 
   /// The element header at p: tag, value length, header size; false when it does not fit.
-  bool Header(size_t p, uint16_t& group, uint16_t& element, uint32_t& length, size_t& size,
-    bool& implicitInside)
+  bool Header(
+    size_t p, uint16_t& group, uint16_t& element, uint32_t& length, size_t& size, std::string& vr)
   {
     if (p + 8 > Bytes.size())
     {
@@ -47,14 +47,14 @@ struct Walker
     }
     group = U16(p);
     element = U16(p + 2);
-    implicitInside = false;
+    vr.clear();
     if (!Explicit || group == 0xfffe) // item tags have no VR in any syntax
     {
       length = U32(p + 4);
       size = 8;
       return true;
     }
-    const std::string vr(reinterpret_cast<const char*>(&Bytes[p + 4]), 2);
+    vr.assign(reinterpret_cast<const char*>(&Bytes[p + 4]), 2);
     // An unknown VR: GDCM then guesses (and may read the file another way than this walk).
     static const std::string known = "AE AS AT CS DA DS DT FD FL IS LO LT OB OD OF OL OV OW PN SH "
                                      "SL SQ SS ST SV TM UC UI UL UN UR US UT UV";
@@ -82,7 +82,6 @@ struct Walker
     }
     length = U32(p + 8);
     size = 12;
-    implicitInside = vr == "UN"; // an undefined-length UN holds implicit VR (PS3.5 §6.2.2)
     return true;
   }
 
@@ -98,8 +97,8 @@ struct Walker
       uint16_t group, element;
       uint32_t length;
       size_t size;
-      bool implicitInside;
-      if (!Header(p, group, element, length, size, implicitInside))
+      std::string vr;
+      if (!Header(p, group, element, length, size, vr))
       {
         return false;
       }
@@ -119,8 +118,16 @@ struct Walker
       }
       if (length == Undefined)
       {
+        // GDCM asserts on any other undefined length: a sequence, an unknown (UN, whose items
+        // are implicit VR: PS3.5 §6.2.2) or encapsulated (OB, OW) Pixel Data.
+        const bool pixels = group == 0x7fe0 && element == 0x0010;
+        if (!vr.empty() &&
+          !(pixels ? (vr == "OB" || vr == "OW" || vr == "UN") : (vr == "SQ" || vr == "UN")))
+        {
+          return Fail("an undefined length on a " + vr + " element", p - size);
+        }
         const bool wasExplicit = Explicit;
-        Explicit = Explicit && !implicitInside;
+        Explicit = Explicit && vr != "UN";
         const bool ok = Items(p, depth + 1);
         Explicit = wasExplicit;
         if (!ok)
@@ -213,8 +220,8 @@ Structure CheckStructure(const std::string& file, FileFacts& facts, std::string&
     uint16_t group, element;
     uint32_t length;
     size_t size;
-    bool implicitInside;
-    if (!walk.Header(p, group, element, length, size, implicitInside) || length == Undefined ||
+    std::string vr;
+    if (!walk.Header(p, group, element, length, size, vr) || length == Undefined ||
       length > bytes.size() - p - size)
     {
       error = file + " is damaged in its meta header: " +
