@@ -41,24 +41,30 @@ std::string Text(const gdcm::DataSet& ds, const gdcm::Tag& tag)
   return begin == std::string::npos ? "" : s.substr(begin);
 }
 
-/// A Decimal String of exactly `count` finite values ("a\b\c"); false if absent or malformed.
+/// A Decimal String of exactly `count` finite values ("a\b\c") into `values`; false, and
+/// `values` untouched, if absent or malformed.
 bool Decimals(const gdcm::DataSet& ds, const gdcm::Tag& tag, int count, double* values)
 {
   std::stringstream text(Text(ds, tag));
   std::string item;
-  int n = 0;
+  std::vector<double> parsed;
   while (std::getline(text, item, '\\'))
   {
     const char* begin = item.c_str();
     char* end = nullptr;
     const double v = std::strtod(begin, &end);
-    if (n >= count || end == begin || !std::isfinite(v))
+    if (end == begin || !std::isfinite(v))
     {
       return false;
     }
-    values[n++] = v;
+    parsed.push_back(v);
   }
-  return n == count;
+  if (static_cast<int>(parsed.size()) != count)
+  {
+    return false;
+  }
+  std::copy(parsed.begin(), parsed.end(), values);
+  return true;
 }
 
 /// An unsigned short element (Rows, Bits Allocated, ...); `fallback` when absent or malformed.
@@ -280,6 +286,30 @@ void TiltWarning(const std::vector<SliceHeader>& slices, const double normal[3],
     warnings.push_back(s.str());
   }
 }
+/// The fields of the Image Plane and Image Pixel modules (PS3.3 C.7.6.2, C.7.6.3) and the
+/// rescale (C.11.1.1.2); h.TransferSyntaxUID must be set (for the byte order).
+void ImageFields(const gdcm::DataSet& ds, SliceHeader& h)
+{
+  h.HasPosition = Decimals(ds, gdcm::Tag(0x0020, 0x0032), 3, h.Position);
+  h.HasOrientation = Decimals(ds, gdcm::Tag(0x0020, 0x0037), 6, h.Orientation);
+  Decimals(ds, gdcm::Tag(0x0028, 0x0030), 2, h.PixelSpacing);
+  const std::string frames = Text(ds, gdcm::Tag(0x0028, 0x0008));
+  h.Frames =
+    frames.empty() ? 1u : static_cast<unsigned int>(std::strtoul(frames.c_str(), nullptr, 10));
+  const bool bigEndian = h.TransferSyntaxUID == "1.2.840.10008.1.2.2"; // Explicit VR Big Endian
+  h.Rows = Short(ds, gdcm::Tag(0x0028, 0x0010), bigEndian, 0);
+  h.Columns = Short(ds, gdcm::Tag(0x0028, 0x0011), bigEndian, 0);
+  h.SamplesPerPixel = Short(ds, gdcm::Tag(0x0028, 0x0002), bigEndian, 1);
+  h.BitsAllocated = Short(ds, gdcm::Tag(0x0028, 0x0100), bigEndian, 0);
+  h.BitsStored = Short(ds, gdcm::Tag(0x0028, 0x0101), bigEndian, h.BitsAllocated);
+  h.PixelRepresentation = Short(ds, gdcm::Tag(0x0028, 0x0103), bigEndian, 0);
+  Decimals(ds, gdcm::Tag(0x0028, 0x1053), 1, &h.Slope);
+  Decimals(ds, gdcm::Tag(0x0028, 0x1052), 1, &h.Intercept);
+  if (h.Slope == 0)
+  {
+    h.Slope = 1; // a zero slope would erase the image: files that write one mean "none"
+  }
+}
 } // namespace
 
 HeaderStatus ReadHeader(const std::string& file, SliceHeader& h, std::string& error)
@@ -328,25 +358,7 @@ HeaderStatus ReadHeader(const std::string& file, SliceHeader& h, std::string& er
   gdcm::UIDs uid;
   h.TransferSyntaxName =
     uid.SetFromUID(h.TransferSyntaxUID.c_str()) && uid.GetName() ? uid.GetName() : "unknown";
-  h.HasPosition = Decimals(ds, gdcm::Tag(0x0020, 0x0032), 3, h.Position);
-  h.HasOrientation = Decimals(ds, gdcm::Tag(0x0020, 0x0037), 6, h.Orientation);
-  Decimals(ds, gdcm::Tag(0x0028, 0x0030), 2, h.PixelSpacing);
-  const std::string frames = Text(ds, gdcm::Tag(0x0028, 0x0008));
-  h.Frames =
-    frames.empty() ? 1u : static_cast<unsigned int>(std::strtoul(frames.c_str(), nullptr, 10));
-  const bool bigEndian = h.TransferSyntaxUID == "1.2.840.10008.1.2.2"; // Explicit VR Big Endian
-  h.Rows = Short(ds, gdcm::Tag(0x0028, 0x0010), bigEndian, 0);
-  h.Columns = Short(ds, gdcm::Tag(0x0028, 0x0011), bigEndian, 0);
-  h.SamplesPerPixel = Short(ds, gdcm::Tag(0x0028, 0x0002), bigEndian, 1);
-  h.BitsAllocated = Short(ds, gdcm::Tag(0x0028, 0x0100), bigEndian, 0);
-  h.BitsStored = Short(ds, gdcm::Tag(0x0028, 0x0101), bigEndian, h.BitsAllocated);
-  h.PixelRepresentation = Short(ds, gdcm::Tag(0x0028, 0x0103), bigEndian, 0);
-  Decimals(ds, gdcm::Tag(0x0028, 0x1053), 1, &h.Slope);
-  Decimals(ds, gdcm::Tag(0x0028, 0x1052), 1, &h.Intercept);
-  if (h.Slope == 0)
-  {
-    h.Slope = 1; // a zero slope would erase the image: files that write one mean "none"
-  }
+  ImageFields(ds, h);
   return HeaderStatus::Ok;
 }
 
