@@ -99,12 +99,19 @@ void CheckRead(const std::string& name)
 
 // GDCM 3.0's codecs leak on damaged compressed data: the JPEG 2000 codec does not destroy its
 // OpenJPEG decoder (opj_create_decompress) when a codestream fails to decode, the JPEG-LS codec
-// its buffers (gdcm::JPEGLSCodec::GetHeaderInfo, Decode). Leaks in the third-party library the
-// reader cannot avoid; LeakSanitizer reads this hook. Leaks of the reader's own code (no GDCM
-// codec on their allocation's stack) are still findings.
+// its buffers (gdcm::JPEGLSCodec::GetHeaderInfo, Decode), the JPEG codec strings. Leaks in the
+// third-party library the reader cannot avoid; LeakSanitizer reads this hook. Leaks of the
+// reader's own code (no GDCM codec on their allocation's stack) are still findings.
 extern "C" const char* __lsan_default_suppressions()
 {
   return "leak:gdcm::*Codec::\nleak:opj_create_decompress\nleak:libopenjp2.so\n";
+}
+
+// Whole allocation stacks: libc's strdup (which the JPEG codec calls) has no frame pointers, so
+// the fast unwinder stops there and the suppressions above could not see the codec.
+extern "C" const char* __asan_default_options()
+{
+  return "fast_unwind_on_malloc=0";
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
