@@ -19,6 +19,8 @@ vtk_module_add_module(DeformableSurface::Filters
   CLASSES         ${_ds_classes}
   SOURCES         ${_ds_core_sources}
   PRIVATE_HEADERS ${_ds_core_headers})
+# dsNiftiHeader reads gzipped NIfTI headers and streams with the zlib VTK's NIfTI reader uses.
+vtk_module_link(DeformableSurface::Filters PRIVATE VTK::zlib)
 vtk_module_include(DeformableSurface::Filters
   PUBLIC
     "$<BUILD_INTERFACE:${_ds_filters_dir}>"

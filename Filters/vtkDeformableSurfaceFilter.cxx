@@ -5,8 +5,11 @@
 #include "dsSelfIntersectionCount.h"
 #include "dsSolver.h"
 #include "dsTriangleMesh.h"
+#include "dsVTKAnimation.h"
 #include "dsVTKImage.h"
+#include "dsVTKMesh.h"
 #include "dsVTKPieces.h"
+#include "dsVTKWarmStart.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -43,7 +46,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkDeformableSurfaceFilter);
@@ -255,28 +260,6 @@ vtkSmartPointer<vtkDoubleArray> PointArray(const char* name, const std::vector<d
   return a;
 }
 
-/// The deformed mesh as vtkPolyData with the solver's per-vertex arrays.
-/// The mesh's points and triangles into `output` (nothing else).
-void SetGeometry(const dsurf::TriangleMesh& mesh, vtkPolyData* output)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(mesh.NumberOfPoints());
-  for (int i = 0; i < mesh.NumberOfPoints(); ++i)
-  {
-    points->SetPoint(i, mesh.Points[i].data());
-  }
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(mesh.NumberOfTriangles(), 3 * mesh.NumberOfTriangles());
-  for (const auto& t : mesh.Triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    polys->InsertNextCell(3, ids);
-  }
-  output->SetPoints(points);
-  output->SetPolys(polys);
-}
-
 /// The core's coarse copy of a start far finer than sigma_0 (MultilevelSolver::CoarsenStart):
 /// vertex clustering on a grid of `edge` (Lindstrom 2000, vtkQuadricClustering), linear in
 /// the triangles (~1 s for 1.3 M; decimation by edge collapse took ~60 s). It can merge thin
@@ -284,7 +267,7 @@ void SetGeometry(const dsurf::TriangleMesh& mesh, vtkPolyData* output)
 bool CoarsenMesh(const dsurf::TriangleMesh& fine, double edge, dsurf::TriangleMesh& coarse)
 {
   vtkNew<vtkPolyData> poly;
-  SetGeometry(fine, poly);
+  dsurf::SetPolyDataGeometry(fine, poly);
   double bounds[6];
   poly->GetBounds(bounds);
   // The clustering keeps a dense grid (~90 bytes a cell): at most MaxClusterDivisions cells
@@ -304,11 +287,12 @@ bool CoarsenMesh(const dsurf::TriangleMesh& fine, double edge, dsurf::TriangleMe
   return BuildMesh(cluster->GetOutput(), coarse, error);
 }
 
+/// The deformed mesh as vtkPolyData with the solver's per-vertex arrays.
 void FillOutput(
   const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, vtkPolyData* output)
 {
   const int nPts = mesh.NumberOfPoints();
-  SetGeometry(mesh, output);
+  dsurf::SetPolyDataGeometry(mesh, output);
 
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
@@ -365,29 +349,6 @@ vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
   return piece;
 }
 
-/// AnimateSweeps keeps at most this many snapshots (the time steps reported) and this much
-/// memory in them; later steps show the final surface.
-constexpr std::size_t MaxSnapshots = 1001;
-constexpr double MaxSnapshotBytes = 512.0 * 1024 * 1024;
-
-/// Memory of one snapshot: double points, 64-bit connectivity and offsets.
-double SnapshotBytes(const dsurf::TriangleMesh& mesh)
-{
-  return 24.0 * mesh.NumberOfPoints() + 32.0 * mesh.NumberOfTriangles();
-}
-
-/// The mesh's points and triangles as vtkPolyData with field data Sweeps (a time step).
-vtkSmartPointer<vtkPolyData> MeshSnapshot(const dsurf::TriangleMesh& mesh, int sweeps)
-{
-  auto snapshot = vtkSmartPointer<vtkPolyData>::New();
-  SetGeometry(mesh, snapshot);
-  vtkNew<vtkIntArray> count;
-  count->SetName("Sweeps");
-  count->InsertNextValue(sweeps);
-  snapshot->GetFieldData()->AddArray(count);
-  return snapshot;
-}
-
 template <typename ArrayT, typename T>
 void AddFieldValue(vtkFieldData* fd, const char* name, T value)
 {
@@ -420,26 +381,108 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
   AddFieldValue<vtkStringArray>(fd, "StopReason", dsurf::StopReasonName(solver.GetStopReason()));
   AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
 }
-/// One property and its core parameter: copied into the core (toCore) or from it.
-template <typename Mine, typename Core>
-void Exchange(Mine& mine, Core& core, bool toCore)
+/// PrintSelf's line of one parameter.
+template <typename T>
+void PrintParameter(ostream& os, vtkIndent indent, const char* name, T value)
 {
-  if (toCore)
-  {
-    core = static_cast<Core>(mine);
-  }
-  else
-  {
-    mine = static_cast<Mine>(core);
-  }
+  os << indent << name << ": " << value << "\n";
+}
+void PrintParameter(ostream& os, vtkIndent indent, const char* name, double* pair)
+{
+  os << indent << name << ": " << pair[0] << " " << pair[1] << "\n";
 }
 } // namespace
 
+// The accessors of the parameters (vtkDeformableSurfaceFilter_PARAMETERS in the header), as
+// vtkSetClampMacro, vtkSetMacro with vtkBooleanMacro, vtkSetVector2Macro and their Get macros
+// define them, on the fields that hold the parameters.
+// clang-format off
+#define vtkDeformableSurfaceFilter_FIELD_TYPE(field) std::remove_reference_t<decltype(this->field)>
+#define vtkDeformableSurfaceFilter_GET(name, type, field)                                          \
+  type vtkDeformableSurfaceFilter::Get##name()                                                     \
+  {                                                                                                \
+    return static_cast<type>(this->field);                                                         \
+  }
+#define vtkDeformableSurfaceFilter_DEFINE_NUMBER(name, type, field, min, max)                      \
+  vtkDeformableSurfaceFilter_GET(name, type, field)                                                \
+  void vtkDeformableSurfaceFilter::Set##name(type value)                                           \
+  {                                                                                                \
+    vtkDebugMacro(<< "setting " #name " to " << value);                                            \
+    const type clamped = value < (min) ? (min) : (value > (max) ? (max) : value);                  \
+    if (this->Get##name() != clamped)                                                              \
+    {                                                                                              \
+      this->field = static_cast<vtkDeformableSurfaceFilter_FIELD_TYPE(field)>(clamped);            \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  type vtkDeformableSurfaceFilter::Get##name##MinValue()                                           \
+  {                                                                                                \
+    return (min);                                                                                  \
+  }                                                                                                \
+  type vtkDeformableSurfaceFilter::Get##name##MaxValue()                                           \
+  {                                                                                                \
+    return (max);                                                                                  \
+  }
+#define vtkDeformableSurfaceFilter_DEFINE_CUSTOM(name, type, field)                                \
+  vtkDeformableSurfaceFilter_GET(name, type, field)
+#define vtkDeformableSurfaceFilter_DEFINE_FLAG(name, field)                                        \
+  vtkDeformableSurfaceFilter_GET(name, bool, field)                                                \
+  void vtkDeformableSurfaceFilter::Set##name(bool value)                                           \
+  {                                                                                                \
+    vtkDebugMacro(<< "setting " #name " to " << value);                                            \
+    if (this->field != value)                                                                      \
+    {                                                                                              \
+      this->field = value;                                                                         \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void vtkDeformableSurfaceFilter::name##On()                                                      \
+  {                                                                                                \
+    this->Set##name(true);                                                                         \
+  }                                                                                                \
+  void vtkDeformableSurfaceFilter::name##Off()                                                     \
+  {                                                                                                \
+    this->Set##name(false);                                                                        \
+  }
+#define vtkDeformableSurfaceFilter_DEFINE_PAIR(name, type, field)                                  \
+  void vtkDeformableSurfaceFilter::Set##name(type first, type second)                              \
+  {                                                                                                \
+    vtkDebugMacro(<< "setting " #name " to (" << first << "," << second << ")");                   \
+    if (this->field[0] != first || this->field[1] != second)                                       \
+    {                                                                                              \
+      this->field[0] = first;                                                                      \
+      this->field[1] = second;                                                                     \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  void vtkDeformableSurfaceFilter::Set##name(const type values[2])                                 \
+  {                                                                                                \
+    this->Set##name(values[0], values[1]);                                                         \
+  }                                                                                                \
+  type* vtkDeformableSurfaceFilter::Get##name()                                                    \
+  {                                                                                                \
+    return this->field;                                                                            \
+  }                                                                                                \
+  void vtkDeformableSurfaceFilter::Get##name(type& first, type& second)                            \
+  {                                                                                                \
+    first = this->field[0];                                                                        \
+    second = this->field[1];                                                                       \
+  }                                                                                                \
+  void vtkDeformableSurfaceFilter::Get##name(type values[2])                                       \
+  {                                                                                                \
+    this->Get##name(values[0], values[1]);                                                         \
+  }
+vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_DEFINE_NUMBER,
+  vtkDeformableSurfaceFilter_DEFINE_CUSTOM, vtkDeformableSurfaceFilter_DEFINE_FLAG,
+  vtkDeformableSurfaceFilter_DEFINE_PAIR);
+// clang-format on
+
 //------------------------------------------------------------------------------
 vtkDeformableSurfaceFilter::vtkDeformableSurfaceFilter()
+  : Parameters(std::make_unique<dsurf::MultilevelParameters>())
+  , Animation(std::make_unique<dsurf::SweepAnimation>())
+  , Warm(std::make_unique<dsurf::WarmStart>())
 {
-  dsurf::MultilevelParameters defaults;
-  this->ExchangeParameters(defaults, false);
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
   this->SetInputArrayToProcess(
@@ -473,9 +516,9 @@ void vtkDeformableSurfaceFilter::SetGamma(double gamma)
     vtkWarningMacro("Gamma " << gamma << " is outside the stable range (0, " << MaxStableGamma
                              << "]; using " << clamped << ".");
   }
-  if (this->Gamma != clamped)
+  if (this->Parameters->Solver.Gamma != clamped)
   {
-    this->Gamma = clamped;
+    this->Parameters->Solver.Gamma = clamped;
     this->Modified();
   }
 }
@@ -507,60 +550,22 @@ int vtkDeformableSurfaceFilter::FillOutputPortInformation(int port, vtkInformati
 }
 
 //------------------------------------------------------------------------------
-// AnimateSweeps: time steps 0, S, 2S, ... (the time value is the number of sweeps) up to the
-// schedule's cap, at most 1000 of them.
+// AnimateSweeps: time steps up to the schedule's cap (dsVTKAnimation.h).
 int vtkDeformableSurfaceFilter::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!this->AnimateSweeps)
+  if (!this->Animation->AnimateSweeps)
   {
     return 1; // the inputs' time steps, if any, pass through as for any filter
   }
-  const long long S = this->SweepsPerTimeStep;
-  long long bound = static_cast<long long>(this->MaxLevels + 1) * this->MaxSweepsPerLevel;
-  if (this->MaxSweeps > 0)
+  const dsurf::MultilevelParameters& p = *this->Parameters;
+  long long bound = static_cast<long long>(p.MaxLevels + 1) * p.MaxSweepsPerLevel;
+  if (p.MaxSweeps > 0)
   {
-    bound = std::min<long long>(bound, this->MaxSweeps);
+    bound = std::min<long long>(bound, p.MaxSweeps);
   }
-  const long long steps =
-    std::min<long long>(static_cast<long long>(MaxSnapshots) - 1, (bound + S - 1) / S);
-  std::vector<double> times(static_cast<std::size_t>(steps + 1));
-  for (long long k = 0; k <= steps; ++k)
-  {
-    times[static_cast<std::size_t>(k)] = static_cast<double>(k * S);
-  }
-  outInfo->Set(
-    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-  const double range[2] = { 0.0, times.back() };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  this->Animation->ReportTimeSteps(bound, outputVector->GetInformationObject(0));
   return 1;
-}
-
-void vtkDeformableSurfaceFilter::ServeTimeStep(double t, vtkPolyData* output)
-{
-  const double k = t < 0 ? -1.0 : std::floor(t / this->SweepsPerTimeStep + 1e-9);
-  const bool snapshot = k >= 0 && k < static_cast<double>(this->Snapshots.size());
-  output->ShallowCopy(
-    snapshot ? this->Snapshots[static_cast<std::size_t>(k)].Get() : this->AnimationResult.Get());
-  if (t >= 0)
-  {
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
-  }
-}
-
-bool vtkDeformableSurfaceFilter::ServeFromCache(vtkImageData* image, vtkPolyData* surface,
-  const vtkMTimeType key[3], double t, vtkPolyData* output, vtkTable* table)
-{
-  if (!this->AnimateSweeps || !this->AnimationResult || this->AnimationInputs[0] != image ||
-    this->AnimationInputs[1] != surface || !std::equal(key, key + 3, this->AnimationKey))
-  {
-    return false;
-  }
-  vtkDebugMacro(<< "Time " << t << " from the cache.");
-  this->ServeTimeStep(t, output);
-  table->ShallowCopy(this->AnimationTable);
-  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -575,29 +580,7 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
     imageInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     // This process's piece and the ghost layers the levels' sigma need (docs/METHOD.md §9.8).
-    // The start is not known yet: the ghosts allow for any sigma_0 up to its largest, extent
-    // / 6, and for its probe (MultilevelSolver::DistributedGhostVoxels): a bounded number.
-    const int* whole = imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-    dsurf::ImageGeometry geometry;
-    for (int a = 0; a < 3; ++a)
-    {
-      geometry.Dimensions[a] = whole[2 * a + 1] - whole[2 * a] + 1;
-      geometry.Spacing[a] = imageInfo->Has(vtkDataObject::SPACING())
-        ? imageInfo->Get(vtkDataObject::SPACING())[a]
-        : 1.0;
-    }
-    dsurf::MultilevelParameters mp;
-    this->ExchangeParameters(mp, true);
-    int ghost = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      ghost = std::max(ghost, dsurf::MultilevelSolver::DistributedGhostVoxels(mp, geometry, a));
-    }
-    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(),
-      this->Controller->GetLocalProcessId());
-    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(),
-      this->Controller->GetNumberOfProcesses());
-    imageInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), ghost);
+    dsurf::RequestImagePiece(this->Controller, *this->Parameters, imageInfo);
     imageInfo = nullptr; // no whole-image request below
   }
   if (imageInfo)
@@ -612,7 +595,7 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
       imageInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
     }
   }
-  if (this->AnimateSweeps)
+  if (this->Animation->AnimateSweeps)
   {
     // The output's time is a number of sweeps, not the inputs' time.
     for (int port = 0; port < 2; ++port)
@@ -633,34 +616,6 @@ int vtkDeformableSurfaceFilter::RequestUpdateExtent(
     surfaceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   }
   return 1;
-}
-
-//------------------------------------------------------------------------------
-void vtkDeformableSurfaceFilter::ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore)
-{
-  Exchange(this->Tau, core.Solver.Tau, toCore);
-  Exchange(this->Gamma, core.Solver.Gamma, toCore);
-  Exchange(this->ProjectExternalForce, core.Solver.ProjectExternalForce, toCore);
-  Exchange(this->NumberOfThreads, core.Solver.NumberOfThreads, toCore);
-  Exchange(this->EdgeWeight, core.EdgeWeight, toCore);
-  Exchange(this->ImageWeight, core.ImageWeight, toCore);
-  Exchange(this->Sigma, core.Sigma, toCore);
-  Exchange(this->SigmaFraction, core.SigmaFraction, toCore);
-  Exchange(this->EdgeNormalization, core.EdgeNormalization, toCore);
-  Exchange(this->RegionWeight, core.RegionWeight, toCore);
-  Exchange(this->IntensityRange[0], core.IntensityRange[0], toCore);
-  Exchange(this->IntensityRange[1], core.IntensityRange[1], toCore);
-  Exchange(this->HierarchicalSigma, core.HierarchicalSigma, toCore);
-  Exchange(this->MaxLevels, core.MaxLevels, toCore);
-  Exchange(this->MaxSweepsPerLevel, core.MaxSweepsPerLevel, toCore);
-  Exchange(this->ConvergenceTolerance, core.ConvergenceTolerance, toCore);
-  Exchange(this->RefinementThreshold, core.RefinementThreshold, toCore);
-  Exchange(this->UniformRefinement, core.UniformRefinement, toCore);
-  Exchange(this->SubdivideInitialSurface, core.SubdivideInitialSurface, toCore);
-  Exchange(this->ButterflyProlongation, core.ButterflyProlongation, toCore);
-  Exchange(this->MaxVertices, core.MaxVertices, toCore);
-  Exchange(this->CheckTopology, core.CheckTopology, toCore);
-  Exchange(this->MaxSweeps, core.MaxSweeps, toCore);
 }
 
 //------------------------------------------------------------------------------
@@ -694,36 +649,6 @@ void vtkDeformableSurfaceFilter::Report(const dsurf::MultilevelSolver& solver)
 }
 
 //------------------------------------------------------------------------------
-void vtkDeformableSurfaceFilter::KeepResult(vtkImageData* image, vtkPolyData* surface,
-  const vtkMTimeType key[3], bool complete, vtkPolyData* output, vtkTable* table)
-{
-  if (this->ContinueFromLastResult && complete)
-  {
-    // A copy of the final surface: downstream filters must not be able to change where the
-    // next run starts (and with AnimateSweeps the output becomes a time step).
-    vtkNew<vtkPolyData> shape;
-    shape->SetPoints(output->GetPoints());
-    shape->SetPolys(output->GetPolys());
-    this->LastResult = vtkSmartPointer<vtkPolyData>::New();
-    this->LastResult->DeepCopy(shape);
-    this->LastImage = image;
-    this->LastImageTime = image->GetMTime();
-    this->LastSurface = surface;
-    this->LastSurfaceTime = surface->GetMTime();
-  }
-  if (this->AnimateSweeps)
-  {
-    this->AnimationResult = vtkSmartPointer<vtkPolyData>::New();
-    this->AnimationResult->DeepCopy(output);
-    this->AnimationTable = vtkSmartPointer<vtkTable>::New();
-    this->AnimationTable->DeepCopy(table);
-    std::copy(key, key + 3, this->AnimationKey);
-    this->AnimationInputs[0] = complete ? image : nullptr; // an incomplete run is never a hit
-    this->AnimationInputs[1] = complete ? surface : nullptr;
-  }
-}
-
-//------------------------------------------------------------------------------
 bool vtkDeformableSurfaceFilter::ReadImage(
   vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
 {
@@ -751,14 +676,15 @@ bool vtkDeformableSurfaceFilter::ReadImage(
 //------------------------------------------------------------------------------
 bool vtkDeformableSurfaceFilter::ParametersAreFinite()
 {
-  // vtkSetClampMacro lets NaN through: a NaN Tau gives NaN coordinates, a NaN Sigma falls
-  // back to SigmaFraction, a NaN tolerance never converges.
-  const std::string nonFinite = dsurf::FirstNonFinite(
-    { { "Tau", this->Tau }, { "Gamma", this->Gamma }, { "EdgeWeight", this->EdgeWeight },
-      { "ImageWeight", this->ImageWeight }, { "Sigma", this->Sigma },
-      { "SigmaFraction", this->SigmaFraction }, { "RegionWeight", this->RegionWeight },
-      { "ConvergenceTolerance", this->ConvergenceTolerance },
-      { "RefinementThreshold", this->RefinementThreshold } });
+  // The clamps let NaN through: a NaN Tau gives NaN coordinates, a NaN Sigma falls back to
+  // SigmaFraction, a NaN tolerance never converges. (IntensityRange is the core's to check: a
+  // range that is not finite is estimated instead, with a warning.)
+#define vtkDeformableSurfaceFilter_NUMBER_VALUE(name, ...)                                         \
+  { #name, static_cast<double>(this->Get##name()) },
+#define vtkDeformableSurfaceFilter_NO_NUMBER(...)
+  const std::string nonFinite = dsurf::FirstNonFinite({ vtkDeformableSurfaceFilter_PARAMETERS(
+    vtkDeformableSurfaceFilter_NUMBER_VALUE, vtkDeformableSurfaceFilter_NUMBER_VALUE,
+    vtkDeformableSurfaceFilter_NO_NUMBER, vtkDeformableSurfaceFilter_NO_NUMBER) });
   if (!nonFinite.empty())
   {
     vtkErrorMacro(<< nonFinite << " is not a finite number: set it to a value in its range.");
@@ -797,14 +723,11 @@ bool vtkDeformableSurfaceFilter::StartMesh(vtkPolyData* start, dsurf::TriangleMe
 bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::TriangleMesh& mesh,
   dsurf::MultilevelSolver& solver, vtkTable* table)
 {
-  dsurf::MultilevelParameters mp;
-  this->ExchangeParameters(mp, true);
-  this->Snapshots.clear();
-  this->AnimationResult = nullptr;
-  if (this->AnimateSweeps)
+  dsurf::MultilevelParameters mp = *this->Parameters;
+  this->Animation->Begin(mesh);
+  if (this->Animation->AnimateSweeps)
   {
     mp.SweepBatch = 1; // a snapshot exactly every SweepsPerTimeStep sweeps
-    this->Snapshots.push_back(MeshSnapshot(mesh, 0));
   }
   if (this->OnPieces)
   {
@@ -824,12 +747,7 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
   solver.SetSweepCallback(
     [&columns, this](const dsurf::SweepRecord& r, const dsurf::TriangleMesh& m)
     {
-      if (this->AnimateSweeps && r.Sweep % this->SweepsPerTimeStep == 0 &&
-        this->Snapshots.size() < MaxSnapshots &&
-        static_cast<double>(this->Snapshots.size() + 1) * SnapshotBytes(m) <= MaxSnapshotBytes)
-      {
-        this->Snapshots.push_back(MeshSnapshot(m, r.Sweep));
-      }
+      this->Animation->Record(r.Sweep, m);
       columns.Sweep->InsertNextValue(r.Sweep);
       columns.Level->InsertNextValue(r.Level);
       columns.Sigma->InsertNextValue(r.Sigma);
@@ -852,55 +770,36 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
 //------------------------------------------------------------------------------
 bool vtkDeformableSurfaceFilter::ImageInPieces()
 {
-  // Every default is distributed; the potential only in its default form (ComputePieceForce).
-  return vtkDSPolyDataGather::IsDistributed(this->Controller) && this->EdgeWeight > 0 &&
-    this->ImageWeight == 0 &&
-    this->EdgeNormalization == GLOBAL_MAXIMUM;
+  return vtkDSPolyDataGather::IsDistributed(this->Controller) &&
+    dsurf::PotentialAllowsPieces(*this->Parameters);
 }
 
 //------------------------------------------------------------------------------
-bool vtkDeformableSurfaceFilter::ImageOnProcessZeroOnly(vtkImageData* image, const int whole[6])
+void vtkDeformableSurfaceFilter::Deliver(const dsurf::TriangleMesh& mesh,
+  const dsurf::MultilevelSolver& solver, bool warm, vtkPolyData* output)
 {
-  // A reader that cannot split its file (NIfTI, MetaImage) answers a request for pieces with
-  // the whole image on process 0 and nothing on the others: then process 0 solves alone, as
-  // with the whole image requested. Collective: every process answers alike.
-  const bool empty = !image || image->GetNumberOfPoints() <= 0;
-  bool mine = empty;
-  if (this->Controller->GetLocalProcessId() == 0)
-  {
-    mine = !empty && std::equal(whole, whole + 6, image->GetExtent());
-  }
-  return dsurf::ControllerReductions(this->Controller).Max(mine ? 0.0 : 1.0) == 0.0;
+  this->Report(solver);
+  FillOutput(mesh, solver, output);
+  const double* used = solver.GetIntensityRange();
+  AddFieldData(solver, mesh, used[0] < used[1], warm, output->GetFieldData());
 }
 
 //------------------------------------------------------------------------------
 void vtkDeformableSurfaceFilter::SolveOnPieces(vtkImageData* image, vtkDataArray* array,
   vtkPolyData* surface, const int wholeExtent[6], vtkPolyData* output, vtkTable* table)
 {
-  // Local problems first, agreed by one reduction before any other collective call, so that
-  // no process is left waiting; what follows depends only on what every process has alike.
-  dsurf::ImageVolume volume;
-  std::string problem;
-  if (!image || image->GetNumberOfPoints() <= 0)
-  {
-    problem = "this process's piece of the image is empty";
-  }
-  else
-  {
-    dsurf::GetImageVolume(image, array, dsurf::ForceFieldBytesPerVoxel, volume, problem);
-  }
   const dsurf::PieceReductions reduce = dsurf::ControllerReductions(this->Controller);
-  if (reduce.Max(problem.empty() ? 0.0 : 1.0) > 0.0)
-  {
-    vtkErrorMacro("Distributed image: "
-      << (problem.empty() ? "another process's piece of the image is empty or invalid" : problem)
-      << ".");
-    return;
-  }
   const int rank = this->Controller->GetLocalProcessId();
   const int ranks = this->Controller->GetNumberOfProcesses();
-  const dsurf::ImagePiece piece =
-    dsurf::ImagePieceOf(volume.Image, image->GetExtent(), wholeExtent, rank, ranks);
+  dsurf::ImageVolume volume;
+  dsurf::ImagePiece piece;
+  std::string problem;
+  if (!dsurf::ReadImagePiece(
+        reduce, rank, ranks, image, array, wholeExtent, volume, piece, problem))
+  {
+    vtkErrorMacro("Distributed image: " << problem << ".");
+    return;
+  }
   dsurf::TriangleMesh mesh;
   dsurf::MultilevelSolver solver;
   solver.SetDistribution(piece, reduce);
@@ -913,27 +812,14 @@ void vtkDeformableSurfaceFilter::SolveOnPieces(vtkImageData* image, vtkDataArray
   const bool solved = this->ParametersAreFinite() && this->StartMesh(surface, mesh) &&
     this->Solve(whole, mesh, solver, table);
   this->OnPieces = false;
-  std::vector<double> held(ranks, 0.0);
-  held[rank] = static_cast<double>(piece.Held.NumberOfVoxels());
-  reduce.Sum(held);
+  const std::vector<double> held = dsurf::HeldVoxels(reduce, piece, rank, ranks);
   if (!solved || rank != 0)
   {
     table->Initialize(); // the surface and the table are delivered once, by process 0
     return;
   }
-  this->Report(solver);
-  FillOutput(mesh, solver, output);
-  const double* used = solver.GetIntensityRange();
-  AddFieldData(solver, mesh, used[0] < used[1], false, output->GetFieldData());
-  vtkNew<vtkDoubleArray> voxels;
-  voxels->SetName("PieceVoxels");
-  for (double h : held)
-  {
-    voxels->InsertNextValue(h);
-  }
-  output->GetFieldData()->AddArray(voxels);
-  AddFieldValue<vtkDoubleArray>(
-    output->GetFieldData(), "ImageVoxels", static_cast<double>(piece.Whole.NumberOfVoxels()));
+  this->Deliver(mesh, solver, false, output);
+  dsurf::AddPieceFieldData(held, piece, output->GetFieldData());
 }
 
 //------------------------------------------------------------------------------
@@ -966,7 +852,8 @@ int vtkDeformableSurfaceFilter::RequestData(
     {
       imageInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
     }
-    if (this->ImageInPieces() && !this->ImageOnProcessZeroOnly(image, wholeExtent))
+    if (this->ImageInPieces() &&
+      !dsurf::ImageOnProcessZeroOnly(this->Controller, image, wholeExtent))
     {
       this->Controller->Broadcast(gathered, 0); // every process solves
       this->SolveOnPieces(
@@ -992,13 +879,14 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
   // AnimateSweeps: a time step already computed comes from the cache, before any work.
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const double requestedTime =
-    this->AnimateSweeps && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
+  const double requestedTime = this->Animation->AnimateSweeps &&
+      outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP())
     : -1.0;
   const vtkMTimeType key[3] = { image->GetMTime(), surface->GetMTime(), this->GetMTime() };
-  if (this->ServeFromCache(image, surface, key, requestedTime, output, table))
+  if (this->Animation->Serve(image, surface, key, requestedTime, output, table))
   {
+    vtkDebugMacro(<< "Time " << requestedTime << " from the cache.");
     return 1;
   }
 
@@ -1010,27 +898,26 @@ int vtkDeformableSurfaceFilter::RequestData(
   }
   // The start: the input, or the last result (warm start) when only the filter's own
   // parameters changed since.
-  const bool warm = this->ContinueFromLastResult && !distributed && this->LastResult &&
-    this->LastImage == image && this->LastImageTime == image->GetMTime() &&
-    this->LastSurface == surface && this->LastSurfaceTime == surface->GetMTime();
-  vtkDebugMacro(<< (warm ? "Warm start from the last result." : "Start from the initial surface."));
+  vtkPolyData* last = distributed ? nullptr : this->Warm->StartFor(image, surface);
+  vtkDebugMacro(<< (last ? "Warm start from the last result." : "Start from the initial surface."));
   dsurf::TriangleMesh mesh;
   dsurf::MultilevelSolver solver;
-  if (!this->StartMesh(warm ? this->LastResult.Get() : surface, mesh) ||
-    !this->Solve(volume, mesh, solver, table))
+  if (!this->StartMesh(last ? last : surface, mesh) || !this->Solve(volume, mesh, solver, table))
   {
     return 1;
   }
-  this->Report(solver);
-  FillOutput(mesh, solver, output);
-  const double* used = solver.GetIntensityRange();
-  AddFieldData(solver, mesh, used[0] < used[1], warm, output->GetFieldData());
+  this->Deliver(mesh, solver, last != nullptr, output);
   // Warm start and time steps: only complete, serial results (an aborted run's steps would be
   // served as the solve's; a distributed run gathers a new surface every time).
-  this->KeepResult(image, surface, key, !distributed && !solver.GetAborted(), output, table);
-  if (this->AnimateSweeps)
+  const bool complete = !distributed && !solver.GetAborted();
+  if (complete)
   {
-    this->ServeTimeStep(requestedTime, output);
+    this->Warm->Keep(image, surface, output);
+  }
+  this->Animation->Keep(image, surface, key, complete, output, table);
+  if (this->Animation->AnimateSweeps)
+  {
+    this->Animation->ServeTimeStep(requestedTime, output);
   }
   this->UpdateProgress(1.0);
   return 1;
@@ -1040,31 +927,10 @@ int vtkDeformableSurfaceFilter::RequestData(
 void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Tau: " << this->Tau << "\n";
-  os << indent << "Gamma: " << this->Gamma << "\n";
-  os << indent << "EdgeWeight: " << this->EdgeWeight << "\n";
-  os << indent << "ImageWeight: " << this->ImageWeight << "\n";
-  os << indent << "Sigma: " << this->Sigma << "\n";
-  os << indent << "SigmaFraction: " << this->SigmaFraction << "\n";
-  os << indent << "EdgeNormalization: " << this->EdgeNormalization << "\n";
-  os << indent << "RegionWeight: " << this->RegionWeight << "\n";
-  os << indent << "IntensityRange: " << this->IntensityRange[0] << " " << this->IntensityRange[1]
-     << "\n";
-  os << indent << "MaxSweepsPerLevel: " << this->MaxSweepsPerLevel << "\n";
-  os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
-  os << indent << "MaxLevels: " << this->MaxLevels << "\n";
-  os << indent << "RefinementThreshold: " << this->RefinementThreshold << "\n";
-  os << indent << "UniformRefinement: " << this->UniformRefinement << "\n";
-  os << indent << "SubdivideInitialSurface: " << this->SubdivideInitialSurface << "\n";
-  os << indent << "HierarchicalSigma: " << this->HierarchicalSigma << "\n";
-  os << indent << "ButterflyProlongation: " << this->ButterflyProlongation << "\n";
-  os << indent << "MaxVertices: " << this->MaxVertices << "\n";
-  os << indent << "CheckTopology: " << this->CheckTopology << "\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
-  os << indent << "ProjectExternalForce: " << this->ProjectExternalForce << "\n";
-  os << indent << "ContinueFromLastResult: " << this->ContinueFromLastResult << "\n";
-  os << indent << "MaxSweeps: " << this->MaxSweeps << "\n";
-  os << indent << "AnimateSweeps: " << this->AnimateSweeps << "\n";
-  os << indent << "SweepsPerTimeStep: " << this->SweepsPerTimeStep << "\n";
+#define vtkDeformableSurfaceFilter_PRINT(name, ...)                                                \
+  PrintParameter(os, indent, #name, this->Get##name());
+  vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_PRINT,
+    vtkDeformableSurfaceFilter_PRINT, vtkDeformableSurfaceFilter_PRINT,
+    vtkDeformableSurfaceFilter_PRINT);
   os << indent << "Controller: " << this->Controller << "\n";
 }

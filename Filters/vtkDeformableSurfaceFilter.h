@@ -52,7 +52,7 @@
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
- * Start surface: with SubdivideInitialSurface (default on) a coarse start is first
+ * Start surface: with SubdivideInitialSurface on, a coarse start is first
  * split 1 -> 4 at edge midpoints to the mean edge length nearest 4 sigma_0 (within a factor
  * sqrt 2; the target never below two voxels; before that, the long edges of elongated
  * triangles are halved, TriangleMesh::SplitElongatedEdges), so a
@@ -118,9 +118,8 @@
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
-#include "vtkSmartPointer.h" // for the warm start's copy
 
-#include <vector> // for the time-step snapshots
+#include <memory> // for the parameters and the kept results
 
 class vtkImageData;
 class vtkMultiProcessController;
@@ -132,7 +131,68 @@ struct ImageVolume;
 struct MultilevelParameters;
 class MultilevelSolver;
 struct TriangleMesh;
+class SweepAnimation;
+class WarmStart;
 }
+
+// The parameters, one line each (CONTRIBUTING.md, "Adding a parameter"): the property's name (Set<Name> and
+// Get<Name> in C++, Python and the ParaView XML), its type here, the field that holds it, whose
+// initialiser is its one default (Parameters: dsurf::MultilevelParameters, dsMultilevel.h and
+// dsSolver.h; Animation and Warm: this filter's own, dsVTKAnimation.h and dsVTKWarmStart.h), and
+// its range. From this list come the methods below, PrintSelf and the check that refuses a NaN
+// or infinite number at the update (the clamps let NaN through).
+//   NUMBER: clamped to [min, max], as vtkSetClampMacro (Get<Name>MinValue/MaxValue too);
+//   CUSTOM: a number whose Set<Name> is written by hand (its own rule);
+//   FLAG:   on or off, as vtkSetMacro and vtkBooleanMacro (<Name>On/Off too);
+//   PAIR:   two numbers, as vtkSetVector2Macro and vtkGetVector2Macro.
+// clang-format off
+#define vtkDeformableSurfaceFilter_PARAMETERS(NUMBER, CUSTOM, FLAG, PAIR)                          \
+  NUMBER(Tau, double, Parameters->Solver.Tau, 0.0, 1.0)                                            \
+  CUSTOM(Gamma, double, Parameters->Solver.Gamma)                                                  \
+  NUMBER(EdgeWeight, double, Parameters->EdgeWeight, 0.0, VTK_DOUBLE_MAX)                          \
+  NUMBER(ImageWeight, double, Parameters->ImageWeight, 0.0, VTK_DOUBLE_MAX)                        \
+  NUMBER(Sigma, double, Parameters->Sigma, 0.0, VTK_DOUBLE_MAX)                                    \
+  NUMBER(SigmaFraction, double, Parameters->SigmaFraction, 0.0, 1.0)                               \
+  NUMBER(EdgeNormalization, int, Parameters->EdgeNormalization, GLOBAL_MAXIMUM, LOCAL)             \
+  NUMBER(RegionWeight, double, Parameters->RegionWeight, 0.0, VTK_DOUBLE_MAX)                      \
+  PAIR(IntensityRange, double, Parameters->IntensityRange)                                         \
+  NUMBER(MaxSweepsPerLevel, int, Parameters->MaxSweepsPerLevel, 1, 1000000)                        \
+  NUMBER(ConvergenceTolerance, double, Parameters->ConvergenceTolerance, 0.0, 1.0)                 \
+  NUMBER(MaxLevels, int, Parameters->MaxLevels, 0, 10)                                             \
+  NUMBER(RefinementThreshold, double, Parameters->RefinementThreshold, 0.0, VTK_DOUBLE_MAX)        \
+  FLAG(UniformRefinement, Parameters->UniformRefinement)                                           \
+  FLAG(SubdivideInitialSurface, Parameters->SubdivideInitialSurface)                               \
+  FLAG(HierarchicalSigma, Parameters->HierarchicalSigma)                                           \
+  FLAG(ButterflyProlongation, Parameters->ButterflyProlongation)                                   \
+  NUMBER(MaxVertices, vtkIdType, Parameters->MaxVertices, 4, VTK_ID_MAX)                           \
+  FLAG(CheckTopology, Parameters->CheckTopology)                                                   \
+  NUMBER(NumberOfThreads, int, Parameters->Solver.NumberOfThreads, 0, 1024)                        \
+  NUMBER(MaxSweeps, int, Parameters->MaxSweeps, 0, VTK_INT_MAX)                                    \
+  FLAG(AnimateSweeps, Animation->AnimateSweeps)                                                    \
+  NUMBER(SweepsPerTimeStep, int, Animation->SweepsPerTimeStep, 1, 1000000)                         \
+  FLAG(ContinueFromLastResult, Warm->ContinueFromLastResult)
+
+// The methods each kind of line declares (defined in vtkDeformableSurfaceFilter.cxx).
+#define vtkDeformableSurfaceFilter_NUMBER(name, type, field, min, max)                            \
+  virtual void Set##name(type value);                                                              \
+  virtual type Get##name();                                                                        \
+  virtual type Get##name##MinValue();                                                              \
+  virtual type Get##name##MaxValue();
+#define vtkDeformableSurfaceFilter_CUSTOM(name, type, field)                                       \
+  virtual void Set##name(type value);                                                              \
+  virtual type Get##name();
+#define vtkDeformableSurfaceFilter_FLAG(name, field)                                               \
+  virtual void Set##name(bool value);                                                              \
+  virtual bool Get##name();                                                                        \
+  virtual void name##On();                                                                         \
+  virtual void name##Off();
+#define vtkDeformableSurfaceFilter_PAIR(name, type, field)                                         \
+  virtual void Set##name(type first, type second);                                                 \
+  void Set##name(const type values[2]);                                                            \
+  virtual type* Get##name() VTK_SIZEHINT(2);                                                       \
+  virtual void Get##name(type& first, type& second);                                               \
+  virtual void Get##name(type values[2]);
+// clang-format on
 
 class DEFORMABLESURFACEFILTERS_EXPORT vtkDeformableSurfaceFilter : public vtkPolyDataAlgorithm
 {
@@ -147,256 +207,28 @@ public:
   void SetInitialSurfaceConnection(vtkAlgorithmOutput* output);
   void SetInitialSurfaceData(vtkDataObject* surface);
 
-  ///@{
-  /**
-   * Tau: membrane (1) versus thin-plate (0) share of the internal energy. Default 0.1.
-   */
-  vtkSetClampMacro(Tau, double, 0.0, 1.0);
-  vtkGetMacro(Tau, double);
-  ///@}
-
-  ///@{
-  /**
-   * Gamma: damping of each correction. Default 0.07. Values above 0.5 make the
-   * iteration diverge; they are clamped with a warning.
-   */
-  virtual void SetGamma(double gamma);
-  vtkGetMacro(Gamma, double);
-  ///@}
-
-  ///@{
-  /**
-   * Weights of the edge term |grad(G_sigma * f)| and the image term f of the external
-   * potential, each normalised to [0, 1]. Defaults: EdgeWeight 1, ImageWeight 0.
-   */
-  vtkSetClampMacro(EdgeWeight, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(EdgeWeight, double);
-  vtkSetClampMacro(ImageWeight, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(ImageWeight, double);
-  ///@}
-
-  ///@{
-  /**
-   * The first Gaussian sigma. Sigma > 0: that, in world units. Else SigmaFraction > 0: that
-   * fraction of the mean extent of the image (the paper's 1/6 = 0.1667). Both 0 (the
-   * defaults: Sigma 0, SigmaFraction 0): one voxel (mean spacing) with HierarchicalSigma off;
-   * else chosen from the start surface (dsInitialSigma.h). A start
-   * spanning the image (a box around the whole volume) begins at the paper's extent / 6; any other
-   * start is taken to lie near its object, and sigma_0 is the 90th percentile of its distance to
-   * the nearest edge along the vertex and face normals, between one voxel and extent / 6 (field
-   * data InitialSigma).
-   */
-  vtkSetClampMacro(Sigma, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(Sigma, double);
-  vtkSetClampMacro(SigmaFraction, double, 0.0, 1.0);
-  vtkGetMacro(SigmaFraction, double);
-  ///@}
-
   enum EdgeNormalizationModes
   {
     GLOBAL_MAXIMUM = 0,
     LOCAL = 1
   };
-  ///@{
+
   /**
-   * How the edge strength g = |grad(G_sigma * f)| is normalised in the potential.
-   * GLOBAL_MAXIMUM (default): g / max g, the strongest edge of the volume sets the scale.
-   * LOCAL: g / (G_2sigma * g + 0.05 max g), each edge against the edge strength around it, so
-   * a weak boundary far from a strong one is as strong as the strong one. (On the whole-head
-   * MRI the region force, not the normalisation, is what keeps the skin from muting the brain;
-   * docs/METHOD.md says what was measured.)
+   * The parameters' Set<Name> and Get<Name> (vtkDeformableSurfaceFilter_PARAMETERS above). What
+   * each one does is said once, at the field that holds it: dsurf::MultilevelParameters
+   * (Core/dsMultilevel.h; Tau, Gamma, NumberOfThreads in SolverParameters, Core/dsSolver.h),
+   * dsVTKAnimation.h (AnimateSweeps, SweepsPerTimeStep) and dsVTKWarmStart.h
+   * (ContinueFromLastResult); for users, with its default and range, in its Documentation in
+   * xml/DeformableSurface.xml (the ParaView help). EdgeNormalization takes the values of
+   * EdgeNormalizationModes (dsurf::EdgeNormalization, Core/dsScaleSpace.h).
    */
-  vtkSetClampMacro(EdgeNormalization, int, GLOBAL_MAXIMUM, LOCAL);
-  vtkGetMacro(EdgeNormalization, int);
-  ///@}
+  vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_NUMBER,
+    vtkDeformableSurfaceFilter_CUSTOM, vtkDeformableSurfaceFilter_FLAG,
+    vtkDeformableSurfaceFilter_PAIR);
 
   ///@{
   /**
-   * The region ("balloon") force, beyond the paper (dsRegion.h): along the vertex normal,
-   * outward where the image under the vertex lies in IntensityRange, inward where it does not
-   * (speed clamp(min(I - lo, hi - I) / (0.1 (hi - lo)), -1, 1), in edge lengths, times
-   * RegionWeight, shrinking with sigma level by level), added to the edge force before the
-   * paper's projection rule. RegionWeight 0.3 (default) suits a seed near its object (the
-   * whole-head MRI of the README), ~1 a one-click seed sphere growing to a large object given
-   * its IntensityRange; 0 turns it off. IntensityRange [lo, hi]
-   * with lo < hi is used as given. Otherwise (default [0, 0]) it is estimated from the image
-   * inside and just outside the start surface (EstimateIntensityRange), and the force is off
-   * for a start spanning the whole image (nothing outside it to compare with) or an open one
-   * (no inside), so a box around the volume solves the paper's problem unchanged. The range used
-   * is in the field data IntensityRange. A range matching no voxel turns the force off with a
-   * warning. Defaults: RegionWeight 0.3, IntensityRange [0, 0].
-   */
-  vtkSetClampMacro(RegionWeight, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(RegionWeight, double);
-  vtkSetVector2Macro(IntensityRange, double);
-  vtkGetVector2Macro(IntensityRange, double);
-  ///@}
-
-  ///@{
-  /**
-   * Stop a level after this many sweeps (a cap; levels normally stop on
-   * ConvergenceTolerance first). Default 2000.
-   */
-  vtkSetClampMacro(MaxSweepsPerLevel, int, 1, 1000000);
-  vtkGetMacro(MaxSweepsPerLevel, int);
-  ///@}
-
-  ///@{
-  /**
-   * A level has converged when the mean |c| of a sweep is below this fraction of the
-   * mean edge length, times sigma / sqrt(sigma^2 + voxel^2) (the width of an edge in the
-   * potential, dsurf::PotentialEdgeWidth). Default 1e-3.
-   */
-  vtkSetClampMacro(ConvergenceTolerance, double, 0.0, 1.0);
-  vtkGetMacro(ConvergenceTolerance, double);
-  ///@}
-
-  ///@{
-  /**
-   * Cap on the refinement steps after the first level (default 10, the most; 0 = a single level
-   * on the initial mesh). The levels end before it at sigma's floor (2/3 voxel) or, with
-   * constant sigma, when nothing is left to refine (field data StopReason).
-   */
-  vtkSetClampMacro(MaxLevels, int, 0, 10);
-  vtkGetMacro(MaxLevels, int);
-  ///@}
-  ///@{
-  /**
-   * A triangle is refined when the mean error estimator (the internal force) of its corners,
-   * as the distance at which the image force balances it, exceeds RefinementThreshold voxels
-   * (mean spacing): absolute, so a level refines only where the surface still rests away from
-   * the image's edge. Default 0.07. Smaller refines more.
-   */
-  vtkSetClampMacro(RefinementThreshold, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(RefinementThreshold, double);
-  ///@}
-  ///@{
-  /**
-   * Refine every triangle at every level instead of the marked ones. Default off.
-   */
-  vtkSetMacro(UniformRefinement, bool);
-  vtkGetMacro(UniformRefinement, bool);
-  vtkBooleanMacro(UniformRefinement, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Before the first level, subdivide the initial surface uniformly (midpoints: its
-   * shape is kept) until its mean edge length is at most 4 x the first sigma (but not
-   * below two voxels), so a
-   * coarse start such as a Box of 12 triangles around the whole volume is sampled
-   * finely enough for the force to pull it in evenly. Default on. The field data
-   * InitialSubdivisions says how many times it was subdivided.
-   */
-  vtkSetMacro(SubdivideInitialSurface, bool);
-  vtkGetMacro(SubdivideInitialSurface, bool);
-  vtkBooleanMacro(SubdivideInitialSurface, bool);
-  ///@}
-  ///@{
-  /**
-   * Halve sigma (and the kernel support) at every refinement. Default on. Off keeps
-   * sigma constant: for a weak boundary near a strong one; without Sigma or SigmaFraction that
-   * sigma is the paper's small one, one voxel (mean spacing).
-   */
-  vtkSetMacro(HierarchicalSigma, bool);
-  vtkGetMacro(HierarchicalSigma, bool);
-  vtkBooleanMacro(HierarchicalSigma, bool);
-  ///@}
-  ///@{
-  /**
-   * Place new vertices by the butterfly scheme (default on) or at edge midpoints.
-   */
-  vtkSetMacro(ButterflyProlongation, bool);
-  vtkGetMacro(ButterflyProlongation, bool);
-  vtkBooleanMacro(ButterflyProlongation, bool);
-  ///@}
-  ///@{
-  /**
-   * Refinement stops (with a warning) before the mesh would exceed this many vertices.
-   * Default 2 000 000.
-   */
-  vtkSetClampMacro(MaxVertices, vtkIdType, 4, VTK_ID_MAX);
-  vtkGetMacro(MaxVertices, vtkIdType);
-  ///@}
-  ///@{
-  /**
-   * Check the topology invariants (closed stays closed, manifold, Euler characteristic,
-   * orientation, no T-vertex) after every refinement; a failure is an error. Default
-   * off (always on in Debug builds).
-   */
-  vtkSetMacro(CheckTopology, bool);
-  vtkGetMacro(CheckTopology, bool);
-  vtkBooleanMacro(CheckTopology, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Threads for the solver and the force computation; 0 (default) = all cores.
-   * The result does not depend on it.
-   */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
-  ///@{
-  /**
-   * Diagnostic switch, default on: apply the paper's self-intersection rule
-   * (project the external force onto the umbrella direction or the normal).
-   * Off applies the raw force, which folds surfaces; for tests and comparisons only.
-   */
-  vtkSetMacro(ProjectExternalForce, bool);
-  vtkGetMacro(ProjectExternalForce, bool);
-  vtkBooleanMacro(ProjectExternalForce, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Stop the whole run after this many sweeps (default 0: no limit), exactly there, mid-level
-   * if need be, with a warning: a budget for huge starts, and "the surface after n sweeps".
-   */
-  vtkSetClampMacro(MaxSweeps, int, 0, VTK_INT_MAX);
-  vtkGetMacro(MaxSweeps, int);
-  ///@}
-
-  ///@{
-  /**
-   * Convergence as time steps (default off): the output reports time steps 0, S, 2S, ...
-   * (S = SweepsPerTimeStep, default 20; the time value is the number of sweeps, at most 1000
-   * steps up to the schedule's cap), and the surface at time t is the one after t sweeps (the
-   * last surface from the end of the solve on; time 0 is the start surface). The first request
-   * solves the whole schedule once and keeps a snapshot every S sweeps (points and triangles,
-   * ~24 bytes a vertex and 32 a triangle: 25 snapshots of 14 000 vertices ~ 20 MB; at most
-   * 1000 snapshots and 512 MB, later steps show the final surface); every other step, forward
-   * or back, comes from that cache until a parameter or an input changes. Serial only: a
-   * distributed run, or an aborted one, is not cached (every step solves again). Snapshots
-   * carry the geometry and the field data Sweeps; the final step carries every array. The
-   * inputs are asked for no particular time. Defaults: AnimateSweeps off, SweepsPerTimeStep 20.
-   */
-  vtkSetMacro(AnimateSweeps, bool);
-  vtkGetMacro(AnimateSweeps, bool);
-  vtkBooleanMacro(AnimateSweeps, bool);
-  vtkSetClampMacro(SweepsPerTimeStep, int, 1, 1000000);
-  vtkGetMacro(SweepsPerTimeStep, int);
-  ///@}
-
-  ///@{
-  /**
-   * Warm start, the paper's interactive tuning (default off): when on, an update after a
-   * change of the filter's own parameters (Tau, Gamma, the weights, Sigma, the region force,
-   * the hierarchy, the Scalars array...) starts from the last surface computed while it was on
-   * instead of the initial surface; a change of either input (a new image or a new start
-   * surface) starts over. Serial only: a distributed run always starts from the initial
-   * surface. Memory: one copy of the last result (points and triangles). A warm-started surface
-   * depends on the session's history: a saved state reloaded computes it from the start.
-   */
-  vtkSetMacro(ContinueFromLastResult, bool);
-  vtkGetMacro(ContinueFromLastResult, bool);
-  vtkBooleanMacro(ContinueFromLastResult, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Processes whose surface pieces are gathered (default: the global controller). nullptr
+   * Processes whose surface pieces are gathered (by default the global controller). nullptr
    * or one process: serial behaviour.
    */
   void SetController(vtkMultiProcessController* controller);
@@ -414,58 +246,19 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  // The solver's parameters: their defaults are dsurf::MultilevelParameters' (the constructor
-  // copies them through ExchangeParameters), each under the same name there.
-  double Tau{};
-  double Gamma{};
-  double EdgeWeight{};
-  double ImageWeight{};
-  double Sigma{};
-  double SigmaFraction{};
-  int EdgeNormalization{};
-  double RegionWeight{};
-  double IntensityRange[2]{};
-  int MaxSweepsPerLevel{};
-  double ConvergenceTolerance{};
-  int MaxLevels{};
-  double RefinementThreshold{};
-  bool UniformRefinement{};
-  bool SubdivideInitialSurface{};
-  bool HierarchicalSigma{};
-  bool ButterflyProlongation{};
-  vtkIdType MaxVertices{};
-  bool CheckTopology{};
-  int NumberOfThreads{};
-  bool ProjectExternalForce{};
-  int MaxSweeps{};
-  // This filter's own.
+  /// The solver's parameters, held here once (the properties above read and write them).
+  std::unique_ptr<dsurf::MultilevelParameters> Parameters;
+  /// AnimateSweeps' time steps and their cache.
+  std::unique_ptr<dsurf::SweepAnimation> Animation;
+  /// ContinueFromLastResult's copy of the last result.
+  std::unique_ptr<dsurf::WarmStart> Warm;
   vtkMultiProcessController* Controller = nullptr;
-  bool ContinueFromLastResult = false;
-  bool AnimateSweeps = false;
-  int SweepsPerTimeStep = 20;
-
-  // AnimateSweeps' cache: a snapshot every SweepsPerTimeStep sweeps, the final output, and
-  // what they were computed from (inputs and this filter's parameters).
-  std::vector<vtkSmartPointer<vtkPolyData>> Snapshots;
-  vtkSmartPointer<vtkPolyData> AnimationResult;
-  vtkSmartPointer<vtkTable> AnimationTable;
-  vtkMTimeType AnimationKey[3] = { 0, 0, 0 };
-  const void* AnimationInputs[2] = { nullptr, nullptr };
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// The surface at time t (sweeps) from the cache into `output`.
-  void ServeTimeStep(double t, vtkPolyData* output);
-  /// With AnimateSweeps, time t from the cache when it holds these inputs and parameters
-  /// (key: their modification times); false: not cached, solve.
-  bool ServeFromCache(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
-    double t, vtkPolyData* output, vtkTable* table);
 
 private:
-  /// The one mapping between this filter's solver properties and the core's parameters of
-  /// the same names: into `core` (toCore) or from it (the constructor takes the defaults).
-  void ExchangeParameters(dsurf::MultilevelParameters& core, bool toCore);
   /// The image array read in place in its own type (dsVTKImage.h); false (an error said why) for
   /// a bad or constant one.
   bool ReadImage(vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume);
@@ -479,29 +272,19 @@ private:
     dsurf::MultilevelSolver& solver, vtkTable* table);
   /// The solver's warnings and debug lines.
   void Report(const dsurf::MultilevelSolver& solver);
+  /// The solved mesh into output 0 (points, arrays, field data; `warm`: it started from the last
+  /// result).
+  void Deliver(const dsurf::TriangleMesh& mesh, const dsurf::MultilevelSolver& solver, bool warm,
+    vtkPolyData* output);
   /// Distributed, with the default potential (see the class comment): the image is requested
   /// in pieces and solved by every process.
   bool ImageInPieces();
-  /// Whether the image requested in pieces came whole to process 0 and empty to the others (a
-  /// reader that cannot split its file): then process 0 solves alone. Collective.
-  bool ImageOnProcessZeroOnly(vtkImageData* image, const int wholeExtent[6]);
-  /// That solve (docs/METHOD.md §9.8): the local input checks agreed by all processes first,
-  /// then the core on this process's piece; process 0 delivers the surface.
+  /// That solve (docs/METHOD.md §9.8, dsVTKPieces.h): the local input checks agreed by all
+  /// processes first, then the core on this process's piece; process 0 delivers the surface.
   void SolveOnPieces(vtkImageData* image, vtkDataArray* array, vtkPolyData* surface,
     const int wholeExtent[6], vtkPolyData* output, vtkTable* table);
   bool OnPieces = false; ///< SolveOnPieces is running: one solver thread
-  /// The warm start's copy and the time steps' cache of this result (complete: not aborted,
-  /// serial).
-  void KeepResult(vtkImageData* image, vtkPolyData* surface, const vtkMTimeType key[3],
-    bool complete, vtkPolyData* output, vtkTable* table);
 
-  // The warm start's state: the last output and the inputs it came from.
-  vtkSmartPointer<vtkPolyData> LastResult;
-  vtkMTimeType LastImageTime = 0, LastSurfaceTime = 0;
-  const void* LastImage = nullptr;
-  const void* LastSurface = nullptr;
-
-private:
   vtkDeformableSurfaceFilter(const vtkDeformableSurfaceFilter&) = delete;
   void operator=(const vtkDeformableSurfaceFilter&) = delete;
 };

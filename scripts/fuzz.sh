@@ -10,8 +10,11 @@
 #   FUZZ_VERBOSE=1 build-asan/bin/Fuzz<target> <input>
 # to see the points it decodes to (the two filter targets print them).
 #
-# Usage: scripts/fuzz.sh [target ...]   (default: RedGreen DelaunaySeed DeformableSurfaceInput)
-# FUZZ_SECONDS (default 25) is the time per target; FUZZ_SEED (default 1) fixes libFuzzer's
+# Usage: scripts/fuzz.sh [target ...]
+#   (default: RedGreen DelaunaySeed DeformableSurfaceInput NIfTIReader)
+# FUZZ_SECONDS (default 25) is the time per target, FUZZ_SECONDS_NIFTI (default 60) that of
+# NIfTIReader (the file reader gets a minute: its inputs are whole files, a header of many
+# fields and gzip streams); FUZZ_SEED (default 1) fixes libFuzzer's
 # random seed (runs still differ somewhat: its schedule depends on timing, so a finding can
 # show in one run and not the next); FUZZ_SEED=0 takes a random seed for exploring locally. BUILD_ASAN_DIR as for scripts/sanitize.sh.
 set -euo pipefail
@@ -22,7 +25,7 @@ timeout="${FUZZ_TIMEOUT:-10}"
 seed="${FUZZ_SEED:-1}"
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(RedGreen DelaunaySeed DeformableSurfaceInput)
+  targets=(RedGreen DelaunaySeed DeformableSurfaceInput NIfTIReader)
 fi
 
 "$root/scripts/sanitize.sh" --configure-only
@@ -35,12 +38,16 @@ mkdir -p "$work"
 cd "$work"
 status=0
 for t in "${targets[@]}"; do
+  seconds_t="$seconds"
+  if [ "$t" = NIfTIReader ]; then
+    seconds_t="${FUZZ_SECONDS_NIFTI:-60}"
+  fi
   scratch="$work/corpus-$t"
   rm -rf "$scratch"
   mkdir -p "$scratch"
-  echo "== Fuzz$t: ${seconds} s from Testing/Fuzz/corpus/$t"
+  echo "== Fuzz$t: ${seconds_t} s from Testing/Fuzz/corpus/$t"
   # -rss_limit_mb: one execution of these small inputs needs far less; more is a finding.
-  if ! "$build/bin/Fuzz$t" -seed="$seed" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 \
+  if ! "$build/bin/Fuzz$t" -seed="$seed" -max_total_time="$seconds_t" -timeout="$timeout" -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$work/" "$scratch" "$root/Testing/Fuzz/corpus/$t" \
     > "$work/Fuzz$t.log" 2>&1; then
     grep -v '^\s*#[0-9]\+\s' "$work/Fuzz$t.log" | tail -60

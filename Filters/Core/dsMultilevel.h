@@ -86,27 +86,36 @@ constexpr double SigmaFloorVoxels = 2.0 / 3.0;
 constexpr int CoarsenAboveTriangles = 100000;
 
 /// The parameters of the schedule. Each is named as the vtkDeformableSurfaceFilter property
-/// (and ParaView XML property) it comes from, and its default initialiser is the one home of
-/// that property's default: the filter's constructor copies them.
+/// (and ParaView XML property) it comes from, its comment here is the one description of it in
+/// the code and its default initialiser the one home of that property's default: the filter
+/// holds this struct and its properties read and write these fields
+/// (vtkDeformableSurfaceFilter_PARAMETERS, CONTRIBUTING.md, "Adding a parameter").
 struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
 {
-  SolverParameters Solver;  ///< tau, gamma, projection, label weights, threads
-  double EdgeWeight = 1.0;  ///< w_edge of the potential
-  double ImageWeight = 0.0; ///< w_image of the potential
+  SolverParameters Solver; ///< tau, gamma, projection, label weights, threads
+  /// w_edge and w_image: the weights of the edge term |grad(G_sigma * f)| and of the image term
+  /// f of the potential, each normalised to [0, 1].
+  double EdgeWeight = 1.0;
+  double ImageWeight = 0.0;
   double ForceWeight = 1.0; ///< multiplies h * sigma * (-grad P)
   /// sigma_0: Sigma (physical units) when > 0; else SigmaFraction * the mean extent of the
   /// volume when > 0 (the paper's 1/6); else (0, the default) with HierarchicalSigma off the
   /// paper's small constant sigma, ConstantSigmaVoxels voxels (mean spacing); else chosen from
   /// the start (dsInitialSigma.h): the paper's extent / 6 for a start spanning the volume, the
-  /// start's (90th-percentile) distance to its nearest edges for any other.
+  /// start's (90th-percentile) distance to its nearest edges along the vertex and face normals
+  /// for any other, between one voxel and extent / 6 (the filter's field data InitialSigma).
   double Sigma = 0.0;
   double SigmaFraction = 0.0;
   /// How the edge strength is normalised in the potential (dsScaleSpace.h).
   dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
-  /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. Its range is
-  /// IntensityRange when IntensityRange[0] < IntensityRange[1], else estimated from the image
-  /// inside and just outside the start surface (EstimateIntensityRange); without a given range
-  /// it is off for a start spanning the image or an open one.
+  /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. The default
+  /// suits a seed near its object (the whole-head MRI of the README), ~1 a one-click seed sphere
+  /// growing to a large object given its IntensityRange. Its range is IntensityRange when
+  /// IntensityRange[0] < IntensityRange[1], else estimated from the image inside and just
+  /// outside the start surface (EstimateIntensityRange); without a given range it is off for a
+  /// start spanning the image or an open one, so a box around the volume solves the paper's
+  /// problem unchanged. A range matching no voxel turns it off with a warning; the range used is
+  /// the filter's field data IntensityRange.
   double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
@@ -124,7 +133,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// Stop a level when mean |c| < this * mean edge length * sigma / PotentialEdgeWidth(sigma).
   double ConvergenceTolerance = 1e-3;
   double RefinementThreshold = 0.07; ///< |internal force| in voxels (see above)
-  bool UniformRefinement = false;
+  bool UniformRefinement = false; ///< refine every triangle at every level, not the marked ones
   /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
   /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
   bool ButterflyProlongation = true;
@@ -135,9 +144,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// first sigma to be pulled in evenly; the target never below two voxels (mean spacing), which
   /// resolve nothing more. The subdivided surface counts as level 0.
   bool SubdivideInitialSurface = true;
+  /// Refinement stops (with a warning) before the mesh would exceed this many vertices (the
+  /// red-green closure can add some more).
   long long MaxVertices = 2000000;
-  /// Check the topology invariants after every refinement (always on in Debug builds);
-  /// a broken invariant stops the run with an error.
+  /// Check the topology invariants (closed stays closed, manifold, Euler characteristic,
+  /// orientation, no T-vertex) after every refinement (always on in Debug builds); a broken
+  /// invariant stops the run with an error.
   bool CheckTopology = false;
 };
 
@@ -191,7 +203,7 @@ constexpr double FadedEdgeSigmaRatio = 2.0;
 /// lets it bulge through narrow gaps (a click in KmeansTest leaked with 2 sigma on every
 /// level), so there the bound is sigma. Once it has faded the edge force holds the surface,
 /// and splitting it to sigma mostly multiplies vertices: the Colin27 click 31 364 -> 18 223
-/// vertices, 0.75 -> 0.80 mm, the solve about half as long (README.md, BENCHMARKS.md).
+/// vertices, 0.75 -> 0.80 mm, the solve about half as long (docs/RESULTS.md, BENCHMARKS.md).
 /// Measured choices (docs/METHOD.md §9.3): the paper's proportion, 4 sigma, lost the detail of
 /// a ridged ball (max 0.96 -> 2.33 voxels; 2 sigma: 1.28); from sigma_0 / 4 on, the KmeansTest
 /// click changed.

@@ -34,8 +34,10 @@ namespace dsurf
 
 struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
 {
-  double Tau = 0.1;    ///< membrane (1) vs thin plate (0), docs/METHOD.md §2
-  double Gamma = 0.07; ///< damping of the correction, docs/METHOD.md §4
+  double Tau = 0.1; ///< membrane (1) vs thin plate (0), docs/METHOD.md §2
+  /// Damping of the correction, docs/METHOD.md §4. Above 0.5 the iteration diverges: the filter
+  /// clamps values outside 0 < Gamma <= 0.5, with a warning.
+  double Gamma = 0.07;
   /// docs/METHOD.md §5 rule (project F onto the umbrella or the normal). false is a test-only
   /// switch that applies the raw force, to show what the rule prevents.
   bool ProjectExternalForce = true;
@@ -43,7 +45,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
   /// neighbour 1 whatever the labels: a test-only switch showing what the table prevents
   /// (vertices drifting on red-green borders).
   bool UseLabelWeights = true;
-  int NumberOfThreads = 0; ///< 0 = the machine's hardware concurrency
+  /// 0 = the machine's hardware concurrency. The result does not depend on it (a distance-2
+  /// colouring of the vertex graph).
+  int NumberOfThreads = 0;
 };
 
 struct DEFORMABLESURFACEFILTERS_EXPORT SweepStatistics

@@ -5,7 +5,7 @@ Python user runs; pvbatch adds ParaView's pipeline around the same filter):
 
 (`scripts/benchmark.sh Heads` does this.) For each head (Colin27 from mricron-data, ITK's
 KmeansTest from insighttoolkit5-examples) and start (the picked points with every default; one
-click with RegionWeight 1 and the user's IntensityRange, as Examples/demo.py's HEADS), RUNS
+click with RegionWeight 1 and the user's IntensityRange, as Examples/ds_scoring.py's HEADS), RUNS
 solves (default 5) of vtkDeformableSurfaceFilter from the same seed, the seed and the reading
 outside the clock; and, in the same run for comparison, vtkFlyingEdges3D on the same head at the
 same CSF/cortex level (what a user would try first: README). Prints one row per solve: min,
@@ -16,31 +16,18 @@ import statistics
 import sys
 import time
 
-from deformablesurface import (vtkDeformableSurfaceFilter, vtkDelaunaySeedSurface,
-                               vtkDSNIFTIImageReader)
+from deformablesurface import vtkDeformableSurfaceFilter, vtkDelaunaySeedSurface
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 
-EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples")
-ITK_DATA = "/usr/share/doc/insighttoolkit5-examples/examples/Data"
-# image, the click's IntensityRange and the iso level (Examples/demo.py's HEADS says why).
-HEADS = {
-    "colin27": ("/usr/share/mricron/templates/ch2.nii.gz", (62.0, 130.0), 62.0),
-    "kmeans": (os.path.join(ITK_DATA, "KmeansTest_T1UCharRaw.nii.gz"), (48.0, 130.0), 48.0),
-}
-
-
-def read(path):
-    reader = vtkDSNIFTIImageReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples"))
+from ds_scoring import HEADS, read_nifti  # noqa: E402 (each head's image, picks, click, range, iso level)
 
 
 def seed(case, start):
     points = vtkPoints()
-    with open(os.path.join(EXAMPLES, "%s_%s.csv" % (case, start))) as f:
+    with open(HEADS[case][start]) as f:
         for row in csv.DictReader(f):
             points.InsertNextPoint(float(row["x"]), float(row["y"]), float(row["z"]))
     cloud = vtkPolyData()
@@ -66,11 +53,12 @@ def main():
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 5
     print("| head | start | runs | min s | median s | max s | vertices | vtkFlyingEdges3D median s | ratio |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for case, (path, click_range, iso_level) in HEADS.items():
+    for case, head in HEADS.items():
+        path, click_range, iso_level = head["image"], head["range"], head["iso"]
         if not os.path.exists(path):
             print("| %s | | | | | | missing %s | | |" % (case, path))
             continue
-        image = read(path)
+        image = read_nifti(path)
 
         def iso():
             flying = vtkFlyingEdges3D()

@@ -1,7 +1,8 @@
 // The self-intersection rule of docs/METHOD.md §5 matters: a subdivided box shrinking onto a
 // cube phantom (the paper's cube test, one level) keeps well-shaped triangles with the
 // rule, and measurably worse ones when the raw external force is applied
-// (vtkDeformableSurfaceFilter::ProjectExternalForceOff, a test-only switch).
+// (a test-only switch, DSRuleSwitchFilter.h).
+#include "DSRuleSwitchFilter.h"
 #include "DSSurfaceInvariants.h"
 #include "TestSolverMeshes.h"
 
@@ -92,7 +93,7 @@ Quality Measure(vtkPolyData* out, double c, double halfSide)
 
 Quality Run(vtkImageData* image, vtkPolyData* start, bool rule, double c, double halfSide)
 {
-  vtkNew<vtkDeformableSurfaceFilter> filter;
+  vtkNew<dstest::RuleSwitchFilter> filter;
   filter->SetInputData(0, image);
   filter->SetInitialSurfaceData(start);
   filter->SetSigma(4.0);

@@ -101,7 +101,7 @@ def main():
         ds_invariants.check_surface(servermanager.Fetch(seed), data, "one click grown")
     except AssertionError as error:
         problems.append(str(error))
-    # 18 223 points at the defaults (README; no split below the level's sigma with the region
+    # 18 223 points at the defaults (docs/RESULTS.md; no split below the level's sigma with the region
     # force, below 2 sigma once it has faded: 31 364 before); the bounds catch a surface that did
     # not grow or that kept subdividing.
     if not (5000 <= data.GetNumberOfPoints() <= 25000):

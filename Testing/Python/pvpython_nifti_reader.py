@@ -2,7 +2,12 @@
 so MRI volumes open with OpenDataFile / File > Open. A volume written here round-trips
 exactly; an oblique one (a qform turned 30 degrees about z and 10 about x, and shifted) lands
 where the file says (a known voxel's world position, the direction matrix); and the Colin27
-template of the demo opens with its known size, range and place (its sform: MNI coordinates)."""
+template of the demo opens with its known size, range and place (its sform: MNI coordinates).
+The header checks of the reader change nothing of a valid file: Colin27, ITK's KmeansTest, the
+oblique file and the others read as with VTK's own reader (voxels, spacing, origin, direction);
+its Maximum Data Size property refuses a file above it with an empty output. Colin27 with a
+spoiled datatype, and cut in half, leave the reader and Deformable Surface empty (issue 29's path:
+OpenDataFile, then the filter with a box)."""
 import os
 import sys
 
@@ -119,3 +124,97 @@ assert rng == (0.0, 133.0), rng
 bounds = info.GetBounds()
 print("Colin27 bounds (sform, MNI):", bounds)
 assert max(abs(b - e) for b, e in zip(bounds, (-90, 90, -125, 91, -71, 109))) < 1e-6, bounds
+
+# The header checks change nothing of a valid file: each file read through the plugin gives the
+# same voxels (a hash of the scalars' bytes), spacing, origin and direction as VTK's own
+# vtkNIFTIImageReader, unchecked, placed by the rule the plugin documents (the sform when
+# sform_code > 0 and it is a rotation, else the qform when qform_code > 0 and it is one;
+# world = R (origin + ijk spacing) + t). Same run, so no number is hard-coded.
+import hashlib  # noqa: E402
+from vtkmodules.vtkIOImage import vtkNIFTIImageReader  # noqa: E402
+
+
+def rotation_and_shift(matrix):
+    r = [[matrix.GetElement(i, j) for j in range(3)] for i in range(3)]
+    ok = all(abs(sum(r[a][k] * r[b][k] for k in range(3)) - (a == b)) < 1e-4 for a in range(3) for b in range(3))
+    det = (r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
+           + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]))
+    return (r, [matrix.GetElement(i, 3) for i in range(3)]) if ok and det > 0 else None
+
+
+def unchecked(path):
+    """VTK's reader alone: voxels, spacing, and the placement the plugin's rule gives."""
+    plain = vtkNIFTIImageReader()
+    plain.SetFileName(path)
+    plain.Update()
+    header = plain.GetNIFTIHeader()
+    placed = None
+    if header.GetSFormCode() > 0:
+        placed = rotation_and_shift(plain.GetSFormMatrix())
+    if placed is None and header.GetQFormCode() > 0:
+        placed = rotation_and_shift(plain.GetQFormMatrix())
+    r, t = placed if placed else ([[float(i == j) for j in range(3)] for i in range(3)], [0.0, 0.0, 0.0])
+    o = plain.GetOutput().GetOrigin()
+    origin = [sum(r[i][k] * o[k] for k in range(3)) + t[i] for i in range(3)]
+    return plain.GetOutput(), origin, [r[i][j] for i in range(3) for j in range(3)]
+
+
+def scalars_hash(image):
+    values = vtk_to_numpy(image.GetPointData().GetScalars())
+    return hashlib.sha256(values.tobytes()).hexdigest(), str(values.dtype)
+
+
+kmeans = "/usr/share/doc/insighttoolkit5-examples/examples/Data/KmeansTest_T1UCharRaw.nii.gz"
+roundtrip = os.path.join(out_dir, "roundtrip.nii.gz")
+for volume in ("/usr/share/mricron/templates/ch2.nii.gz", kmeans, oblique, both, roundtrip, plain):
+    if not os.path.exists(volume):
+        sys.exit("%s is missing: the test command installs it, so the setup is broken" % volume)
+    reader = OpenDataFile(volume)
+    if reader is None or reader.GetXMLName() != "DSNIfTIImageReader":
+        sys.exit("OpenDataFile did not pick the plugin's NIfTI reader for %s" % volume)
+    checked = servermanager.Fetch(reader)
+    expected, origin, direction = unchecked(volume)
+    got_direction = [checked.GetDirectionMatrix().GetElement(i, j) for i in range(3) for j in range(3)]
+    print("%s: dims %s, scalars %s, spacing %s, origin %s" % (os.path.basename(volume), checked.GetDimensions(),
+          scalars_hash(checked)[0][:16], checked.GetSpacing(), [round(x, 4) for x in checked.GetOrigin()]))
+    assert checked.GetDimensions() == expected.GetDimensions(), (checked.GetDimensions(), expected.GetDimensions())
+    assert scalars_hash(checked) == scalars_hash(expected), "the voxels of %s differ from VTK's reader" % volume
+    assert checked.GetSpacing() == expected.GetSpacing(), (checked.GetSpacing(), expected.GetSpacing())
+    assert max(abs(a - b) for a, b in zip(checked.GetOrigin(), origin)) < 1e-9, (checked.GetOrigin(), origin)
+    assert max(abs(a - b) for a, b in zip(got_direction, direction)) < 1e-12, (got_direction, direction)
+
+# The cap is a property of the proxy (advanced): a valid file above it is refused, empty.
+reader = OpenDataFile(oblique)
+assert reader.MaximumDataSize == 16 * 2**30, reader.MaximumDataSize
+reader.MaximumDataSize = 1000
+reader.UpdatePipeline()
+print("MaximumDataSize 1000 on %d bytes of data: %d points" % (
+    a.nbytes, reader.GetDataInformation().GetNumberOfPoints()))
+assert reader.GetDataInformation().GetNumberOfPoints() == 0
+# Exactly the data's size is allowed (the value reaches the reader as a whole number of bytes).
+reader.MaximumDataSize = a.nbytes
+reader.UpdatePipeline()
+assert reader.GetDataInformation().GetNumberOfPoints() == a.size, reader.GetDataInformation().GetNumberOfPoints()
+
+# The user's path of issue 29 on Colin27 itself: OpenDataFile, then Deformable Surface with a
+# box. A spoiled datatype (which killed the process) and a file cut in half (which was solved on
+# in part) must both leave the reader and the filter empty, the process alive.
+import gzip  # noqa: E402
+import struct  # noqa: E402
+from paraview.simple import Box  # noqa: E402
+
+with gzip.open("/usr/share/mricron/templates/ch2.nii.gz", "rb") as f:
+    colin_bytes = f.read()
+spoiled = bytearray(colin_bytes)
+struct.pack_into("<h", spoiled, 70, 1234)  # datatype (nifti1.h offset 70)
+for name, data in (("colin_datatype_1234.nii", bytes(spoiled)), ("colin_half.nii", colin_bytes[:len(colin_bytes) // 2])):
+    bad = os.path.join(out_dir, name)
+    with open(bad, "wb") as f:
+        f.write(data)
+    reader = OpenDataFile(bad)
+    box = Box(XLength=180, YLength=216, ZLength=180, Center=[0, -17, 19])
+    surface = DeformableSurface(Input=reader, InitialSurface=box)  # noqa: F821 (from LoadPlugin)
+    surface.UpdatePipeline()
+    points = (reader.GetDataInformation().GetNumberOfPoints(), surface.GetDataInformation().GetNumberOfPoints())
+    print("%s: reader %d points, Deformable Surface %d points" % (name, points[0], points[1]))
+    assert points == (0, 0), points

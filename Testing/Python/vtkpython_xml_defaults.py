@@ -1,4 +1,4 @@
-"""The ParaView XML (xml/*.xml), the VTK classes and the README's property table agree.
+"""The ParaView XML (xml/*.xml), the VTK classes and the property reference agree.
 
 For every property of every proxy whose command is a Set method with a matching Get:
 - its default_values equal what a freshly constructed filter returns;
@@ -6,10 +6,13 @@ For every property of every proxy whose command is a Set method with a matching 
   its EnumerationDomain) equals the class's clamp: GetXMinValue / GetXMaxValue where
   vtkSetClampMacro defines them, else what Set returns for a value far outside; a bound the
   XML leaves open must be open in the class too, and a class that clamps needs a domain;
-every row of the README's Deformable Surface table gives the XML's default; and the class
+every row of docs/PROPERTIES.md (the reference the README links to, one table per proxy) gives
+the XML's default, and every property has its row; and the class
 comment of each property in the class's header (Filters/<class>.h) states the class's default:
 "Default 0.1", "(default on)", "0 (default)" in a block of one property, "Defaults: A 1, B 0"
-in a block of several.
+in a block of several, except in a header whose parameters come from one table
+(<class>_PARAMETERS, CONTRIBUTING.md, "Adding a parameter"): there the getters read the core's fields,
+whose initialisers are the defaults, and the header states none (the XML is where prose does).
 Plain VTK Python (/usr/bin/python3)."""
 import glob
 import os
@@ -116,13 +119,17 @@ def check_property(proxy_name, obj, prop):
             failures.append("%s: XML %s %s, the class clamps at %s" % (where, label, xml, cls))
 
 
-def readme_table(path):
-    """The README's property table: {property: default text}; `A`, `B` | x, y split in pairs."""
-    rows = {}
+def reference_tables(path):
+    """docs/PROPERTIES.md: {proxy label (its "## " heading): {property: default text}};
+    `A`, `B` | x, y split in pairs."""
+    tables, rows = {}, None
     with open(path) as f:
         for line in f:
+            if line.startswith("## "):
+                rows = tables.setdefault(line[3:].strip(), {})
+                continue
             cells = [c.strip() for c in line.split("|")]
-            if not line.startswith("| ") or len(cells) < 5 or "`" not in cells[2]:
+            if rows is None or not line.startswith("| ") or len(cells) < 5 or "`" not in cells[2]:
                 continue
             names = re.findall(r"`(\w+)`", cells[2])
             values = [v.strip() for v in re.split(r"\s*[,/]\s*", cells[3])]
@@ -130,11 +137,11 @@ def readme_table(path):
                 values = values * len(names)
             for n, v in zip(names, values):
                 rows[n] = v
-    return rows
+    return tables
 
 
 def readme_value(text, prop):
-    """A README default ('on', '2 000 000', '0 = all', 'Global maximum', '0 0') as XML values."""
+    """A documented default ('on', '2 000 000', '0 = all', 'Global maximum', '0 0') as XML values."""
     text = text.split(" = ")[0].strip()
     enum = prop.find("EnumerationDomain")
     if enum is not None:
@@ -172,6 +179,12 @@ def check_header(cls, obj):
     path = os.path.join(root, "Filters", cls.__name__ + ".h")
     with open(path) as f:
         header = f.read()
+    if "#define %s_PARAMETERS(" % cls.__name__ in header:
+        text = re.sub(r"\s+", " ", re.sub(r"^\s*(\*|///|//)", "", header, flags=re.M))
+        for stated in re.findall(r"[Dd]efaults?:? (?:%s)|(?:%s) \((?:the )?default\)" % (VALUE, VALUE), text):
+            failures.append("%s states a default ('%s'): the XML is the place" %
+                            (os.path.basename(path), stated))
+        return 0
     blocks = 0
     for block in re.findall(r"///@\{(.*?)///@\}", header, re.S):
         names = [a or b for a, b in re.findall(r"vtkSet\w*Macro\((\w+)|virtual void Set(\w+)\(", block)]
@@ -212,22 +225,30 @@ for path in sorted(glob.glob(os.path.join(root, "xml", "*.xml"))):
             if prop.tag.endswith("VectorProperty") and prop.get("name") not in EXCEPTIONS:
                 check_property(proxy.get("name"), cls(), prop)
 
-# The README's table of Deformable Surface's properties.
-table = readme_table(os.path.join(root, "README.md"))
-for prop in proxies["DeformableSurface"]:
-    name = prop.get("name")
-    if not prop.tag.endswith("VectorProperty") or name in EXCEPTIONS:
+# The reference's tables, one per proxy (docs/PROPERTIES.md, generated from the XML).
+tables = reference_tables(os.path.join(root, "docs", "PROPERTIES.md"))
+rows = 0
+for proxy_name, proxy in proxies.items():
+    table = tables.get(proxy.get("label", proxy_name))
+    if table is None:
+        failures.append("docs/PROPERTIES.md: no table for %s" % proxy_name)
         continue
-    if name not in table:
-        failures.append("README: the property table has no row for DeformableSurface.%s" % name)
-        continue
-    got = readme_value(table[name], prop)
-    want = prop.get("default_values")
-    if [float(v) for v in got.split()] != [float(v) for v in want.split()]:
-        failures.append("README: %s defaults to '%s' in the table, %s in the XML" % (name, table[name], want))
+    for prop in proxy:
+        name = prop.get("name")
+        if not prop.tag.endswith("VectorProperty") or name in EXCEPTIONS or prop.get("information_only") == "1":
+            continue
+        if name not in table:
+            failures.append("docs/PROPERTIES.md: the table has no row for %s.%s" % (proxy_name, name))
+            continue
+        rows += 1
+        got = readme_value(table[name], prop)
+        want = prop.get("default_values")
+        if [float(v) for v in got.split()] != [float(v) for v in want.split()]:
+            failures.append("docs/PROPERTIES.md: %s.%s defaults to '%s', %s in the XML"
+                            % (proxy_name, name, table[name], want))
 
-print("checked %d properties of %d proxies, %d README rows, %d header comments" %
-      (checked, len(proxies), len(table), header_blocks))
+print("checked %d properties of %d proxies, %d reference rows, %d header comments" %
+      (checked, len(proxies), rows, header_blocks))
 for f in failures:
     print("FAILED:", f)
-sys.exit(1 if failures or checked < 30 else 0)
+sys.exit(1 if failures or checked < 30 or rows < 30 else 0)
