@@ -17,8 +17,11 @@ struct Fit
   double Bic = std::numeric_limits<double>::infinity();
 };
 
-/// EM for k classes on the histogram (centres x, counts n; total > 0).
-Fit FitClasses(const std::vector<double>& x, const std::vector<double>& n, double width, int k)
+/// EM for k classes on the histogram (centres x, counts n; total > 0), started from the
+/// centres of k equal-count slices (spread) or of k equal slices of the span (!spread): a few
+/// spikes (a noise-free phantom) can put several equal-count slices on one spike.
+Fit FitClasses(
+  const std::vector<double>& x, const std::vector<double>& n, double width, int k, bool spread)
 {
   const int bins = static_cast<int>(x.size());
   double total = 0;
@@ -48,7 +51,7 @@ Fit FitClasses(const std::vector<double>& x, const std::vector<double>& n, doubl
     {
       acc += n[b++];
     }
-    m.Mean[c] = x[b];
+    m.Mean[c] = spread ? x[b] : x.front() + (c + 0.5) / k * (x.back() - x.front());
     m.Sd[c] = std::max(width, std::sqrt(var) / k);
   }
   std::vector<double> r(static_cast<std::size_t>(k) * bins);
@@ -108,12 +111,18 @@ double Mixture::Density(int k, double x) const
   return this->Weight[k] * std::exp(-0.5 * z * z) / (this->Sd[k] * std::sqrt(2.0 * M_PI));
 }
 
+double Mixture::LogDensity(int k, double x) const
+{
+  const double z = (x - this->Mean[k]) / this->Sd[k];
+  return std::log(this->Weight[k]) - 0.5 * z * z - std::log(this->Sd[k] * std::sqrt(2.0 * M_PI));
+}
+
 int Mixture::Likeliest(double x) const
 {
   int best = 0;
   for (int k = 1; k < this->Size(); ++k)
   {
-    best = this->Density(k, x) > this->Density(best, x) ? k : best;
+    best = this->LogDensity(k, x) > this->LogDensity(best, x) ? k : best;
   }
   return best;
 }
@@ -129,10 +138,13 @@ Mixture FitHistogramMixture(
   Fit best;
   for (int k = 1; k <= maxClasses; ++k)
   {
-    Fit fit = FitClasses(x, counts, width, k);
-    if (fit.Bic < best.Bic)
+    for (const bool spread : { true, false })
     {
-      best = std::move(fit);
+      Fit fit = FitClasses(x, counts, width, k, spread);
+      if (fit.Bic < best.Bic)
+      {
+        best = std::move(fit);
+      }
     }
   }
   return best.Model;

@@ -17,6 +17,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT Mixture
   int Size() const { return static_cast<int>(this->Mean.size()); }
   /// Weight * density of class k at x.
   double Density(int k, double x) const;
+  /// Its logarithm, which never underflows (classes as narrow as a bin, far from x).
+  double LogDensity(int k, double x) const;
   /// The class of largest Density at x.
   int Likeliest(double x) const;
 };

@@ -142,7 +142,7 @@ bool MultilevelSolver::RegionRange(
     // not where the boundary lies: the region force only grows the surface through its
     // region, and the edge force finds the boundary beyond.
     this->RegionOutwardOnly = !estimate.Contrast;
-    this->RegionFollowsFront = estimate.Classes > 0;
+    this->RegionFollowsFront = estimate.Classes > 1;
   }
   const long long matching = this->Distributed
     ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
@@ -237,7 +237,8 @@ bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
   const MultilevelParameters& P = this->Parameters;
-  const int cap = std::max(1, P.MaxSweepsPerLevel);
+  const int cap = rec.FrontRest > 0 ? std::min(FrontLevelSweeps, std::max(1, P.MaxSweepsPerLevel))
+                                    : std::max(1, P.MaxSweepsPerLevel);
   const int plannedLevels = std::max(rec.Level, this->PlannedLevels);
   bool stop = false;
   // Sweeps run in batches inside one parallel region (threads start once per batch, not
@@ -751,7 +752,10 @@ bool MultilevelSolver::RunLevels(
       this->RegionFollowsFront)
     {
       state.Front = this->FrontVertices(image, mesh);
-      if (std::find(state.Front.begin(), state.Front.end(), 1) == state.Front.end())
+      const auto onFront = std::count(state.Front.begin(), state.Front.end(), 1);
+      // A front of more than FrontShare of the surface is no thin part left behind: the
+      // surface has not settled on its object, and pushing on would only spread it.
+      if (onFront == 0 || onFront > FrontShare * mesh.NumberOfPoints())
       {
         state.Front.clear();
       }

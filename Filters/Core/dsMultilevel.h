@@ -133,7 +133,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// Stop a level when mean |c| < this * mean edge length * sigma / PotentialEdgeWidth(sigma).
   double ConvergenceTolerance = 1e-3;
   double RefinementThreshold = 0.07; ///< |internal force| in voxels (see above)
-  bool UniformRefinement = false; ///< refine every triangle at every level, not the marked ones
+  bool UniformRefinement = false;    ///< refine every triangle at every level, not the marked ones
   /// New vertices by the butterfly scheme (Prolongation::Butterfly), else at edge midpoints
   /// (Prolongation::Linear); RefineLevel maps it to the refiner's enum.
   bool ButterflyProlongation = true;
@@ -184,6 +184,11 @@ constexpr double CompetitorReachSigmas = 4.0;
 constexpr double FrontSpeed = 0.5;
 /// Front levels at most, beyond MaxLevels (a horn of 40 voxels took about 12).
 constexpr int MaxFrontLevels = 32;
+/// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
+/// keep one vertex stepping back and forth for ever.
+constexpr int FrontLevelSweeps = 200;
+/// Front levels follow a front of at most this share of the surface's vertices.
+constexpr double FrontShare = 0.1;
 /// A front level ends when no vertex moves more than this many voxels in a sweep.
 constexpr double FrontRestVoxels = 0.01;
 

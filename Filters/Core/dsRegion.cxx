@@ -429,9 +429,37 @@ void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, do
   estimate.Range[1] = bright ? top : mid;
 }
 
+/// A class less frequent around a click than this share of the click's own class, lying between
+/// it and a further class on the same side, is the partial volume between the two (a dark
+/// body's rim in a bright surround), not a competitor: as one it cut the range short of a horn
+/// whose voxels are three quarters object. The class beyond competes instead.
+constexpr double PartialVolumeShare = 0.5;
+
+/// Whether class k, on side `direction` (-1 below, +1 above) of the object's class o, competes.
+bool Competes(const Mixture& m, int o, int k, double direction)
+{
+  const double offset = direction * (m.Mean[k] - m.Mean[o]);
+  if (k == o || !(offset > 0))
+  {
+    return false;
+  }
+  if (m.Weight[k] >= PartialVolumeShare * m.Weight[o])
+  {
+    return true;
+  }
+  for (int j = 0; j < m.Size(); ++j)
+  {
+    if (direction * (m.Mean[j] - m.Mean[o]) > offset)
+    {
+      return false; // a class beyond k: k is the partial volume between o and it
+    }
+  }
+  return true;
+}
+
 /// The end of the object's class o on one side (direction -1: below its level, +1: above):
-/// the first intensity from `start` on where a class whose level lies on that side explains the
-/// image better (Mixture::Density), or NaN when none does before `stop`.
+/// the first intensity from `start` on where a class that competes on that side (Competes)
+/// explains the image better (Mixture::LogDensity), or NaN when none does before `stop`.
 double CompetitorBoundary(const Mixture& m, int o, double start, double stop, double step)
 {
   const double direction = stop < start ? -1.0 : 1.0;
@@ -439,7 +467,7 @@ double CompetitorBoundary(const Mixture& m, int o, double start, double stop, do
   {
     for (int k = 0; k < m.Size(); ++k)
     {
-      if (k != o && direction * (m.Mean[k] - m.Mean[o]) > 0 && m.Density(k, x) > m.Density(o, x))
+      if (Competes(m, o, k, direction) && m.LogDensity(k, x) > m.LogDensity(o, x))
       {
         return x;
       }
@@ -486,6 +514,7 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   const double low = Quantile(all, 0.005, reduce), high = Quantile(all, 0.995, reduce);
   if (!(high > low))
   {
+    estimate.Classes = 1; // one value around the click
     return;
   }
   const double width = (high - low) / Bins;
@@ -496,6 +525,7 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   }
   reduce.Sum(counts);
   const Mixture m = FitHistogramMixture(counts, low, width, 4);
+  estimate.Classes = m.Size();
   if (m.Size() < 2)
   {
     return;
@@ -519,7 +549,6 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
   estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
   estimate.Contrast = true;
-  estimate.Classes = m.Size();
   estimate.ObjectMedian = m.Mean[o];
   int nearest = o == 0 ? 1 : 0;
   for (int k = 0; k < m.Size(); ++k)

@@ -49,7 +49,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
   double ObjectMedian = 0, BackgroundMedian = 0;
   bool FromVertices = false;
   bool Contrast = false; ///< the outside differs: one end of the range is the midpoint
-  int Classes = 0;       ///< intensity classes around a click (0: not fitted)
+  int Classes = 0; ///< intensity classes around a click (0: not fitted); 2 or more: competitors
 };
 
 /// The intensity range of the object the start surface lies on or in. Inside: the voxels
