@@ -86,8 +86,7 @@ bool MultilevelSolver::FirstSigma(
   else if (this->Distributed
       ? !ChoosePieceInitialSigma(this->Piece, mesh, paper, P.Solver.NumberOfThreads, this->Reduce,
           this->SigmaChoice, error)
-      : !ChooseInitialSigma(
-          image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
+      : !ChooseInitialSigma(image, mesh, paper, P.Solver.NumberOfThreads, this->SigmaChoice, error))
   {
     return false;
   }
@@ -103,7 +102,8 @@ bool MultilevelSolver::FirstSigma(
   return true;
 }
 
-bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& mesh)
+bool MultilevelSolver::RegionRange(
+  const ImageView& image, const TriangleMesh& mesh, double firstSigma)
 {
   const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
@@ -124,9 +124,10 @@ bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& m
   {
     RangeEstimate estimate;
     std::string msg;
+    const double reach = CompetitorReachSigmas * firstSigma;
     const bool estimated = this->Distributed
-      ? EstimatePieceIntensityRange(this->Piece, mesh, 1.0, this->Reduce, estimate, &msg)
-      : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg);
+      ? EstimatePieceIntensityRange(this->Piece, mesh, 1.0, this->Reduce, estimate, &msg, reach)
+      : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg, reach);
     if (!estimated)
     {
       this->Warnings.push_back(
@@ -141,6 +142,7 @@ bool MultilevelSolver::RegionRange(const ImageView& image, const TriangleMesh& m
     // not where the boundary lies: the region force only grows the surface through its
     // region, and the edge force finds the boundary beyond.
     this->RegionOutwardOnly = !estimate.Contrast;
+    this->RegionFollowsFront = estimate.Classes > 1;
   }
   const long long matching = this->Distributed
     ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
@@ -179,7 +181,7 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
       }
     }
   }
-  region = P.RegionWeight > 0 && this->RegionRange(image, mesh);
+  region = P.RegionWeight > 0 && this->RegionRange(image, mesh, sigma);
   if (P.SubdivideInitialSurface)
   {
     // Uniform 1 -> 4 subdivision at the midpoints keeps the start shape; every vertex is N,
@@ -235,7 +237,8 @@ bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
   const MultilevelParameters& P = this->Parameters;
-  const int cap = std::max(1, P.MaxSweepsPerLevel);
+  const int cap = rec.FrontRest > 0 ? std::min(FrontLevelSweeps, std::max(1, P.MaxSweepsPerLevel))
+                                    : std::max(1, P.MaxSweepsPerLevel);
   const int plannedLevels = std::max(rec.Level, this->PlannedLevels);
   bool stop = false;
   // Sweeps run in batches inside one parallel region (threads start once per batch, not
@@ -269,7 +272,11 @@ bool MultilevelSolver::SolveLevel(
       [&](const SweepStatistics& st)
       {
         batchStats.push_back(st);
-        if (st.MovedVertices == 0 || st.MeanCorrection < rec.Tolerance)
+        // A front level rests when its fastest vertex does: the front is a few vertices, and
+        // the mean over a whole surface at rest says nothing of them.
+        const bool rests =
+          rec.FrontRest > 0 ? st.MaxCorrection < rec.FrontRest : st.MeanCorrection < rec.Tolerance;
+        if (st.MovedVertices == 0 || rests)
         {
           rec.Converged = true;
           return false;
@@ -343,6 +350,10 @@ struct MultilevelSolver::RunState
   bool ClosedStart = false;
   bool BudgetWarned = false; ///< the MaxVertices warning is given once
   int SweepCounter = 0;
+  /// Per vertex: the region force still pushes it out (FrontVertices); after sigma's floor the
+  /// levels go on where it does (a front level).
+  std::vector<char> Front;
+  bool FrontLevel = false; ///< this level follows the front at sigma's floor
 };
 
 bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error)
@@ -400,6 +411,7 @@ void MultilevelSolver::ClearResults()
   this->SigmaChoice = InitialSigmaChoice();
   this->UsedRange[0] = this->UsedRange[1] = 0;
   this->RegionOutwardOnly = false;
+  this->RegionFollowsFront = false;
 }
 
 bool MultilevelSolver::Start(
@@ -492,8 +504,7 @@ bool MultilevelSolver::SetUpLevel(
     // travel far. Distributed: each piece's field (dsPieceField.h), no bricks.
     const bool computed = this->Distributed
       ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
-      : ComputeForceAtScale(
-          image, box, state.FieldParameters, state.Field, &msg, &mesh);
+      : ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg, &mesh);
     if (!computed)
     {
       *error = "scale-space force: " + msg;
@@ -508,7 +519,11 @@ bool MultilevelSolver::SetUpLevel(
     // The balloon brings the surface to its object at the coarse scales; as sigma shrinks
     // the edge force takes over the detail, so the region force shrinks with sigma (at full
     // strength it presses the surface into every narrow dark gap of the object).
-    const double decay = RegionFade(sigma, state.FirstSigma);
+    // A front level pushes at full strength: it follows the parts of the object the surface has
+    // not reached (a horn the fading force could not enter against the internal force of its
+    // narrow tip); everywhere else the two-sided force of a click's competition range holds the
+    // surface where the range ends (docs/METHOD.md §9.3).
+    const double decay = state.FrontLevel ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
     state.LevelSolver.SetRegionForce(this->Distributed ? this->Piece.Image : image,
       this->UsedRange[0], this->UsedRange[1], decay * P.RegionWeight * h, this->RegionOutwardOnly);
@@ -583,8 +598,22 @@ double UnsplitEdgeLength(double voxel, double sigma, double firstSigma, bool reg
   return std::max(voxel, (faded ? FadedEdgeSigmaRatio : 1.0) * sigma);
 }
 
-std::vector<char> MultilevelSolver::MarkForRefinement(
-  const TriangleMesh& mesh, const LevelRecord& rec, double voxel, double unsplit) const
+namespace
+{
+double LongestEdge(const TriangleMesh& mesh, std::size_t t)
+{
+  const auto& tri = mesh.Triangles[t];
+  double longest = 0.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    longest = std::max(longest, Norm(mesh.Points[tri[(k + 1) % 3]] - mesh.Points[tri[k]]));
+  }
+  return longest;
+}
+} // namespace
+
+std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh,
+  const LevelRecord& rec, double voxel, double unsplit, const std::vector<char>& front) const
 {
   const MultilevelParameters& P = this->Parameters;
   // UniformRefinement splits everything, as asked; adaptively, a triangle whose edges are all
@@ -602,16 +631,21 @@ std::vector<char> MultilevelSolver::MarkForRefinement(
   {
     if (marks[t])
     {
-      const auto& tri = mesh.Triangles[t];
-      double longest = 0.0;
-      for (int k = 0; k < 3; ++k)
-      {
-        longest = std::max(longest, Norm(mesh.Points[tri[(k + 1) % 3]] - mesh.Points[tri[k]]));
-      }
-      if (longest < unsplit)
+      if (LongestEdge(mesh, t) < unsplit)
       {
         marks[t] = 0;
       }
+    }
+  }
+  // The front (docs/METHOD.md §9.3): a triangle with a corner the region force still pushes
+  // out is split down to the voxel, whatever its internal force, so the front fits into a
+  // horn or a tube as narrow as the image shows.
+  for (size_t t = 0; t < marks.size() && !front.empty(); ++t)
+  {
+    const auto& tri = mesh.Triangles[t];
+    if (!marks[t] && (front[tri[0]] || front[tri[1]] || front[tri[2]]))
+    {
+      marks[t] = LongestEdge(mesh, t) > voxel ? 1 : 0;
     }
   }
   return marks;
@@ -622,7 +656,7 @@ bool MultilevelSolver::RefineLevel(
 {
   const MultilevelParameters& P = this->Parameters;
   const std::vector<char> marks = this->MarkForRefinement(mesh, rec, state.Voxel,
-    UnsplitEdgeLength(state.Voxel, rec.Sigma, state.FirstSigma, state.Region));
+    UnsplitEdgeLength(state.Voxel, rec.Sigma, state.FirstSigma, state.Region), state.Front);
   std::unordered_set<int> splitEdges;
   for (size_t t = 0; t < marks.size(); ++t)
   {
@@ -695,7 +729,8 @@ bool MultilevelSolver::RunLevels(
     }
     this->PlannedLevels = steps;
   }
-  for (int level = 0; level <= maxLevels; ++level)
+  int frontLevels = 0; // taken so far, beyond the cap of MaxLevels
+  for (int level = 0;; ++level)
   {
     LevelRecord rec;
     rec.Level = level;
@@ -703,13 +738,32 @@ bool MultilevelSolver::RunLevels(
     {
       return false;
     }
+    rec.FrontRest = state.FrontLevel ? FrontRestVoxels * state.Voxel : 0.0;
     const bool stop =
       this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
     // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).
     const bool atFloor = P.HierarchicalSigma && !(state.Sigma > sigmaFloor * (1 + 1e-9));
-    const bool lastLevel = stop || level == maxLevels || atFloor;
+    // At the floor the levels go on while the region force still pushes part of the surface
+    // out (a thin part not yet followed to its end, docs/METHOD.md §9.3), within MaxLevels.
+    state.Front.clear();
+    if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&
+      this->RegionFollowsFront)
+    {
+      state.Front = this->FrontVertices(image, mesh);
+      const auto onFront = std::count(state.Front.begin(), state.Front.end(), 1);
+      // A front of more than FrontShare of the surface is no thin part left behind: the
+      // surface has not settled on its object, and pushing on would only spread it.
+      if (onFront == 0 || onFront > FrontShare * mesh.NumberOfPoints())
+      {
+        state.Front.clear();
+      }
+    }
+    state.FrontLevel = !state.Front.empty();
+    frontLevels += state.FrontLevel ? 1 : 0;
+    const bool lastLevel =
+      stop || (!state.FrontLevel && (level - frontLevels >= maxLevels || atFloor));
     this->EndSweeps(state.LevelSolver, mesh, rec, lastLevel);
     if (lastLevel)
     {
@@ -730,7 +784,7 @@ bool MultilevelSolver::RunLevels(
     // ends the run.
     const double sigma = state.Sigma;
     const double nextSigma = P.HierarchicalSigma ? NextHierarchicalSigma(sigma, sigmaFloor) : sigma;
-    if (!refined && !(nextSigma < sigma))
+    if (!refined && !(nextSigma < sigma) && !state.FrontLevel)
     {
       if (!(rec.MeanEdgeLength <= rec.Sigma)) // else EndSweeps has smoothed it
       {
@@ -742,6 +796,32 @@ bool MultilevelSolver::RunLevels(
     state.Sigma = nextSigma;
   }
   return true;
+}
+
+std::vector<char> MultilevelSolver::FrontVertices(
+  const ImageView& image, const TriangleMesh& mesh) const
+{
+  // Each vertex's speed, sampled by the process that owns its cell and summed (the others
+  // add 0), so every process marks the same vertices.
+  const int n = mesh.NumberOfPoints();
+  std::vector<double> speed(n, 0.0);
+  for (int v = 0; v < n; ++v)
+  {
+    bool inside = false;
+    const double value = this->Distributed ? this->Piece.SampleOwned(mesh.Points[v].data(), &inside)
+                                           : SampleVolume(image, mesh.Points[v].data(), &inside);
+    speed[v] = inside ? RegionSpeed(value, this->UsedRange[0], this->UsedRange[1]) : 0.0;
+  }
+  if (this->Distributed)
+  {
+    this->Reduce.Sum(speed);
+  }
+  std::vector<char> front(n, 0);
+  for (int v = 0; v < n; ++v)
+  {
+    front[v] = speed[v] >= FrontSpeed ? 1 : 0;
+  }
+  return front;
 }
 
 int MultilevelSolver::DistributedGhostVoxels(

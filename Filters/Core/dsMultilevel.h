@@ -175,6 +175,23 @@ DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, doubl
 /// shrinks with sigma once below sigma_0).
 DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigma);
 
+/// A click's competitors (EstimateIntensityRange) are looked for within this many sigma_0 of
+/// it: sigma_0 from a click is its distance to the nearest edges (dsInitialSigma.h), so the
+/// neighbourhood holds the object's class and the classes around it.
+constexpr double CompetitorReachSigmas = 4.0;
+
+/// A vertex whose region speed is at least this is on the front (MultilevelSolver::FrontVertices).
+constexpr double FrontSpeed = 0.5;
+/// Front levels at most, beyond MaxLevels (a horn of 40 voxels took about 12).
+constexpr int MaxFrontLevels = 32;
+/// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
+/// keep one vertex stepping back and forth for ever.
+constexpr int FrontLevelSweeps = 200;
+/// Front levels follow a front of at most this share of the surface's vertices.
+constexpr double FrontShare = 0.1;
+/// A front level ends when no vertex moves more than this many voxels in a sweep.
+constexpr double FrontRestVoxels = 0.01;
+
 /// The region force's fade (RegionFade) at or below which adaptive refinement leaves coarser
 /// triangles unsplit (UnsplitEdgeLength): three halvings after sigma_0, where the force pushes
 /// with an eighth of its strength.
@@ -233,7 +250,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int Vertices = 0;
   int Triangles = 0;
   double MeanEdgeLength = 0;
-  double Tolerance = 0; ///< the mean correction below which the level has converged (step 2)
+  double Tolerance = 0;        ///< the mean correction below which the level has converged (step 2)
   int MarkedTriangles = 0;     ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
@@ -242,6 +259,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   /// sweeps' largest corrections reaches half their reach, so this stays 0 unless one sweep
   /// moves a vertex more than BrickReachSigmas / 2 sigma).
   long long FieldMisses = 0;
+  /// A front level (after sigma's floor, where the region force still pushes): it ends when
+  /// the largest correction of a sweep is below this (world units); 0 on the other levels.
+  double FrontRest = 0;
 };
 
 class DEFORMABLESURFACEFILTERS_EXPORT MultilevelSolver
@@ -353,7 +373,10 @@ private:
   InitialSigmaChoice SigmaChoice;
   double UsedRange[2] = { 0, 0 };
   bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
-  bool Distributed = false;       ///< SetDistribution was called
+  /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
+  /// levels follow the parts the region force still pushes out (FrontVertices).
+  bool RegionFollowsFront = false;
+  bool Distributed = false; ///< SetDistribution was called
   ImagePiece Piece;
   PieceReductions Reduce;
   /// Whether the run goes on after this process's progress callback answered `here`
@@ -377,8 +400,14 @@ private:
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
   /// Step 3's marks without the triangles whose edges are all shorter than `unsplit`
   /// (UnsplitEdgeLength; adaptive refinement only).
-  std::vector<char> MarkForRefinement(
-    const TriangleMesh& mesh, const LevelRecord& rec, double voxel, double unsplit) const;
+  /// With `front` (per vertex, FrontVertices), also every triangle with a front corner and an
+  /// edge longer than `voxel`.
+  std::vector<char> MarkForRefinement(const TriangleMesh& mesh, const LevelRecord& rec,
+    double voxel, double unsplit, const std::vector<char>& front) const;
+  /// Per vertex: 1 where the region speed (dsRegion.h) at the vertex is at least FrontSpeed,
+  /// i.e. the image under it lies well inside the object's range and the region force pushes
+  /// it out: the surface has not reached the object's edge there. Collective when distributed.
+  std::vector<char> FrontVertices(const ImageView& image, const TriangleMesh& mesh) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(
@@ -404,7 +433,7 @@ private:
     int& sweepCounter);
   /// The region force's range (given or estimated); false = no region force (a warning says
   /// why, except for a start spanning the image or an open start without a given range).
-  bool RegionRange(const ImageView& image, const TriangleMesh& mesh);
+  bool RegionRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma);
 };
 } // namespace dsurf
 

@@ -1,5 +1,8 @@
 #include "dsRegion.h"
 
+#include "dsFieldGrid.h"
+#include "dsMixture.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -314,9 +317,8 @@ int OtsuSplit(const std::vector<double>& w)
 
 /// The histograms (bins of equal width over the values' common span) of the inside and outside
 /// shares, each normalised to 1. False when all the values are equal.
-bool ShareHistograms(const SharedValues& in, const SharedValues& out,
-  const PieceReductions& reduce, int bins, double& lo, double& width, std::vector<double>& pIn,
-  std::vector<double>& pOut)
+bool ShareHistograms(const SharedValues& in, const SharedValues& out, const PieceReductions& reduce,
+  int bins, double& lo, double& width, std::vector<double>& pIn, std::vector<double>& pOut)
 {
   float low = std::numeric_limits<float>::max(), high = std::numeric_limits<float>::lowest();
   for (const auto* v : { &in.Values, &out.Values })
@@ -426,17 +428,150 @@ void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, do
   estimate.Range[0] = bright ? mid : bottom;
   estimate.Range[1] = bright ? top : mid;
 }
+
+/// A class less frequent around a click than this share of the click's own class, lying between
+/// it and a further class on the same side, is the partial volume between the two (a dark
+/// body's rim in a bright surround), not a competitor: as one it cut the range short of a horn
+/// whose voxels are three quarters object. The class beyond competes instead.
+constexpr double PartialVolumeShare = 0.5;
+
+/// Whether class k, on side `direction` (-1 below, +1 above) of the object's class o, competes.
+bool Competes(const Mixture& m, int o, int k, double direction)
+{
+  const double offset = direction * (m.Mean[k] - m.Mean[o]);
+  if (k == o || !(offset > 0))
+  {
+    return false;
+  }
+  if (m.Weight[k] >= PartialVolumeShare * m.Weight[o])
+  {
+    return true;
+  }
+  for (int j = 0; j < m.Size(); ++j)
+  {
+    if (direction * (m.Mean[j] - m.Mean[o]) > offset)
+    {
+      return false; // a class beyond k: k is the partial volume between o and it
+    }
+  }
+  return true;
+}
+
+/// The end of the object's class o on one side (direction -1: below its level, +1: above):
+/// the first intensity from `start` on where a class that competes on that side (Competes)
+/// explains the image better (Mixture::LogDensity), or NaN when none does before `stop`.
+double CompetitorBoundary(const Mixture& m, int o, double start, double stop, double step)
+{
+  const double direction = stop < start ? -1.0 : 1.0;
+  for (double x = start; direction * (stop - x) >= 0; x += direction * step)
+  {
+    for (int k = 0; k < m.Size(); ++k)
+    {
+      if (Competes(m, o, k, direction) && m.LogDensity(k, x) > m.LogDensity(o, x))
+      {
+        return x;
+      }
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// A start inside one region (a click): its competitors are the other classes of intensity
+/// around it. The voxels within `reach` of the start's bounding box are fitted as a Gaussian
+/// mixture (dsMixture.h, 256 bins between their 0.5 % and 99.5 % quantiles); the object's class
+/// is the one likeliest at the inside median, and the range runs, on each side, to where a class
+/// lying on that side explains the image better: the decision boundary of region competition
+/// (Zhu and Yuille, IEEE PAMI 18(9), 1996) between the object's model and its neighbour's. A
+/// side without a competitor stays open (to beyond the neighbourhood's extreme value, so the
+/// speed's ramp lies outside the data). Nothing changes when the neighbourhood holds one class.
+void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double reach,
+  const PieceReductions& reduce, RangeEstimate& estimate)
+{
+  const VoxelBox around = SurfaceNeighbourhood(mesh, piece.Whole, reach);
+  const VoxelBox counted = piece.CountedVoxels();
+  VoxelBox box;
+  for (int a = 0; a < 3; ++a)
+  {
+    box.Begin[a] = std::max(around.Begin[a], counted.Begin[a]);
+    box.End[a] = std::max(box.Begin[a], std::min(around.End[a], counted.End[a]));
+  }
+  std::vector<float> values;
+  values.reserve(static_cast<std::size_t>(box.NumberOfVoxels()));
+  ForEachCountedRow(piece, box,
+    [&](int, int, const auto* row)
+    {
+      for (int i = 0; i < box.End[0] - box.Begin[0]; ++i)
+      {
+        values.push_back(AsFloat(row[i]));
+      }
+    });
+  const SharedValues all{ values, CountOfAll(values, reduce) };
+  if (all.Count < 64)
+  {
+    return;
+  }
+  constexpr int Bins = 256;
+  const double low = Quantile(all, 0.005, reduce), high = Quantile(all, 0.995, reduce);
+  if (!(high > low))
+  {
+    estimate.Classes = 1; // one value around the click
+    return;
+  }
+  const double width = (high - low) / Bins;
+  std::vector<double> counts(Bins, 0.0);
+  for (float v : values)
+  {
+    counts[std::min(Bins - 1, std::max(0, static_cast<int>((v - low) / width)))] += 1.0;
+  }
+  reduce.Sum(counts);
+  const Mixture m = FitHistogramMixture(counts, low, width, 4);
+  estimate.Classes = m.Size();
+  if (m.Size() < 2)
+  {
+    return;
+  }
+  const int o = m.Likeliest(estimate.Median);
+  double reachLow = low, reachHigh = high;
+  for (int k = 0; k < m.Size(); ++k)
+  {
+    reachLow = std::min(reachLow, m.Mean[k] - 5.0 * m.Sd[k]);
+    reachHigh = std::max(reachHigh, m.Mean[k] + 5.0 * m.Sd[k]);
+  }
+  const double lo = CompetitorBoundary(m, o, m.Mean[o], reachLow, width / 8);
+  const double hi = CompetitorBoundary(m, o, m.Mean[o], reachHigh, width / 8);
+  if (std::isnan(lo) && std::isnan(hi))
+  {
+    return;
+  }
+  const double minimum = Quantile(all, 0.0, reduce), maximum = Quantile(all, 1.0, reduce);
+  const double closedLow = std::isnan(lo) ? m.Mean[o] : lo;
+  const double closedHigh = std::isnan(hi) ? m.Mean[o] : hi;
+  estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
+  estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
+  estimate.Contrast = true;
+  estimate.ObjectMedian = m.Mean[o];
+  int nearest = o == 0 ? 1 : 0;
+  for (int k = 0; k < m.Size(); ++k)
+  {
+    if (k != o && std::abs(m.Mean[k] - m.Mean[o]) < std::abs(m.Mean[nearest] - m.Mean[o]))
+    {
+      nearest = k;
+    }
+  }
+  estimate.BackgroundMedian = m.Mean[nearest];
+}
 } // namespace
 
 bool EstimateIntensityRange(const ImageView& image, const TriangleMesh& mesh, double outwardSign,
-  RangeEstimate& estimate, std::string* error)
+  RangeEstimate& estimate, std::string* error, double competitorReach)
 {
-  return EstimatePieceIntensityRange(
-    WholeImagePiece(image), mesh, outwardSign, SingleProcessReductions(), estimate, error);
+  return EstimatePieceIntensityRange(WholeImagePiece(image), mesh, outwardSign,
+    SingleProcessReductions(), estimate, error, competitorReach);
 }
 
 bool EstimatePieceIntensityRange(const ImagePiece& piece, const TriangleMesh& mesh,
-  double outwardSign, const PieceReductions& reduce, RangeEstimate& estimate, std::string* error)
+  double outwardSign, const PieceReductions& reduce, RangeEstimate& estimate, std::string* error,
+  double competitorReach)
 {
   estimate = RangeEstimate();
   std::vector<float> values = ValuesInside(piece, mesh);
@@ -483,6 +618,14 @@ bool EstimatePieceIntensityRange(const ImagePiece& piece, const TriangleMesh& me
   estimate.Range[0] = m - 3.0 * s;
   estimate.Range[1] = m + 3.0 * s;
 
+  if (competitorReach > 0 && count < ClickVoxels)
+  {
+    // A click: a few voxels inside and a shell of three voxels around them cannot tell the
+    // object from its background (the shell of a click near a bone's cortex is brighter than
+    // the click, which then passed for a dark object); the classes around it can.
+    CompetitorsAround(piece, mesh, competitorReach, reduce, estimate);
+    return true;
+  }
   const std::vector<float> outside = ValuesOutside(piece, mesh, outwardSign);
   estimate.OutsideSamples = CountOfAll(outside, reduce);
   if (estimate.OutsideSamples >= 16)

@@ -34,6 +34,10 @@ inline double RegionSpeed(double intensity, double lo, double hi)
   return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : (s == s ? s : 0.0)); // NaN: no force
 }
 
+/// A start enclosing fewer voxel centres than this is a click (EstimateIntensityRange): a
+/// ball of radius ~6 voxels; a seed sphere around one point (5 mm on 1 mm voxels) holds ~520.
+constexpr long long ClickVoxels = 1000;
+
 /// What the estimate saw, for messages and tests.
 struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 {
@@ -45,6 +49,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
   double ObjectMedian = 0, BackgroundMedian = 0;
   bool FromVertices = false;
   bool Contrast = false; ///< the outside differs: one end of the range is the midpoint
+  int Classes = 0; ///< intensity classes around a click (0: not fitted); 2 or more: competitors
 };
 
 /// The intensity range of the object the start surface lies on or in. Inside: the voxels
@@ -61,9 +66,15 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 /// nearer. When the object's class share differs by less than 0.1 between inside and outside,
 /// or the levels lie within 2 s of each other, the start lies inside one region (a click), and
 /// the range is m -+ 3 s: the whole of that region's class.
+/// A click (fewer than ClickVoxels inside) with competitorReach > 0 instead looks for the region's
+/// competitors: the classes of intensity within competitorReach of the start (a Gaussian mixture),
+/// and the range runs to the decision boundaries between the click's class and the classes
+/// beside it (region competition, docs/METHOD.md §9.3); the m -+ 3 s range stays when the
+/// neighbourhood holds one class.
 /// Returns false (with a message) when there is nothing to sample.
 DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const ImageView& image,
-  const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error);
+  const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error,
+  double competitorReach = 0.0);
 
 /// EstimateIntensityRange of the whole image whose piece this process holds (docs/METHOD.md
 /// §9.8): each process samples the inside voxels it counts (ImagePiece::CountedVoxels) and the
@@ -73,7 +84,7 @@ DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const ImageView& ima
 /// CheckPieces). EstimateIntensityRange is this with the whole image as the one piece.
 DEFORMABLESURFACEFILTERS_EXPORT bool EstimatePieceIntensityRange(const ImagePiece& piece,
   const TriangleMesh& mesh, double outwardSign, const PieceReductions& reduce,
-  RangeEstimate& estimate, std::string* error);
+  RangeEstimate& estimate, std::string* error, double competitorReach = 0.0);
 
 /// Voxels whose value lies in [lo, hi].
 DEFORMABLESURFACEFILTERS_EXPORT long long CountVoxelsInRange(

@@ -126,17 +126,18 @@ bool SameEstimate(const RangeEstimate& a, const RangeEstimate& b)
     a.OutsideSamples == b.OutsideSamples && a.Median == b.Median && a.Spread == b.Spread &&
     a.Separation == b.Separation && a.ObjectMedian == b.ObjectMedian &&
     a.BackgroundMedian == b.BackgroundMedian && a.FromVertices == b.FromVertices &&
-    a.Contrast == b.Contrast;
+    a.Contrast == b.Contrast && a.Classes == b.Classes;
 }
 
 /// The serial range estimate against every rank's, on 2 and 3 slabs.
 template <typename T>
 void SameRange(const ImageGeometry& g, const std::vector<T>& image, const TriangleMesh& start,
-  const std::string& label)
+  const std::string& label, double competitorReach = 0.0)
 {
   RangeEstimate serial;
   std::string error;
-  DS_CHECK(EstimateIntensityRange(ImageView::Of(image.data(), g), start, 1.0, serial, &error),
+  DS_CHECK(EstimateIntensityRange(
+             ImageView::Of(image.data(), g), start, 1.0, serial, &error, competitorReach),
     label + ": serial: " + error);
   for (int nRanks : { 2, 3 })
   {
@@ -150,15 +151,16 @@ void SameRange(const ImageGeometry& g, const std::vector<T>& image, const Triang
         const ImagePiece piece = dstest::Slab<T>(
           g, image, r, nRanks, [&](int a) { return InitialSigmaProbeGhostVoxels(g, a); }, values);
         std::string message;
-        ok[r] = EstimatePieceIntensityRange(
-          piece, start, 1.0, dstest::ReductionsOf(ranks, r), estimates[r], &message);
+        ok[r] = EstimatePieceIntensityRange(piece, start, 1.0, dstest::ReductionsOf(ranks, r),
+          estimates[r], &message, competitorReach);
         same[r] = SameEstimate(estimates[r], serial);
       });
     const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
     std::cout << l << ": range [" << serial.Range[0] << ", " << serial.Range[1] << "] from "
               << serial.Samples << (serial.FromVertices ? " vertices" : " voxels") << " inside, "
-              << serial.OutsideSamples << " outside, contrast " << serial.Contrast << "; rank 0 ["
-              << estimates[0].Range[0] << ", " << estimates[0].Range[1] << "]" << std::endl;
+              << serial.OutsideSamples << " outside, contrast " << serial.Contrast << ", "
+              << serial.Classes << " classes around; rank 0 [" << estimates[0].Range[0] << ", "
+              << estimates[0].Range[1] << "]" << std::endl;
     DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, l + ": every rank estimated");
     DS_CHECK(std::count(same.begin(), same.end(), 1) == nRanks,
       l + ": every rank's estimate equals the serial one exactly");
@@ -288,6 +290,10 @@ int TestDistributedStart(int, char*[])
   SameRange(g, image, nearBall, "the range from a start around the first ball");
   SameRange(g, image, Sphere(4.0, { 17.0, 24.0, 30.0 }), "the range from a click in it");
   SameRange(g, image, Sphere(1.2, { 17.3, 24.2, 30.1 }), "the range from a start around a voxel");
+  // A click's competitors (the classes within the reach, a mixture fitted to reduced
+  // histograms): the same classes and range on every rank.
+  SameRange(g, image, Sphere(4.0, { 17.0, 24.0, 30.0 }), "a click's competitors", 12.0);
+  SameRange(g, image16, Sphere(4.0, { 17.0, 24.0, 30.0 }), "uint16, a click's competitors", 40.0);
   SameRange(g, image, across, "the range from a start across the slabs' borders");
   SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
   BeyondReach(g, image, nearBall);

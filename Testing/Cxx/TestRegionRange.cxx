@@ -11,6 +11,7 @@
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
+#include "dsMixture.h"
 #include "dsRegion.h"
 #include "dsScaleSpace.h"
 
@@ -139,6 +140,57 @@ int TestRegionRange(int, char*[])
     DS_CHECK(
       mx.Range[0] < 80.0 && mx.Range[1] >= 110.0, "two-tone object: both tones in the range");
     DS_CHECK(mx.Range[1] < 125.0, "two-tone object: the range stops below the brighter neighbour");
+  }
+
+  // A click's competitors (docs/METHOD.md §9.3): the same small box with a reach of 16 voxels
+  // sees the cube (100), the background (0) and the slab (250); the range runs between the
+  // decision boundaries of the cube's class and its neighbours', a two-sided force.
+  {
+    RangeEstimate k;
+    DS_CHECK(
+      EstimateIntensityRange(ImageView::Of(image.data(), g), click, 1.0, k, &error, 16.0), error);
+    std::cout << "click with competitors: " << k.Classes << " classes, range [" << k.Range[0]
+              << ", " << k.Range[1] << "]" << std::endl;
+    DS_CHECK(k.Contrast && k.Classes == 3, "click: three classes around it, the force two-sided");
+    DS_CHECK(k.Range[0] > 10.0 && k.Range[0] < 90.0, "click: low end between background and cube");
+    DS_CHECK(
+      k.Range[1] > 110.0 && k.Range[1] < 240.0, "click: high end between the cube and the slab");
+    // Without the slab in reach (4 voxels: the cube and the background only), the side
+    // without a competitor stays open: past the brightest value there.
+    RangeEstimate open;
+    DS_CHECK(
+      EstimateIntensityRange(ImageView::Of(image.data(), g), click, 1.0, open, &error, 4.0), error);
+    std::cout << "click, slab out of reach: " << open.Classes << " classes, range ["
+              << open.Range[0] << ", " << open.Range[1] << "]" << std::endl;
+    DS_CHECK(open.Classes == 1 && !open.Contrast && open.Range[1] < 250.0,
+      "click inside the cube's class alone: the median -+ 3 s range, grow only");
+  }
+
+  // The mixture itself: two Gaussians (means 40 and 160, s.d. 10 and 25, weights 0.3 and 0.7)
+  // as a 256-bin histogram; BIC keeps two classes, EM finds them.
+  {
+    std::vector<double> counts(256);
+    const double low = 0.0, width = 1.0;
+    for (int b = 0; b < 256; ++b)
+    {
+      const double x = low + (b + 0.5) * width;
+      counts[b] = std::round(1e5 *
+        (0.3 * std::exp(-0.5 * std::pow((x - 40) / 10, 2)) / (10 * std::sqrt(2 * M_PI)) +
+          0.7 * std::exp(-0.5 * std::pow((x - 160) / 25, 2)) / (25 * std::sqrt(2 * M_PI))));
+    }
+    const Mixture m = FitHistogramMixture(counts, low, width, 4);
+    std::cout << "mixture: " << m.Size() << " classes";
+    for (int c = 0; c < m.Size(); ++c)
+    {
+      std::cout << " (" << m.Weight[c] << ", " << m.Mean[c] << ", " << m.Sd[c] << ")";
+    }
+    std::cout << std::endl;
+    DS_CHECK(m.Size() == 2, "mixture: two classes by BIC");
+    DS_CHECK(std::abs(m.Mean[0] - 40) < 0.5 && std::abs(m.Mean[1] - 160) < 0.5 &&
+        std::abs(m.Sd[0] - 10) < 0.5 && std::abs(m.Sd[1] - 25) < 0.5 &&
+        std::abs(m.Weight[0] - 0.3) < 0.01,
+      "mixture: the classes' weights, means and spreads");
+    DS_CHECK(m.Likeliest(40) == 0 && m.Likeliest(160) == 1, "mixture: each level in its class");
   }
 
   // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
