@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
-# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Heads|Accuracy|Scale ...]
+# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Heads|Accuracy|Scale|Objects ...]
 #   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Heads (the README's
 #   whole-head solves in VTK Python against vtkFlyingEdges3D; about a minute; BENCH_ARGS = the
 #   runs of each), Accuracy (our filter, vtkFlyingEdges3D and ITK's geodesic active contour on
 #   the accuracy phantoms; about 10 minutes) and Scale (128^3..1024^3 CT-like volumes, time and
-#   peak memory; about 5 minutes) run when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
+#   peak memory; about 5 minutes) and Objects (issue 24: one click on the spine and horned
+#   phantoms, Colin27's caudates and 50 white-matter clicks, beside a connected threshold, with
+#   the issue's goals; about 10 minutes; BENCH_ARGS="spine horned" runs the cases named) run
+#   when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
 #   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
 #   its column is skipped and why).
 # Arguments for one program: BENCH_ARGS, e.g. BENCH_ARGS="128 256" scripts/benchmark.sh Scale

@@ -1,0 +1,396 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// One click finds a homogeneous object (issue 24): the README's one-click workflow (a click ->
+// vtkDelaunaySeedSurface -> vtkDeformableSurfaceFilter, every default unless said) on objects
+// that are not a brain, beside the alternative a user would pick: a connected threshold (the
+// voxels in the same range, the 6-connected component holding the click; the range is the one
+// the filter used, its output's IntensityRange, or the case's own when the output has none).
+// Both are scored the same way (ObjectScore.h) against a reference used only to score:
+//   spine         ObjectPhantoms.h's spine, one click in the middle body; the middle body's label
+//   horned        ObjectPhantoms.h's horned ventricle, one click in the body; its label
+//   caudate-left  Colin27 (mricron-data ch2.nii.gz), the click of Examples/
+//   caudate-right   colin27_caudate_clicks.csv in each caudate head, a 3 mm seed sphere; AAL
+//                   (aal.nii.gz) label 71 / 72 without its voxels darker than 60 in ch2 (CSF)
+//   wm            Colin27, each of the 50 clicks of Examples/colin27_wm_clicks.csv with
+//                 RegionWeight 1 and IntensityRange 62 130 (the README's click); the brain
+//                 mask (ch2bet.nii.gz > 0); one row of medians and worst values
+//
+//   BenchObjects [--wm-clicks N] [--verbose] [--write DIR] [CASE ...]
+// CASE: a part of a case's name (e.g. `spine`, `caudate`); none: every case. --wm-clicks: the
+// first N white-matter clicks only; --verbose: a row per white-matter click; --write: each
+// surface as DIR/CASE_ours.vtp and DIR/CASE_threshold.vtp.
+#include "../Cxx/ObjectPhantoms.h"
+#include "../Cxx/ObjectScore.h"
+#include "../Cxx/OneClick.h"
+
+#include "vtkDSNIFTIImageReader.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace dsobjects;
+
+namespace
+{
+#ifndef DS_EXAMPLES_DIR
+#define DS_EXAMPLES_DIR "Examples"
+#endif
+const std::string Templates = "/usr/share/mricron/templates/";
+
+/// One object: its image, reference mask and boundary, the click and how the user runs it.
+struct ObjectCase
+{
+  vtkSmartPointer<vtkImageData> Image;
+  std::vector<unsigned char> Reference;
+  vtkSmartPointer<vtkPolyData> ReferenceBoundary;
+  std::array<double, 3> Click;
+  ClickSettings Settings;
+  double FallbackRange[2]; ///< the threshold's range when the filter's output gives none
+  vtkIdType ReferenceStride = 1;
+};
+
+/// --write DIR: where each case's surfaces go (NAME_ours.vtp, NAME_threshold.vtp); empty: none.
+std::string& WriteDirectory()
+{
+  static std::string directory;
+  return directory;
+}
+
+void Write(vtkPolyData* surface, const std::string& name)
+{
+  if (WriteDirectory().empty())
+    return;
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(surface);
+  writer->SetDataModeToBinary(); // inline base64: Debian 12's expat cannot read appended data
+  writer->SetFileName((WriteDirectory() + "/" + name + ".vtp").c_str());
+  writer->Write();
+}
+
+struct Pair
+{
+  ObjectScore Ours, Threshold;
+  double Range[2] = { 0, 0 };
+};
+
+Pair RunCase(const ObjectCase& c, const std::string& name)
+{
+  Pair p;
+  const ClickResult click = RunOneClick(c.Image, c.Click, c.Settings);
+  Write(click.Surface, name + "_ours");
+  p.Ours = Score(click.Surface, SurfaceInterior(click.Surface, c.Image), c.Reference,
+    c.ReferenceBoundary, c.Image, c.ReferenceStride);
+  p.Ours.Seconds = click.Seconds;
+  p.Range[0] = click.HasRange ? click.UsedRange[0] : c.FallbackRange[0];
+  p.Range[1] = click.HasRange ? click.UsedRange[1] : c.FallbackRange[1];
+  const ThresholdResult t = ThresholdComponent(c.Image, p.Range[0], p.Range[1], c.Click);
+  Write(t.Surface, name + "_threshold");
+  p.Threshold =
+    Score(t.Surface, t.Inside, c.Reference, c.ReferenceBoundary, c.Image, c.ReferenceStride);
+  p.Threshold.Seconds = t.Seconds;
+  p.Threshold.VerticesOutside = -1; // its voxels are the image's: nothing can lie outside
+  return p;
+}
+
+void Header()
+{
+  std::printf("| case | method | s | vertices | surface -> ref mean / 95%% | ref -> surface mean / "
+              "95%% | Dice | volume ratio | %% outside | self-int. | vertices outside image | "
+              "goal (issue 24) | met |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+}
+
+void Row(const std::string& name, const std::string& method, const ObjectScore& s,
+  const std::string& time, const std::string& unit, const std::string& goal, const std::string& met)
+{
+  char selfInt[32], outside[32];
+  std::snprintf(selfInt, sizeof selfInt, "%d", s.SelfIntersections);
+  std::snprintf(outside, sizeof outside, "%lld", s.VerticesOutside);
+  std::printf("| %s | %s | %s | %lld | %.2f / %.2f %s | %.2f / %.2f %s | %.3f | %.2f | %.1f | %s | "
+              "%s | %s | %s |\n",
+    name.c_str(), method.c_str(), time.c_str(), s.Vertices, s.SurfaceMean, s.SurfaceP95,
+    unit.c_str(), s.ReferenceMean, s.ReferenceP95, unit.c_str(), s.Dice, s.VolumeRatio,
+    100.0 * s.OutsideShare, s.SelfIntersections < 0 ? "-" : selfInt,
+    s.VerticesOutside < 0 ? "-" : outside, goal.c_str(), met.c_str());
+  std::fflush(stdout);
+}
+
+std::string Format(const char* format, double a, double b = 0)
+{
+  char text[128];
+  std::snprintf(text, sizeof text, format, a, b);
+  return text;
+}
+
+/// Our row and the threshold's beside it (its time as a share of ours).
+void PrintPair(const std::string& name, const Pair& p, const std::string& unit,
+  const std::string& goal, bool met)
+{
+  Row(name, "one click", p.Ours, Format("%.2f", p.Ours.Seconds), unit, goal, met ? "yes" : "NO");
+  Row(name, Format("threshold [%g, %g] + component", p.Range[0], p.Range[1]), p.Threshold,
+    Format("%.3f (ours / it: %.0f)", p.Threshold.Seconds,
+      p.Ours.Seconds / std::max(1e-6, p.Threshold.Seconds)),
+    unit, "", "");
+}
+
+ObjectCase PhantomCase(const ObjectPhantom& phantom, double lo, double hi)
+{
+  ObjectCase c;
+  c.Image = phantom.Image;
+  const int object = phantom.ObjectLabel;
+  c.Reference = MaskOf(phantom.Label, [object](double l, vtkIdType) { return l == object; });
+  c.ReferenceBoundary = MaskBoundary(c.Reference, phantom.Image);
+  c.Click = phantom.Click;
+  c.FallbackRange[0] = lo;
+  c.FallbackRange[1] = hi;
+  return c;
+}
+
+void Spine()
+{
+  // Fallback range: above the discs and soft tissue (<= 132 HU with partial volume) to bone.
+  const Pair p = RunCase(PhantomCase(SpinePhantom(), 150.0, 3000.0), "spine");
+  PrintPair("spine", p, "mm", "<= 5 % outside, Dice >= 0.9",
+    p.Ours.OutsideShare <= 0.05 && p.Ours.Dice >= 0.9);
+}
+
+void Horned()
+{
+  const Pair p = RunCase(PhantomCase(HornedPhantom(), 0.0, 45.0), "horned");
+  PrintPair("horned", p, "vx", "ref -> surface mean <= 0.5, 95 % <= 1.5 vx, 0 self-int.",
+    p.Ours.ReferenceMean <= 0.5 && p.Ours.ReferenceP95 <= 1.5 && p.Ours.SelfIntersections == 0);
+}
+
+vtkSmartPointer<vtkImageData> ReadNifti(const std::string& path)
+{
+  vtkNew<vtkDSNIFTIImageReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(reader->GetOutput());
+  return image;
+}
+
+std::vector<std::array<double, 3>> ReadClicks(const std::string& path)
+{
+  std::vector<std::array<double, 3>> clicks;
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line); // x,y,z
+  while (std::getline(in, line))
+  {
+    std::array<double, 3> p;
+    char comma;
+    std::istringstream row(line);
+    if (row >> p[0] >> comma >> p[1] >> comma >> p[2])
+      clicks.push_back(p);
+  }
+  return clicks;
+}
+
+bool SameGrid(vtkImageData* a, vtkImageData* b)
+{
+  int da[3], db[3];
+  a->GetDimensions(da);
+  b->GetDimensions(db);
+  double oa[3], ob[3], sa[3], sb[3];
+  a->GetOrigin(oa);
+  b->GetOrigin(ob);
+  a->GetSpacing(sa);
+  b->GetSpacing(sb);
+  for (int k = 0; k < 3; ++k)
+    if (da[k] != db[k] || std::abs(oa[k] - ob[k]) > 1e-6 || std::abs(sa[k] - sb[k]) > 1e-6)
+      return false;
+  return AxisAligned(a) && AxisAligned(b);
+}
+
+bool Wanted(const std::vector<std::string>& filters, const std::string& name)
+{
+  if (filters.empty())
+    return true;
+  for (const std::string& f : filters)
+    if (name.find(f) != std::string::npos)
+      return true;
+  return false;
+}
+/// Colin27's caudate heads: AAL 71 (left, x < 0 in the template's RAS) and 72 without CSF.
+void Caudates(const std::vector<std::string>& filters)
+{
+  const vtkSmartPointer<vtkImageData> head = ReadNifti(Templates + "ch2.nii.gz");
+  const vtkSmartPointer<vtkImageData> aal = ReadNifti(Templates + "aal.nii.gz");
+  if (head->GetNumberOfPoints() == 0 || !SameGrid(head, aal))
+  {
+    std::printf("| caudate | | missing or misaligned ch2.nii.gz / aal.nii.gz (mricron-data) |\n");
+    return;
+  }
+  vtkDataArray* t1 = head->GetPointData()->GetScalars();
+  for (const auto& click : ReadClicks(DS_EXAMPLES_DIR "/colin27_caudate_clicks.csv"))
+  {
+    const int label = click[0] < 0 ? 71 : 72;
+    const std::string name = label == 71 ? "caudate-left" : "caudate-right";
+    if (!Wanted(filters, name))
+      continue;
+    ObjectCase c;
+    c.Image = head;
+    c.Reference = MaskOf(aal,
+      [t1, label](double l, vtkIdType v) { return l == label && t1->GetComponent(v, 0) >= 60.0; });
+    c.ReferenceBoundary = MaskBoundary(c.Reference, head);
+    c.Click = click;
+    c.Settings.SeedRadius = 3.0;
+    c.FallbackRange[0] = 75.0; // grey matter between CSF and white matter
+    c.FallbackRange[1] = 100.0;
+    const Pair p = RunCase(c, name);
+    PrintPair(name, p, "mm", "mean <= 1.5 mm both ways, volume +-15 %",
+      p.Ours.SurfaceMean <= 1.5 && p.Ours.ReferenceMean <= 1.5 &&
+        std::abs(p.Ours.VolumeRatio - 1.0) <= 0.15);
+  }
+}
+
+double Median(std::vector<double> v)
+{
+  if (v.empty())
+    return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+/// The white-matter clicks: a row of medians and one of the worst values over the clicks.
+void WhiteMatter(int limit, bool verbose)
+{
+  const vtkSmartPointer<vtkImageData> head = ReadNifti(Templates + "ch2.nii.gz");
+  const vtkSmartPointer<vtkImageData> brain = ReadNifti(Templates + "ch2bet.nii.gz");
+  if (head->GetNumberOfPoints() == 0 || !SameGrid(head, brain))
+  {
+    std::printf("| wm | | missing or misaligned ch2.nii.gz / ch2bet.nii.gz (mricron-data) |\n");
+    return;
+  }
+  ObjectCase c;
+  c.Image = head;
+  c.Reference = MaskOf(brain, [](double v, vtkIdType) { return v > 0; });
+  c.ReferenceBoundary = MaskBoundary(c.Reference, head);
+  c.ReferenceStride = 8; // ~45k of the boundary's 355k points: the statistics are the same
+  c.Settings.RegionWeight = 1.0;
+  c.Settings.IntensityRange[0] = 62.0;
+  c.Settings.IntensityRange[1] = 130.0;
+  c.FallbackRange[0] = 62.0;
+  c.FallbackRange[1] = 130.0;
+  std::vector<std::array<double, 3>> clicks = ReadClicks(DS_EXAMPLES_DIR "/colin27_wm_clicks.csv");
+  if (limit > 0 && static_cast<int>(clicks.size()) > limit)
+    clicks.resize(limit);
+  std::vector<Pair> pairs;
+  for (size_t k = 0; k < clicks.size(); ++k)
+  {
+    c.Click = clicks[k];
+    pairs.push_back(RunCase(c, Format("wm%.0f", double(k + 1))));
+    if (verbose)
+      PrintPair(Format("wm %.0f", double(k + 1)) + Format(" (%.1f, %.1f", c.Click[0], c.Click[1]) +
+          Format(", %.1f)", c.Click[2]),
+        pairs.back(), "mm", "",
+        pairs.back().Ours.SelfIntersections == 0 && pairs.back().Ours.SurfaceMean <= 1.0);
+  }
+  if (pairs.empty())
+    return;
+  // Medians and worst values, field by field.
+  auto summary = [&](const std::function<const ObjectScore&(const Pair&)>& of, bool worst)
+  {
+    ObjectScore s;
+    std::vector<double> f[11];
+    for (const Pair& p : pairs)
+    {
+      const ObjectScore& o = of(p);
+      const double v[11] = { o.Seconds, double(o.Vertices), o.SurfaceMean, o.SurfaceP95,
+        o.ReferenceMean, o.ReferenceP95, o.Dice, o.VolumeRatio, o.OutsideShare,
+        double(o.SelfIntersections), double(o.VerticesOutside) };
+      for (int k = 0; k < 11; ++k)
+        f[k].push_back(v[k]);
+    }
+    double r[11];
+    for (int k = 0; k < 11; ++k)
+    {
+      const bool lowIsWorse = k == 6; // Dice
+      r[k] = !worst  ? Median(f[k])
+        : lowIsWorse ? *std::min_element(f[k].begin(), f[k].end())
+                     : *std::max_element(f[k].begin(), f[k].end());
+    }
+    s.Seconds = r[0];
+    s.Vertices = static_cast<long long>(r[1]);
+    s.SurfaceMean = r[2];
+    s.SurfaceP95 = r[3];
+    s.ReferenceMean = r[4];
+    s.ReferenceP95 = r[5];
+    s.Dice = r[6];
+    s.VolumeRatio = r[7];
+    s.OutsideShare = r[8];
+    s.SelfIntersections = static_cast<int>(r[9]);
+    s.VerticesOutside = static_cast<long long>(r[10]);
+    return s;
+  };
+  int folds = 0, far = 0;
+  for (const Pair& p : pairs)
+  {
+    folds += p.Ours.SelfIntersections != 0 ? 1 : 0;
+    far += p.Ours.SurfaceMean > 1.0 ? 1 : 0;
+  }
+  const std::string name = Format("wm, %.0f clicks", double(pairs.size()));
+  const std::string met = folds == 0 && far == 0
+    ? "yes"
+    : Format("NO: %.0f fold, %.0f > 1 mm", double(folds), double(far));
+  for (bool worst : { false, true })
+  {
+    const ObjectScore ours =
+      summary([](const Pair& p) -> const ObjectScore& { return p.Ours; }, worst);
+    const ObjectScore it =
+      summary([](const Pair& p) -> const ObjectScore& { return p.Threshold; }, worst);
+    const std::string what = worst ? "worst" : "median";
+    Row(name, "one click, " + what, ours, Format("%.2f", ours.Seconds), "mm",
+      worst ? "" : "none folds, each <= 1.0 mm mean", worst ? "" : met);
+    Row(name, "threshold [62, 130] + component, " + what, it,
+      Format("%.3f (ours / it: %.0f)", it.Seconds, ours.Seconds / std::max(1e-6, it.Seconds)), "mm",
+      "", "");
+  }
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<std::string> filters;
+  int wmClicks = 0;
+  bool verbose = false;
+  for (int a = 1; a < argc; ++a)
+  {
+    const std::string arg = argv[a];
+    if (arg == "--wm-clicks" && a + 1 < argc)
+      wmClicks = std::atoi(argv[++a]);
+    else if (arg == "--write" && a + 1 < argc)
+      WriteDirectory() = argv[++a];
+    else if (arg == "--verbose")
+      verbose = true;
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      std::fprintf(
+        stderr, "usage: %s [--wm-clicks N] [--verbose] [--write DIR] [CASE ...]\n", argv[0]);
+      return EXIT_FAILURE;
+    }
+    else
+      filters.push_back(arg);
+  }
+  std::printf("One click, every default unless said (issue 24); distances: mm (horned: voxels of "
+              "1 mm); threshold: the filter's range, the 6-connected component of the click\n");
+  Header();
+  if (Wanted(filters, "spine"))
+    Spine();
+  if (Wanted(filters, "horned"))
+    Horned();
+  if (Wanted(filters, "caudate-left") || Wanted(filters, "caudate-right"))
+    Caudates(filters);
+  if (Wanted(filters, "wm"))
+    WhiteMatter(wmClicks, verbose);
+  return EXIT_SUCCESS;
+}
