@@ -431,9 +431,10 @@ void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, do
 
 /// A class less frequent around a click than this share of the click's own class, lying between
 /// it and a further class on the same side, is the partial volume between the two (a dark
-/// body's rim in a bright surround), not a competitor: as one it cut the range short of a horn
-/// whose voxels are three quarters object. The class beyond competes instead.
-constexpr double PartialVolumeShare = 0.5;
+/// body's rim in a bright surround), not a competitor: as one it cut the range short of horns
+/// whose voxels are three quarters body (the committed horned phantom's range ended at 26 for a
+/// body of 20 in a surround of 70). The class beyond competes instead.
+constexpr double PartialVolumeShare = 1.0;
 
 /// Whether class k, on side `direction` (-1 below, +1 above) of the object's class o, competes.
 bool Competes(const Mixture& m, int o, int k, double direction)
