@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 from paraview.simple import *  # noqa: F401,F403
 import os
 # The README's one-click workflow in the GUI, for its picture: run with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The seeding workflow of the paper (section 7) in ParaView, scripted.
 
   image -> slices -> boundary points picked on the slices -> Extract Selection

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one bridge from VTK image data into the plain-C++ core (Filters/Core): the checks,
 // geometry and the values (in their own type) that the three filters need. It uses VTK data types,
 // so it lives beside the VTK classes, not in the core.

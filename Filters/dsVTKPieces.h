@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The MPI side of a distributed solve (docs/METHOD.md §9.8): the processes' reductions through
 // a vtkMultiProcessController, and the piece of the image the pipeline delivered to this
 // process. It uses VTK types, so it lives beside the VTK classes, not in the core.

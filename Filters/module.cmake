@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Included from the build-tree copy of vtk.module (see the top-level CMakeLists.txt):
 # paths here are absolute so the module can be built from any binary directory.
 set(_ds_filters_dir "${DeformableSurface_SOURCE_DIR}/Filters")

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkDSNIFTIImageReader
  * @brief   vtkNIFTIImageReader that places the image where the file says: the qform/sform

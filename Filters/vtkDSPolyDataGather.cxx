@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkDSPolyDataGather.h"
 
 #include "vtkAppendPolyData.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkDSPolyDataGather
  * @brief   Collects the pieces of a distributed vtkPolyData on process 0.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkDeformableSurfaceFilter
  * @brief   Deforms an initial triangle surface onto the boundaries of a volume.
@@ -104,10 +105,11 @@
  * ImageVoxels. Each process holds its piece and a bounded number of ghost layers: one for a
  * level with the recursive Gaussian (sigma from 3 voxels, its state passed from piece to
  * piece), 13 at most for the sampled one, twice the block size for coarse levels (54 at 512^3
- * with every default, which allows for sigma_0 up to extent / 6). A reader that cannot split its file (NIfTI,
- * MetaImage: the whole image on process 0, nothing on the others) leaves the solve to process 0
- * alone. Otherwise an empty or invalid piece on any process is an error on all of them. The sweeps then run on one thread per process; Abort on one process
- * stops all of them after the same sweep (agreed once per batch of sweeps).
+ * with every default, which allows for sigma_0 up to extent / 6). A reader that cannot split its
+ * file (NIfTI, MetaImage: the whole image on process 0, nothing on the others) leaves the solve to
+ * process 0 alone. Otherwise an empty or invalid piece on any process is an error on all of them.
+ * The sweeps then run on one thread per process; Abort on one process stops all of them after the
+ * same sweep (agreed once per batch of sweeps).
  *
  * Caveats: with another potential the whole image is requested (above). Abort stops after the
  * current sweep and outputs the (valid) surface reached so far. A weak boundary next to a strong
@@ -135,12 +137,12 @@ class SweepAnimation;
 class WarmStart;
 }
 
-// The parameters, one line each (CONTRIBUTING.md, "Adding a parameter"): the property's name (Set<Name> and
-// Get<Name> in C++, Python and the ParaView XML), its type here, the field that holds it, whose
-// initialiser is its one default (Parameters: dsurf::MultilevelParameters, dsMultilevel.h and
-// dsSolver.h; Animation and Warm: this filter's own, dsVTKAnimation.h and dsVTKWarmStart.h), and
-// its range. From this list come the methods below, PrintSelf and the check that refuses a NaN
-// or infinite number at the update (the clamps let NaN through).
+// The parameters, one line each (CONTRIBUTING.md, "Adding a parameter"): the property's name
+// (Set<Name> and Get<Name> in C++, Python and the ParaView XML), its type here, the field that
+// holds it, whose initialiser is its one default (Parameters: dsurf::MultilevelParameters,
+// dsMultilevel.h and dsSolver.h; Animation and Warm: this filter's own, dsVTKAnimation.h and
+// dsVTKWarmStart.h), and its range. From this list come the methods below, PrintSelf and the check
+// that refuses a NaN or infinite number at the update (the clamps let NaN through).
 //   NUMBER: clamped to [min, max], as vtkSetClampMacro (Get<Name>MinValue/MaxValue too);
 //   CUSTOM: a number whose Set<Name> is written by hand (its own rule);
 //   FLAG:   on or off, as vtkSetMacro and vtkBooleanMacro (<Name>On/Off too);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkDelaunaySeedSurface
  * @brief   Start surface for the deformable surface: the outer boundary of a Delaunay

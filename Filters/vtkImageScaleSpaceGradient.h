@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkImageScaleSpaceGradient
  * @brief   External potential and force of the deformable surface at scale sigma.

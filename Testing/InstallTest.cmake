@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # ctest driver: install the build into a scratch prefix, then configure, build and
 # run Examples/CxxApp against it with find_package(DeformableSurface).
 # -D BUILD_DIR=... -D SOURCE_DIR=... -D WORK_DIR=...

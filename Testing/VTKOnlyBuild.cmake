@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # ctest driver: configure and build the project with DEFORMABLESURFACE_USE_PARAVIEW=OFF
 # against ParaView's bundled VTK, then import the wrapped package with plain vtkmodules.
 execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${WORK_DIR}"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
 # Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Heads|Accuracy|Scale|Objects ...]
 #   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Heads (the README's

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs what is missing, then configures (once) and builds incrementally.
 # BUILD_DIR (default: build) and extra CMake arguments in DS_CMAKE_ARGS may be set.
 set -euo pipefail

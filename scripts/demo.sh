@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job: installs what is missing, builds, then runs the pvbatch demo on a real
 # volume from a Debian package and writes the result and a picture to OUT (default: out/).
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The fuzzing stage: builds the libFuzzer targets of Testing/Fuzz (clang, with AddressSanitizer
 # and UndefinedBehaviorSanitizer, in the sanitizer build tree build-asan of scripts/sanitize.sh)
 # and runs each for a bounded time, starting from its committed corpus

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # gui_screenshot.sh OUT.png: the README's picture of the ParaView GUI running the one-click
 # workflow (Examples/gui_one_click.py): the paraview client under a private Xvfb, a picture of
 # the whole window (panels included) after it has solved. Needs the build and ImageMagick's

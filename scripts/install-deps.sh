@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the Debian 12 packages the project needs to build, test and run its demo.
 # Idempotent and quick when everything is there: apt runs only for missing packages.
 # --with-itk (opt-in, not for CI): also ITK, which only BenchAccuracy's comparison column uses
@@ -6,8 +7,8 @@
 set -euo pipefail
 
 packages=(
-  # toolchain
-  cmake g++ make
+  # toolchain (clang-format: the Format.check test)
+  cmake g++ make clang-format
   # the sanitizer and fuzzing stages of scripts/test.sh (clang++ with libFuzzer and the
   # ASan/UBSan runtimes)
   clang libclang-rt-14-dev

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The sanitizer stage: builds the module and its C++ tests with clang in Debug under
 # AddressSanitizer + UndefinedBehaviorSanitizer (our code only: Debian's VTK libraries stay as
 # they are) into build-asan, and runs every C++ test (ctest -L cxx) there. Any finding (memory

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The test command: installs what is missing, builds, and runs every test with ctest; then the
 # sanitizer stage (scripts/sanitize.sh: the C++ tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer) and the fuzzing stage (scripts/fuzz.sh: libFuzzer, 25 s per

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # with_xvfb.sh COMMAND...: runs COMMAND under a private Xvfb (24-bit screen) and stops it
 # afterwards: the display of the demo and of the pvbatch_*.py rendering tests.
 #

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A C++ program linking DeformableSurface::Filters from an installed package
 // (find_package(DeformableSurface)): a binary ball in a 64^3 volume, the box around
 // the volume as the start, vtkDeformableSurfaceFilter with its defaults. Prints the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Butterfly prolongation (docs/METHOD.md §6.5): where red-green refinement puts a new
 // edge midpoint. Plain C++, no pipeline types.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "dsFieldBricks.h"
 
 #include "dsThreads.h"
@@ -76,8 +77,8 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
   for (int k = box.Begin[2]; k < box.End[2]; ++k)
     for (int j = box.Begin[1]; j < box.End[1]; ++j)
       // Within the own box along y and z, only the x layer past it is another brick's.
-      for (int i = (j < own.End[1] && k < own.End[2]) ? own.End[0] : box.Begin[0];
-           i < box.End[0]; ++i)
+      for (int i = (j < own.End[1] && k < own.End[2]) ? own.End[0] : box.Begin[0]; i < box.End[0];
+           ++i)
       {
         const int p[3] = { i, j, k };
         int owner[3];

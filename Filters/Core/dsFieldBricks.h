@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A fine level's force field only where the surface is (docs/METHOD.md §9.7). The surface of an
 // object fills a thin shell of its bounding box, so P and -grad P
 // (16 bytes a voxel) are kept only in bricks of BrickSize^3 voxels within the surface's reach;

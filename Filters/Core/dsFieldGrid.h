@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The grid a level's force field lives on (docs/METHOD.md §9.7). Memory and time follow the
 // surface and its scale, not the volume:
 // - coarse scales on coarse grids: a field at sigma needs no more than a few samples per

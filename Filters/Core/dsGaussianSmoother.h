@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The separable Gaussian G_sigma of the scale space (docs/METHOD.md §2, §6 item 6, §6c):
 // plain C++, used by dsScaleSpace.cxx only.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The image as the core reads it: where its voxels are (ImageGeometry), a box of them (VoxelBox)
 // and their values in the input's own type (ImageView), never a float copy of the whole volume
 // (docs/METHOD.md §9.6-9.7: a 1024^3 uint16 CT is 2 GiB, its float copy would be 4 more).

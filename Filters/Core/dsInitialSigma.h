@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The first sigma of the hierarchy, chosen from the start surface (beyond the paper:
 // docs/METHOD.md §9). Plain C++, no pipeline types.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the machine can still give, so that a volume too large for it is refused with a message
 // before anything is allocated, instead of the process being killed part-way (docs/METHOD.md §9).
 // Plain C++.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The adaptive multilevel schedule of the deformable surface (docs/METHOD.md §6): plain C++,
 // no pipeline types; vtkDeformableSurfaceFilter converts data and calls Run().
 //

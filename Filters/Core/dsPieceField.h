@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The force field of one piece of a distributed image (docs/METHOD.md §9.8): under MPI each
 // process holds only its piece of the volume plus ghost layers, and computes the field of a
 // level there, equal on the voxels it owns to the field the whole image gives

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "dsPieceGaussian.h"
 
 #include "dsGaussianSmoother.h"

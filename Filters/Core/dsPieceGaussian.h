@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // G_sigma * f on a piece of a distributed image (docs/METHOD.md §6c, §9.8): the serial
 // separable Gaussian (dsGaussianSmoother.h) with the recursive filter's state passed from piece
 // to piece, so that every process gets the serial values on its voxels, bit for bit, without

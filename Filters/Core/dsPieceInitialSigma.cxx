@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "dsPieceInitialSigma.h"
 
 #include "dsFieldGrid.h"

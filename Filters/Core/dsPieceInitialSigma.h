@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // sigma_0 from the start (docs/METHOD.md §9.1) on a distributed image (§9.8): the probe field
 // (sigma one voxel, locally normalised) computed on each process's piece within the rays' reach
 // of the start (InitialSigmaProbeReach; nothing on a piece beyond it), equal to the serial one on

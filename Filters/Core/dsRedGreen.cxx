@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "dsRedGreen.h"
 
 #include <algorithm>
@@ -133,9 +134,9 @@ std::vector<std::array<unsigned char, 3>> RedGreenRefiner::ComputeCornerLabels(
       // split edge C, its opposite corner D, whatever the vertex is in other greens.
       const Green& green = this->Greens[g];
       const int v = tri[c];
-      corners[t][c] = v == green.Midpoint             ? LabelM
+      corners[t][c] = v == green.Midpoint                ? LabelM
         : v == green.Parent[(green.SplitCorner + 2) % 3] ? LabelD
-                                                          : LabelC;
+                                                         : LabelC;
     }
   }
   return corners;

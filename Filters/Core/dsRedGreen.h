@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Red-green adaptive refinement of the deformable surface (docs/METHOD.md §6.3-6.5): plain C++,
 // no pipeline types.
 //

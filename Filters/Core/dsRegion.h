@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The region ("balloon") force of the deformable surface: beyond the paper, docs/METHOD.md
 // §9. Plain C++, no pipeline types.
 //

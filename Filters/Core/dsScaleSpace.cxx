@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "dsScaleSpace.h"
 
 #include "dsFieldBricks.h"
@@ -532,8 +533,8 @@ void PotentialAndForceInPlace(float* potential, float* force, const int dims[3],
           {
             const int p[3] = { i, j, k };
             const std::ptrdiff_t v = k * sz + j * step[1] + i;
-            PotentialAndForceAt(potential + v, p, dims, step, toWorld, gains,
-              slice[j * step[1] + i], force + 3 * v);
+            PotentialAndForceAt(
+              potential + v, p, dims, step, toWorld, gains, slice[j * step[1] + i], force + 3 * v);
           }
         }
       });
@@ -681,8 +682,7 @@ bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParamete
       }
       // G_sigma*f, replaced by P as the force is computed
       SmoothImage(image, sv, potential, parameters.Smooth);
-      const EdgeStatistics stats =
-        EdgeStatisticsOf(potential, dims, toWorld, nullptr, parameters);
+      const EdgeStatistics stats = EdgeStatisticsOf(potential, dims, toWorld, nullptr, parameters);
       PotentialAndForceInPlace(
         potential, force, dims, toWorld, GainsOf(stats, stats.GradientMax, parameters));
     });
@@ -758,8 +758,8 @@ void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, 
       for (int i = part.Begin[0]; i < part.End[0]; ++i)
       {
         const int p[3] = { i, j, k };
-        const std::ptrdiff_t o = (i - box.Begin[0]) + (j - box.Begin[1]) * bx +
-          (k - box.Begin[2]) * bx * by;
+        const std::ptrdiff_t o =
+          (i - box.Begin[0]) + (j - box.Begin[1]) * bx + (k - box.Begin[2]) * bx * by;
         PotentialAndForceAt(smooth + i + j * step[1] + k * step[2], p, n, step, toWorld, gains,
           potential[o], force + 3 * o);
       }

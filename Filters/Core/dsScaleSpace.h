@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scale-space external force of the deformable surface (docs/METHOD.md §2, §6.6):
 // plain C++, no pipeline types. Shared by vtkImageScaleSpaceGradient and
 // vtkDeformableSurfaceFilter so the two never disagree.

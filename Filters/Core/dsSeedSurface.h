@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The plain-C++ core of vtkDelaunaySeedSurface: per-tetrahedron measures, the boundary
 // of a set of kept tetrahedra as a closed 2-manifold outward-oriented triangle surface
 // (with pinch resolution), and uniform midpoint subdivision to a target edge length.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Counting self-intersections of a triangle mesh (docs/METHOD.md §5, ours; the count behind
 // the SelfIntersections field; the rule that keeps the force from folding the surface is
 // dsSelfIntersectionRule.h): a bounding-volume

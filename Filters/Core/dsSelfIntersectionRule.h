@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The self-intersection rule of docs/METHOD.md §5 (paper §5): the external force is not
 // normal to the surface and could fold it, so only its projection onto one direction is
 // applied: onto the umbrella vector U(p) when F . U > 0, otherwise onto the vertex normal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The single-level deformable-surface solver (docs/METHOD.md §3-5): umbrella operators with
 // the label weights of docs/METHOD.md §6.4 (per edge, from the labels its triangles give its
 // ends: TriangleMesh::CornerLabels), one fixed-point step per vertex, Gauss-Seidel

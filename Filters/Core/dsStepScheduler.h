@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A lock-free scheduler for a sequence of parallel steps in one parallel region, used by
 // the solver's Gauss-Seidel sweeps (dsSolver.h): one step per colour, one for the
 // statistics, per sweep. Plain C++ (vtkSMPTools runs the threads).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The number of threads the core uses: the one asked for, or the machine's (0 = all cores).
 // Plain C++; the one place both the scale space and the solver take it from.
 #ifndef dsThreads_h

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "dsTriangleMesh.h"
 
 #include <algorithm>
@@ -567,8 +568,7 @@ int TriangleMesh::SplitElongatedEdges(double minLength, long long maxPoints, std
       return -1;
     }
     const std::vector<int> edges = ElongatedEdges(*this, minLength);
-    if (edges.empty() ||
-      static_cast<long long>(this->Points.size() + edges.size()) > maxPoints)
+    if (edges.empty() || static_cast<long long>(this->Points.size() + edges.size()) > maxPoints)
     {
       break;
     }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one triangle-surface type of the module: the seed builds it (dsSeedSurface.h), the
 // solver deforms it and the refinement subdivides it. Plain C++, no pipeline types. Points
 // move during a solve; connectivity changes only in refinement and subdivision, after which
@@ -116,7 +117,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   /// Empty (or stale in size): Labels apply everywhere. Kept in corner order by whoever
   /// reorders a triangle's corners.
   std::vector<std::array<unsigned char, 3>> CornerLabels;
-  std::vector<int> Levels;                   ///< refinement level that created each point
+  std::vector<int> Levels; ///< refinement level that created each point
   /// Per point, its depth in the refinement hierarchy: 0 for the start's, else 1 + the deeper
   /// end's of the edge it halves: its level of detail (a late split of a coarse triangle makes
   /// points of a late level but a low depth). Set by refinement (dsRedGreen.h); empty or stale

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Trilinear interpolation in a regular grid: the one home of the cell lookup and corner
 // weights that the force field (dsScaleSpace.h: SampleForce, SampleVolume) and the seed's
 // intensity rule (vtkDelaunaySeedSurface) use. Header-only so that the solver's per-vertex

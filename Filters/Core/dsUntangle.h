@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Removing folds the forces left (beyond the paper: docs/METHOD.md §9). Plain C++.
 //
 // The paper's projection rule (§5) keeps the external force from sliding vertices over each

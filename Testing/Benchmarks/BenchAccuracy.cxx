@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The accuracy table: the phantoms of the hierarchy's accuracy goals, each solved from the box
 // enclosing the volume with every default by our filter, beside vtkFlyingEdges3D and ITK's
 // GeodesicActiveContourLevelSetImageFilter (when CMake found ITK; the column is skipped with a

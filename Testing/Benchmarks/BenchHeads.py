@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The whole-head solves of the README's main job, timed in plain VTK Python (what a C++ or VTK
 Python user runs; pvbatch adds ParaView's pipeline around the same filter):
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Whole multilevel solves from the box enclosing the volume on sphere and cube
 // phantoms (128^3, 256^3), beside vtkFlyingEdges3D on the same volumes.
 // Usage: BenchHierarchy [sizes...]   (default 128 256)

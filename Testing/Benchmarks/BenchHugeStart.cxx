@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A dense start surface, as a user gets by starting from an iso-surface: spheres of growing
 // resolution 3 voxels around a soft ball of radius 32 in 128^3, through vtkDeformableSurfaceFilter
 // with MaxLevels 10 and every other default (a start of more than 100 000 triangles much finer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One benchmark case in a child process of its own, so that each case's memory high-water mark
 // (getrusage of the child: VmHWM) is its own, and a case that runs over its time budget is
 // stopped instead of holding the whole run. The budget is CPU time (all the child's threads),
@@ -133,8 +134,8 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
   if (r.TimedOut)
   {
     char why[96];
-    std::snprintf(why, sizeof why, "stopped at the limit of %.3g s of CPU (or 10x that of wall time)",
-      cpuLimitSeconds);
+    std::snprintf(why, sizeof why,
+      "stopped at the limit of %.3g s of CPU (or 10x that of wall time)", cpuLimitSeconds);
     r.Status = why;
   }
   else if (WIFSIGNALED(status))

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the benchmark tables report about an output surface, for any method alike (our filter,
 // an iso-surface, ITK's level set through an iso-surface): triangles, connected pieces, the
 // distribution of the smallest angle per triangle, and the analytic distance of the vertices to

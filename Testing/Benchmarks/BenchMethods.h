@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The methods the benchmark tables compare, each run on a phantom image and measured alike
 // (BenchMeasure.h). Each returns the row's cells from "time s" on, or "failed: ..." for a
 // method that failed:

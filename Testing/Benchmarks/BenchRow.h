@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One table row of the accuracy and scale benchmarks: a method on a phantom, run in its own
 // child process (BenchIsolate.h) after a memory estimate, printed with the child's peak RSS.
 // A case whose estimate exceeds the memory budget is not started; the row says so and why.

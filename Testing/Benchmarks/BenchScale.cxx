@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Time, peak memory and accuracy against the volume size: CT-like uint16 phantoms (a noisy ball
 // of radius n/4 and a noisy cube of half side n/8, background 1000, object 2000, noise sigma
 // 100) at 128^3 .. 1024^3, our whole solve (every default, from the box enclosing the volume)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Benchmark (not a test): vtkImageScaleSpaceGradient on an N^3 float volume
 // (default 256) at sigma = 42.7, 21.3, 10.7, 5.3, 2 voxels with 1 and 2 threads,
 // beside vtkImageGaussianSmooth (radius factor 3, i.e. the kernel covers 3 sigma)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Time per solver sweep on the paper's test meshes: a cube surface subdivided 5 and 6
 // times (12 288 and 49 152 triangles), 1 and 2 threads, without and with an external
 // force field (trilinear sampling of a 128^3 field). The paper: 1.4 s and 5.9 s per

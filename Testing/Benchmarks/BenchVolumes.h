@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The benchmark phantoms as vtkImageData (unit spacing, origin 0, n^3, centre (n-1)/2 on every
 // axis), each with its analytic distance: a sphere anti-aliased by 4^3 supersampling of the
 // boundary voxels and an axis-aligned cube whose faces lie halfway between voxels, as float

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "ItkGeodesicActiveContour.h"
 
 #include "itkGeodesicActiveContourLevelSetImageFilter.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ITK's GeodesicActiveContourLevelSetImageFilter as the benchmark runs it, behind a plain-C++
 // interface so that no VTK header meets an ITK header (ItkGeodesicActiveContour.cxx is built
 // only when CMake finds ITK, for the benchmark; never part of the module).

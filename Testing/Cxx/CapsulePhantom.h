@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A soft capsule along z in a 32 x 32 x 240 image with noise, and closed box meshes around
 // it: the phantom of TestDistributedSolve and TestRegionCapsule.
 #ifndef CapsulePhantom_h
@@ -49,7 +50,8 @@ inline std::vector<float> CapsuleImage()
         const double d = CapsuleAxisDistance(i, j, k);
         state = state * 1664525u + 1013904223u;
         const double noise = 10.0 * ((state >> 8) / 16777216.0 - 0.5);
-        v.push_back(static_cast<float>(100.0 / (1.0 + std::exp(2.0 * (d - CapsuleRadius))) + noise));
+        v.push_back(
+          static_cast<float>(100.0 / (1.0 + std::exp(2.0 * (d - CapsuleRadius))) + noise));
       }
   return v;
 }

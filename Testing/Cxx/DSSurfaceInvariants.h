@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The invariants every surface a filter of this module produces must keep, checked the same
 // way by every test that produces one:
 //  - finite coordinates, triangles only, no unused points;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small helpers shared by the C++ tests: numeric checks that count failures,
 // so one run reports every broken assertion, and the exit code fails ctest.
 #ifndef DSTestHelpers_h

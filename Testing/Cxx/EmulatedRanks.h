@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Processes of a distributed solve emulated by threads of one test: Run(body) runs body(rank)
 // on one thread per rank, and Sum / Max are the all-reduce calls between them (what
 // vtkMultiProcessController::AllReduce does across MPI processes). A reduction waits until

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Phantoms and start surfaces shared by the hierarchy tests and benchmark: a binary
 // cube and a binary sphere in an n^3 volume (unit spacing, origin 0), the box
 // enclosing the volume as a coarse closed triangle mesh, and exact distances.

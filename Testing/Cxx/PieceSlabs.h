@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The pieces of the emulated processes' tests (EmulatedRanks.h): slabs along z as VTK splits an
 // image (neighbouring pieces share their border voxels), each holding a copy of its voxels and
 // ghost layers in the image's own type (what a parallel reader gives a rank), and the ranks'
@@ -76,8 +77,8 @@ inline void SplitAxis(dsurf::VoxelBox& box, int a, int r, int parts)
 /// Rank r's slab of `ranks` along z with ghost(a) ghost layers along axis a; an empty piece
 /// (nothing owned or held) when `empty`.
 template <typename T>
-dsurf::ImagePiece Slab(const dsurf::ImageGeometry& g, const std::vector<T>& image, int r,
-  int ranks, const std::function<int(int)>& ghost, std::vector<T>& held, bool empty = false)
+dsurf::ImagePiece Slab(const dsurf::ImageGeometry& g, const std::vector<T>& image, int r, int ranks,
+  const std::function<int(int)>& ghost, std::vector<T>& held, bool empty = false)
 {
   dsurf::VoxelBox owned = dsurf::VoxelBox::Whole(g);
   SplitAxis(owned, 2, r, ranks);

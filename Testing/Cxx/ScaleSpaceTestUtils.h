@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Phantom builders shared by the TestScaleSpace*.cxx tests.
 #ifndef ScaleSpaceTestUtils_h
 #define ScaleSpaceTestUtils_h

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A soft ball phantom as vtkImageData, shared by the filter-level tests: value
 // height / (1 + exp(2 (|x - c| - radius))) on an n^3 grid (unit spacing, origin 0), centre c
 // on every axis, float point array "density" as the active scalars; SoftRadialImage the same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Convergence as time steps (AnimateSweeps): the output reports time steps 0, S, 2S, ...; the
 // surface at time k S equals a plain run stopped after k S sweeps (MaxSweeps) to the last bit;
 // stepping back and forth comes from the cache (no new solve: the filter's progress events

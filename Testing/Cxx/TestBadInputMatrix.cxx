@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The bad-input matrix, one named row per case: what vtkDeformableSurfaceFilter (and, for the
 // image cases, vtkImageScaleSpaceGradient) tells the user (the text of the error or warning,
 // caught through ErrorEvent/WarningEvent observers) and what it outputs (empty, or a surface

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Butterfly prolongation (docs/METHOD.md §6.5): polynomial reproduction on a regular patch, the
 // plane stays planar under every rule, the boundary 4-point rule, Zorin's extraordinary
 // weights, the fallback next to green triangles, and better start values than the

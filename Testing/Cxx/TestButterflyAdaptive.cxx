@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Butterfly prolongation through greens (docs/METHOD.md §6.5): in adaptive red-green runs the
 // stencils are read at each edge's level (greens as their parents, finer regions as the
 // triangles they refine), so the butterfly, not the midpoint fallback, places new vertices
@@ -66,8 +67,8 @@ void CubicGridStaysExact()
     const std::string name = "cubic grid, step " + std::to_string(step + 1);
     std::cout << name << ": " << rc.NewVertices << " new vertices, " << rc.FallbackVertices
               << " at the midpoint, " << rc.Greens << " greens" << std::endl;
-    DS_CHECK_LE(double(rc.FallbackVertices) / rc.NewVertices, 0.05,
-      name + ": share of midpoint fallbacks");
+    DS_CHECK_LE(
+      double(rc.FallbackVertices) / rc.NewVertices, 0.05, name + ": share of midpoint fallbacks");
     DS_CHECK_LE(inexact, rc.FallbackVertices,
       name + ": new points off the cubic away from the boundary (at most the fallbacks)");
   }

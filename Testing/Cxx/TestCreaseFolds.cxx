@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A fine box around the 128^3 cube phantom with a small constant sigma (0.7 voxel): the start is
 // subdivided to ~2-voxel edges (24 578 vertices) and the sweeps must leave no self-intersecting
 // triangle pairs. The thin-plate term moves the vertices at the box's creases, and Gauss-Seidel

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkDeformableSurfaceFilter input handling: ParaView's Box (24 points, faces apart)
 // is merged into a closed cube, triangle strips are accepted, the input is never
 // modified, an open surface keeps its boundary, two disjoint surfaces both evolve,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The progress bar and Abort, as ParaView drives them: ProgressEvent values rise
 // from 0 to 1 during the solve, and setting AbortExecute from a progress observer
 // stops the solve early with a valid closed surface (fewer sweeps than the full run).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The self-intersection rule of docs/METHOD.md §5 matters: a subdivided box shrinking onto a
 // cube phantom (the paper's cube test, one level) keeps well-shaped triangles with the
 // rule, and measurably worse ones when the raw external force is applied

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkDeformableSurfaceFilter on a binary sphere phantom (128^3, radius 32 voxels),
 // starting from an icosphere of radius 36, sigma 2 voxels constant: the surface must
 // land on the sphere (mean |d| <= 0.15 voxel, max <= 0.4, no self-intersections),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bad input must give a clear error or warning and an empty (or still valid) output, never a
 // crash: no points, 3 points (now a sphere around each: one click), collinear, coplanar,
 // duplicates, NaN, out-of-range IDs, every tetrahedron removed, the intensity rule without an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // 8 corners of a cube -> a 12-triangle closed surface with outward normals and the cube's
 // volume; output 1 lists the tetrahedra with stable IDs; TargetEdgeLength refines it.
 #include "TestDelaunaySeedUtils.h"

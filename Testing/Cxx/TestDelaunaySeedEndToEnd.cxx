@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End to end: picked points -> vtkDelaunaySeedSurface -> vtkDeformableSurfaceFilter.
 //
 // 1. Torus phantom 128^3 (R = 32, r = 12.8 voxels, a one-voxel partial-volume ramp so the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // IntensityRange on a phantom: a bright ball (100, radius 20) in a dark volume (0), seed points
 // on a sphere of radius 18 inside it and on a box around it. [50, 1000] must keep exactly the
 // tetrahedra inside the ball (a bright object); [-10, 50] the shell between ball and box (a dark

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An L-shaped prism sampled on its surface: the Delaunay complex fills the convex hull (40%
 // more volume than the L); Alpha must carve the notch and give a closed surface of the L's
 // volume within 10%.

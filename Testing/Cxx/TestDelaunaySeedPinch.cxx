@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pinch resolution in the core (dsurf::ExtractSeedBoundary) on hand-made complexes:
 // two tetrahedra sharing a vertex, two sharing an edge, and a ring of tetrahedra around an
 // edge with alternate ones removed. Each must give closed, manifold, outward surfaces with the

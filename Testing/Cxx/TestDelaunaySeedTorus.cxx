@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Points sampled on a torus surface (R = 32, r = 12.8 voxels). The Delaunay complex fills the
 // convex hull (genus 0); removing the tetrahedra of the hole -- by ID, the way a user picks
 // them in output 1, or by Alpha -- must give a closed genus-1 surface (Euler characteristic 0)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks shared by the TestDelaunaySeed* tests: is a triangle surface closed, consistently
 // and outward oriented, what is its Euler characteristic and volume. They live in
 // DSSurfaceInvariants.h (the checks every surface-producing test uses); these names keep the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The whole multilevel solve on a distributed image (MultilevelSolver::SetDistribution), the
 // processes emulated by threads (EmulatedRanks.h): a soft capsule along z in a 32 x 32 x 240
 // image with noise, split into 2 and 3 slabs along z (neighbouring pieces share their border

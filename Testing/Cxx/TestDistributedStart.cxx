@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What a distributed solve makes from its start (docs/METHOD.md §9.8): sigma_0 from the start
 // (ChoosePieceInitialSigma, dsPieceInitialSigma.h; §9.1) and the estimated intensity range
 // (EstimatePieceIntensityRange, dsRegion.h; §9.3), the processes emulated by threads

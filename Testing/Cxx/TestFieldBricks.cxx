@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A fine level's field kept only in bricks around the surface (dsFieldBricks.h): at the
 // surface's vertices, within its reach and across brick seams it equals the field over the
 // whole box bit for bit (tolerance 0: a brick computes every value exactly as the box does);
@@ -119,8 +120,8 @@ int TestFieldBricks(int, char*[])
   // computed again equal the whole box's field bit for bit.
   const double budget = box.NumberOfVoxels() / std::pow(FieldBricks::BrickSize + 1.0, 3);
   int mostHeld = 0;
-  for (const Vec3& shift : { Vec3{ 9, 0, 0 }, Vec3{ 0, 9, 0 }, Vec3{ 0, 0, 9 },
-         Vec3{ -9, 0, 0 }, Vec3{ 0, -9, 0 }, Vec3{ 0, 0, -9 }, Vec3{ 0, 0, 0 } })
+  for (const Vec3& shift : { Vec3{ 9, 0, 0 }, Vec3{ 0, 9, 0 }, Vec3{ 0, 0, 9 }, Vec3{ -9, 0, 0 },
+         Vec3{ 0, -9, 0 }, Vec3{ 0, 0, -9 }, Vec3{ 0, 0, 0 } })
   {
     bricked.Bricks->Cover(dstest::MakeIcosphere(3, 31.5, c + shift));
     mostHeld = std::max(mostHeld, bricked.Bricks->ComputedBricks());

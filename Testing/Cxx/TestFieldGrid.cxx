@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The grid a level's force field lives on (dsFieldGrid.h): block means land where their
 // geometry says (any spacing, origin, rotation) and equal each block's plain sum; a field at
 // a coarse sigma on the decimated grid agrees with the one on the image's own grid; a field

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The solver's force exchange (Solver::SetForceExchange): a colour's forces are sampled, handed
 // to the hook, then applied.
 // - A hook that changes nothing gives results bit-identical to no hook (points, per-vertex

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Red-green border stability (docs/METHOD.md §6.4): a flat equilateral plane refined adaptively in
 // one patch (two levels, so greens are undone and re-made), then 500 sweeps with no
 // external force. With the label weight table the vertices on red-green borders stay

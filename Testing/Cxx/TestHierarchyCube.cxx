@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's cube test (docs/METHOD.md §8) as measured assertions: a 128^3 volume, value 1 in a
 // central cube of half-side 16 voxels, the start surface the box enclosing the whole
 // volume. Halving sigma reaches the cube; a constant small sigma (1 voxel) leaves the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkDeformableSurfaceFilter runs the whole hierarchy with its defaults: from ParaView's
 // Box (vtkCubeSource, 24 points, faces separate) enclosing a 128^3 volume onto a
 // sphere of radius 32. Checks the output arrays RefinementLevel and VertexLabel, the

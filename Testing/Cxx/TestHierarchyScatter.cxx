@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Red-green weights where greens meet (docs/METHOD.md §6.4): a flat equilateral sheet refined
 // in three steps at scattered triangles, so red-green borders turn corners and many vertices
 // play two roles (the end C of one green's split edge and the opposite corner D of another,
@@ -46,9 +47,9 @@ std::vector<char> ScatteredMarks(const TriangleMesh& m, double fraction, std::mt
 
 struct Roles
 {
-  int Labelled = 0;   ///< vertices with at least one green role
-  int TwoRoles = 0;   ///< vertices with two different roles (C, M, D) in different greens
-  int CAndD = 0;      ///< of those, the end of one split edge and the opposite corner of another
+  int Labelled = 0; ///< vertices with at least one green role
+  int TwoRoles = 0; ///< vertices with two different roles (C, M, D) in different greens
+  int CAndD = 0;    ///< of those, the end of one split edge and the opposite corner of another
 };
 
 /// The roles every vertex plays in the current greens (docs/METHOD.md §6.4).
@@ -79,7 +80,7 @@ Roles CountRoles(const RedGreenRefiner& rg, const TriangleMesh& m)
 
 struct Drift
 {
-  double Max = 0;  ///< max over the moving vertices of |moved| / mean length of its edges
+  double Max = 0; ///< max over the moving vertices of |moved| / mean length of its edges
   double Mean = 0;
   double MinAngle = 180;
 };
@@ -137,10 +138,9 @@ void RunSeed(unsigned seed)
     DS_CHECK(rg.CountTVertices(m) == 0, "no T-vertex");
   }
   const Roles roles = CountRoles(rg, m);
-  std::cout << "seed " << seed << ": " << m.NumberOfPoints() << " vertices, "
-            << rg.NumberOfGreens() << " greens, " << roles.Labelled << " with a green role, "
-            << roles.TwoRoles << " with two roles (" << roles.CAndD << " both C and D)"
-            << std::endl;
+  std::cout << "seed " << seed << ": " << m.NumberOfPoints() << " vertices, " << rg.NumberOfGreens()
+            << " greens, " << roles.Labelled << " with a green role, " << roles.TwoRoles
+            << " with two roles (" << roles.CAndD << " both C and D)" << std::endl;
   DS_CHECK_GE(roles.TwoRoles, 0.1 * roles.Labelled, "vertices with two roles (the case tested)");
   DS_CHECK_GE(roles.CAndD, 20, "vertices both C and D");
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sigma schedule reaches the fine scale even when refinement stops early. A start
 // that is already fine (nothing left to refine) and a vertex budget that stops refinement
 // after one step must both still end on the true boundary: sigma keeps halving with the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sphere (radius 32 voxels in 128^3) from the box enclosing the volume: accuracy,
 // triangle quality, no self-intersection, invariants after every level; and butterfly
 // prolongation against linear (midpoint) prolongation by the sweeps each needs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A start far finer than the first sigma (as a user gets by starting from an iso-surface)
 // begins the hierarchy on a coarse copy (MultilevelSolver::CoarsenStart, docs/METHOD.md §9.5):
 // 1. a sphere of 124 k triangles (mean edge ~0.5 voxel) 3 voxels around a soft ball of radius

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Which image array the filters use (vtkDeformableSurfaceFilter, vtkImageScaleSpaceGradient):
 // the selected one; when the selection is empty or names a missing array (pvpython: the
 // reader had not run when the filter was made), the active point scalars, else the only point

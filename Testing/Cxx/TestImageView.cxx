@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The input read in its own type (dsImageView.h): a uint16 CT-like volume read in place gives
 // exactly what its float copy gives (the same conversion, made as each value is read) in
 // every reader -- the scale-space field, a box of the image, block means, trilinear samples,

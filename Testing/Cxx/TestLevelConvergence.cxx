@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every level stops at the same share of its edge's width in the potential (docs/METHOD.md §6.1,
 // dsMultilevel.h step 2). Near its rest the surface moves by about gamma h sigma d / w^2 per
 // sweep (w = PotentialEdgeWidth, wider than sigma below a few voxels), so a tolerance of a fixed
@@ -19,7 +20,8 @@ namespace
 const int N = 128;
 const double R = 32.0;
 
-double SolveMean(const std::vector<float>& volume, double tolerance, std::vector<LevelRecord>* levels)
+double SolveMean(
+  const std::vector<float>& volume, double tolerance, std::vector<LevelRecord>* levels)
 {
   TriangleMesh mesh = dsphantom::EnclosingBox(N, 1);
   MultilevelParameters p;
@@ -31,8 +33,7 @@ double SolveMean(const std::vector<float>& volume, double tolerance, std::vector
   if (levels)
     *levels = s.GetLevels();
   const double mean =
-    dsphantom::Measure(mesh, [](const Vec3& x) { return dsphantom::SphereDistance(x, N, R); })
-      .Mean;
+    dsphantom::Measure(mesh, [](const Vec3& x) { return dsphantom::SphereDistance(x, N, R); }).Mean;
   std::cout << "tolerance " << tolerance << ": " << s.GetTotalSweeps() << " sweeps, mean |d| "
             << mean << " voxel" << std::endl;
   return mean;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The levels follow the resolution (docs/METHOD.md §6, dsMultilevel.h): from the box around the
 // volume, every parameter default, a run refines while the error estimator (in voxels) says
 // detail is present and ends at the level solved at sigma's floor, so a larger volume gets more

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The field of a piece of a distributed image (dsPieceField.h), with the processes emulated by
 // threads (EmulatedRanks.h): a 49 x 47 x 160 image of two blurred objects and noise, split into
 // 2 and 3 slabs along z as VTK splits an image (neighbouring pieces share their border voxels),
@@ -67,9 +68,9 @@ ImagePiece Slab(const ImageGeometry& g, const std::vector<T>& image, int r, int 
   std::vector<T>& held, int ghostOverride = -1)
 {
   const int f = DecimationFactor(sigma, g);
-  return dstest::Slab<T>(g, image, r, ranks,
-    [&](int a)
-    {
+  return dstest::Slab<T>(
+    g, image, r, ranks,
+    [&](int a) {
       return ghostOverride >= 0 ? ghostOverride : f > 1 ? 2 * f : PieceGhostVoxels(sigma, g, a);
     },
     held);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Red-green refinement (docs/METHOD.md §6.3-6.4): exact counts for one marked triangle, undoing a
 // marked green, uniform refinement, random adaptive marks over several levels on closed
 // and open meshes, a point-focused cascade; after every step the topology invariants,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The region force on a long, thin object from a box start (docs/METHOD.md §9.3): the soft
 // capsule (radius 9 voxels, 140 long, noise of a tenth of the contrast) from a box just
 // outside it (24 x 24 x 168 voxels, 2 triangles per quad: 12 x 84 voxel triangles), Sigma
@@ -48,8 +49,9 @@ void CheckSplit()
   DS_CHECK(box.IsClosed() && box.IsConsistentlyOriented() && box.EulerCharacteristic() == euler,
     "the split box is closed, oriented, with its Euler characteristic");
   DS_CHECK(std::abs(box.SignedVolume() - volume) < 1e-9 * volume, "the split keeps the volume");
-  DS_CHECK(longest < 17.0, "the long edges come down to about the length asked (the longest "
-                           "left: a 12 x 12 end quad's diagonal, 17)");
+  DS_CHECK(longest < 17.0,
+    "the long edges come down to about the length asked (the longest "
+    "left: a 12 x 12 end quad's diagonal, 17)");
   TriangleMesh small = dstest::CapsuleBox(BoxCentre, BoxHalf);
   const int pointsBefore = small.NumberOfPoints();
   small.SplitElongatedEdges(14.0, 100, &error);
@@ -91,8 +93,8 @@ int TestRegionCapsule(int, char*[])
   const double mean = mesh.Points.empty() ? 1e9 : sum / mesh.Points.size();
   const int crossings = CountSelfIntersections(mesh);
   std::cout << "the capsule from a box, region force on: " << mesh.NumberOfPoints()
-            << " vertices, mean distance " << mean << " voxel (max " << worst << "), "
-            << crossings << " intersecting pairs" << std::endl;
+            << " vertices, mean distance " << mean << " voxel (max " << worst << "), " << crossings
+            << " intersecting pairs" << std::endl;
   DS_CHECK(mean < 0.2, "the surface rests on the capsule (mean distance < 0.2 voxel)");
   DS_CHECK(crossings == 0, "no self-intersections");
   DS_CHECK(mesh.NumberOfPoints() < 2000, "a capsule's vertex count (< 2000)");

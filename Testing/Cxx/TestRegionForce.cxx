@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The region force and the start-dependent first sigma (beyond the paper, docs/METHOD.md §9),
 // through vtkDeformableSurfaceFilter with its defaults and RegionWeight 0.3, on a soft ball of
 // radius 16 (intensity 100 inside, 0 outside) in a 64^3 image:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The intensity range the region force estimates from a start surface (dsRegion.h), on the
 // core: a box start whose vertices lie exactly on voxel centres (picked points often do),
 // around a bright cube in a dark image with a brighter object further out:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bad input to vtkImageScaleSpaceGradient: no scalars, a 2-D image, an empty image,
 // a 3-component array. Each must raise a vtkErrorMacro (counted through an
 // ErrorEvent observer) and leave an empty output; a good image afterwards works.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The core pieces of dsScaleSpace.h:
 // - the smoother's impulse response along x, y and z has unit sum, its centre at the
 //   impulse and variance sigma^2 (1e-3 relative) from 0.6 to 300 voxels, and departs from
@@ -203,7 +204,8 @@ int TestScaleSpaceCore(int, char*[])
   // (measured <= 2.2e-4); at 0.6 voxel its width is raised to keep the variance sigma^2, which
   // moves it 1.0 % of the peak from the plain samples. Edge pull (the chain rule's, as the
   // field computes it): measured within 0.8 % at 2 sigma and 4.0 % at 3 sigma; at 300 voxels
-  // 1.8 % at 2 sigma, and 3 sigma out the float smoothed image's resolution shows (19 %). Border steps: measured
+  // 1.8 % at 2 sigma, and 3 sigma out the float smoothed image's resolution shows (19 %). Border
+  // steps: measured
   // <= 3.0e-4 (3.3e-3 at 0.6).
   for (double sigma : { 0.6, 1.0, 1.5, 2.0, 2.99, 3.0, 5.3, 10.7, 42.7, 300.0 })
   {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Where the force -grad P of a binary cube (faces halfway between voxels) vanishes near its
 // creases, at the fine sigmas that end the hierarchy (docs/METHOD.md §6 item 1): on a face it
 // is on the face; on the bisector of an edge and on the diagonal of a corner it lies inside,

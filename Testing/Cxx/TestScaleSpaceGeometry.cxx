@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Spacing (1, 1, 2.5), a non-zero origin and extent start, and a rotated direction
 // matrix: the Force (a world vector) must match a reference computed on an
 // axis-aligned, unit-spacing volume of the same world-space phantom, sampled at the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Linear ramp f = a x + b y + c z (world coordinates): with EdgeWeight 0,
 // ImageWeight 1 and no normalisation, Force = grad(G_sigma * f), which must equal
 // (a, b, c) in the interior to 1e-4 relative (2.5e-4 at 6 sigma), at a recursive (IIR) and

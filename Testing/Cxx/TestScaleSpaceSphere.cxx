@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Binary sphere (value 1 inside radius R, 0 outside; 64^3, unit spacing).
 // - Force points toward the boundary from inside and from outside, for every voxel
 //   between 0.75 voxel and 2 sigma from the sphere: radial component of the right

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unit test of the self-intersection count (dsSelfIntersectionCount): the tri-tri test on
 // hand-made pairs, a clean icosphere, an icosphere with one vertex pushed through the
 // opposite side, a fold at a shared vertex (also flat, and nearly flat neighbours), a random fan at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unit test of the docs/METHOD.md §5 self-intersection rule (dsSelfIntersectionRule.h): the
 // applied force is the projection of F onto the umbrella U when F . U > 0, else onto the
 // normal n; hand-computed cases, the normal only evaluated when needed, a zero normal, and

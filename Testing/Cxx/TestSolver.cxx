@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unit test of the single-level solver core (dsSolver): colouring, umbrella weights,
 // internal forces without an external field (tau = 1 shrinks, tau = 0 keeps a sphere
 // round), a hand-made force field, determinism over thread counts, fixed boundaries, and

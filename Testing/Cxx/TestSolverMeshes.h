@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Meshes shared by the solver tests and the solver benchmark: an icosphere, a
 // subdivided cube surface (the paper's 12 288 / 49 152 triangle test meshes), a flat
 // equilateral sheet and a height field over a regular grid.

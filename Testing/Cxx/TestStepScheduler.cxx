@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unit test of the solver's step scheduler (dsStepScheduler): with 1 to 5 threads, one and
 // eight blocks per thread, every block of every step runs exactly once; no block of a step
 // starts before every block of the step before it finished; EndStep runs once per step

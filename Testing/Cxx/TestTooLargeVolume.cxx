@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A volume too large for the memory left is refused before anything is allocated: a clear
 // error naming the need and what is available, an empty output, and no growth of the process
 // (never an out-of-memory kill part-way). The volume is a real vtkImageData whose 8-bit voxels

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Topology of the core mesh: closedness, orientation, Euler characteristic,
 // non-manifold detection, and the uniform 1 -> 4 subdivision (also the seed surface's), on
 // shapes whose answers are known.

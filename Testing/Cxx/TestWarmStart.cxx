@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ContinueFromLastResult (the paper's interactive tuning): after a change of the filter's own
 // parameters the next update starts from the last output; a change of an input starts over.
 // On a soft ball of radius 16 (64^3) from a sphere of radius 22: a cold run with Tau 0.1, then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the fuzzers: a check that aborts (libFuzzer then saves the input as a crash), and
 // the surface checks the filters promise, on dsurf::TriangleMesh.
 #ifndef FuzzCheck_h

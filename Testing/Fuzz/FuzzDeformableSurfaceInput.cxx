@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the initial-surface input of vtkDeformableSurfaceFilter.
 //
 // The surface is a random vtkPolyData: points on a coarse lattice over a 10^3 image of a soft

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: vtkDelaunaySeedSurface on random point sets.
 //
 // 0 to 40 points, mostly on a coarse lattice (so duplicates, collinear and coplanar sets, grids

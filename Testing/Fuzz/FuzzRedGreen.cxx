@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: red-green refinement (dsurf::RedGreenRefiner, docs/METHOD.md §6.3-6.4).
 //
 // The input picks a small closed mesh (tetrahedron, cube, icosahedron, a torus of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the fuzzers of the VTK filters: counting error and warning events, a deep
 // fingerprint of a vtkPolyData (to assert that inputs stay unchanged, NaNs included), the
 // conversion of a filter's triangle output to dsurf::TriangleMesh, and input coordinates.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The invariants every surface the module's filters produce must keep, for the Python tests
 (the C++ tests use Testing/Cxx/DSSurfaceInvariants.h, with the same checks):
 

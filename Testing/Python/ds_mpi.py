@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Helpers for the mpi_*.py tests (run under `mpiexec -n 2 pvbatch`): what each rank holds of a
 proxy's output. The script runs on rank 0; the other ranks serve the proxies."""
 from paraview import servermanager, simple

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The real ParaView GUI client, tested: run as
     PV_PLUGIN_PATH=<plugin dir> paraview --dr --script=gui_one_click.py --exit   (under Xvfb) The client loads the plugin at startup from PV_PLUGIN_PATH (as a user's ParaView does); inside
 the GUI's own Python the script builds the README's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Bad input on one rank only, in distributed ParaView: run as
     mpiexec -n 2 pvbatch mpi_bad_piece.py
 Rank 1 alone gets a bad piece (a NaN point, nothing, points without polygons, a non-manifold

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """DeformableSurface in distributed ParaView: run as
     mpiexec -n 2 pvbatch mpi_deformable_surface.py
 The volume (Wavelet -> Calculator: a bright ball) and the initial surface (Sphere) are both

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """DelaunaySeedSurface in distributed ParaView: run as
     mpiexec -n 2 pvbatch mpi_delaunay_seed.py
 The points come from a Wavelet -> Threshold pipeline, which ParaView splits between the ranks

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """DeformableSurface with the image in pieces (docs/METHOD.md §9.8): run as
     mpiexec -n 2 pvbatch mpi_image_pieces.py     (and -n 3)
 A capsule phantom (32 x 32 x 240 floats, noise) is written as a .vti and as a .pvti of 3 pieces

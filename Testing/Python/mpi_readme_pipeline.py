@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The README's pvpython pipeline under `mpiexec -n 2 pvbatch`: readers not yet run, Scalars
 # empty; the result gathered on rank 0 must equal a serial run of the same filter (the VTK class
 # with no controller, on the same file and the same Box) in points and distance. The .vti is read

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # pvbatch (under xvfb-run): the paper's setting on real data, checked with numbers. Runs the
 # pipeline of Examples/demo.py --skull-stripped (Colin27 brain from ch2bet.nii.gz,
 # DeformableSurface started from the box around the volume) and checks the surface against the truth, the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # pvbatch (private Xvfb): the README's main job, the brain in the whole Colin27 head
 # (ch2.nii.gz, mricron-data), checked with numbers against the brain mask ch2bet > 0 (a
 # reference only: the filter never sees it). Two starts, both from Examples/ (chosen on the

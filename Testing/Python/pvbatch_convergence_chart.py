@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The convergence table (output port 1 of DeformableSurface) plots in a Line Chart View,
 as a user would show it: mean correction per sweep, log scale. Checks the table (one row
 per sweep, the levels in order, each level's correction falling to its end) and that the

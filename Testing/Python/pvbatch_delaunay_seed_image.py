@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Baseline-image test of DelaunaySeedSurface, ParaView style: the seed of 1232 jittered points
 on a torus (R = 32, r = 12.8, the points of TestDelaunaySeedTorus) with Alpha = 1.25 r, shown
 as Surface With Edges in a fixed 400x400 camera, must match Testing/Baseline/delaunay_seed.png.

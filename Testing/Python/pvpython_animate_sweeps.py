@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # pvpython: AnimateSweeps gives ParaView time steps (0, 20, 40 ... sweeps) that the animation
 # scene picks up, and the surface at time 40 says 40 sweeps.
 import os

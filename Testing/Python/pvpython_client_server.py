@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Client-server, as a ParaView user runs it against a remote machine: a pvserver on a free
 # loopback port, pvpython connected to it with Connect("localhost", port), the plugin loaded on
 # both sides (the server executes the filters, the client needs the proxy definitions), the

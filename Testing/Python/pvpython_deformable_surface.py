@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # pvpython: load the plugin, deform ParaView's Sphere source (seam and poles: points
 # must be merged) onto a soft ball phantom of radius 20 made with Wavelet + Calculator,
 # and check the numbers a user would look at.

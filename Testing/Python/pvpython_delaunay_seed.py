@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """DelaunaySeedSurface through ParaView proxies: a CSV through TableToPoints, the tetrahedra
 output and RemovedTetrahedra, and the Examples/ workflow (slices -> Extract Selection -> seed)
 whose intensity rule must give the torus phantom's genus."""

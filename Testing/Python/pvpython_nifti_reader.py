@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """ParaView 5.11 has no reader for gzipped NIfTI; the plugin adds one (vtkDSNIFTIImageReader)
 so MRI volumes open with OpenDataFile / File > Open. A volume written here round-trips
 exactly; an oblique one (a qform turned 30 degrees about z and 10 about x, and shifted) lands

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The plugin loads through PV_PLUGIN_PATH alone (no LoadPlugin call), the way a user
 installs it for the GUI, and every filter appears in paraview.simple."""
 import os

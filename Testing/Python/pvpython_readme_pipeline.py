@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The README's pvpython pipeline, as written, on readers that have not run yet (NIfTI, .vti,
 # .mhd): the surface must be found, not an empty output with an error (see readme_pipeline.py).
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # ParaView: LoadPlugin, run ScaleSpaceGradient on the Wavelet source, check the
 # arrays it adds and their ranges.
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Shared by pvpython_readme_pipeline.py and mpi_readme_pipeline.py (not a test by itself).
 
 The README's pvpython pipeline exactly as a user types it -- OpenDataFile, Box,

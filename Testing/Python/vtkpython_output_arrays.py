@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The outputs of Deformable Surface carry exactly the documented arrays, and every document
 # gives the same list in the order of the output: the class comment
 # (vtkDeformableSurfaceFilter.h), the ParaView help (the proxy's XML documentation) and the

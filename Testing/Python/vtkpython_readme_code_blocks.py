@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Every Python code block of the README runs as written: blocks that import paraview.simple
 # with pvpython, the others with this interpreter (/usr/bin/python3, plain vtkmodules, the
 # wrapped package on PYTHONPATH as the README says). They run in a scratch folder where

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # VTK Python (plain vtkmodules): the wrapped filter on a synthetic ball, checking
 # arrays, the normalised potential range and the direction of the force.
 import math

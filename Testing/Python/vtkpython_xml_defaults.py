@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The ParaView XML (xml/*.xml), the VTK classes and the property reference agree.
 
 For every property of every proxy whose command is a Set method with a matching Get:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Every ParaView proxy of the plugin is documented: a short_help and long text per
 proxy, a <Documentation> for every visible property, the menu category "Deformable
 Surface" and each visible non-input property in a PropertyGroup (filters; readers are
