@@ -58,17 +58,23 @@ Fit FitClasses(
   for (int it = 0; it <= Iterations; ++it)
   {
     // E step: responsibilities; on the last pass only the likelihood.
+    // In logarithms (log-sum-exp): a bin far from every class keeps its responsibility.
     double logLikelihood = 0;
     for (int b = 0; b < bins; ++b)
     {
+      double top = -std::numeric_limits<double>::infinity();
+      for (int c = 0; c < k; ++c)
+      {
+        r[c * bins + b] = m.LogDensity(c, x[b]);
+        top = std::max(top, r[c * bins + b]);
+      }
       double sum = 0;
       for (int c = 0; c < k; ++c)
       {
-        r[c * bins + b] = m.Density(c, x[b]);
+        r[c * bins + b] = std::exp(r[c * bins + b] - top);
         sum += r[c * bins + b];
       }
-      sum = std::max(sum, 1e-300);
-      logLikelihood += n[b] * std::log(sum * width);
+      logLikelihood += n[b] * (top + std::log(sum * width));
       for (int c = 0; c < k; ++c)
       {
         r[c * bins + b] /= sum;
@@ -119,6 +125,10 @@ double Mixture::LogDensity(int k, double x) const
 
 int Mixture::Likeliest(double x) const
 {
+  if (this->Size() == 0)
+  {
+    return -1;
+  }
   int best = 0;
   for (int k = 1; k < this->Size(); ++k)
   {
@@ -130,6 +140,16 @@ int Mixture::Likeliest(double x) const
 Mixture FitHistogramMixture(
   const std::vector<double>& counts, double low, double width, int maxClasses)
 {
+  double total = 0;
+  for (double c : counts)
+  {
+    total += c;
+  }
+  if (counts.empty() || maxClasses < 1 || !(total > 0) || !(width > 0) || !std::isfinite(low) ||
+    !std::isfinite(width))
+  {
+    return Mixture();
+  }
   std::vector<double> x(counts.size());
   for (std::size_t b = 0; b < x.size(); ++b)
   {

@@ -19,16 +19,17 @@ struct DEFORMABLESURFACEFILTERS_EXPORT Mixture
   double Density(int k, double x) const;
   /// Its logarithm, which never underflows (classes as narrow as a bin, far from x).
   double LogDensity(int k, double x) const;
-  /// The class of largest Density at x.
+  /// The class of largest Density at x (-1 for an empty mixture).
   int Likeliest(double x) const;
 };
 
 /// The mixture of 1 to maxClasses classes that best explains the histogram `counts` (bins of
 /// `width` from `low`), each fitted by expectation-maximisation (Dempster, Laird and Rubin,
-/// JRSS B 39, 1977) from equal-count quantiles, the number of classes chosen by the Bayesian
+/// JRSS B 39, 1977) from two starts (the centres of equal-count slices and of equal slices of the
+/// span), the number of classes chosen by the Bayesian
 /// information criterion (Schwarz, Ann. Stat. 6, 1978) so that noise does not pass for a
 /// class. A class is never narrower than a bin. Deterministic: the same histogram gives the
-/// same mixture on every process.
+/// same mixture on every process. Empty for no counts, maxClasses < 1 or a bad bin width.
 DEFORMABLESURFACEFILTERS_EXPORT Mixture FitHistogramMixture(
   const std::vector<double>& counts, double low, double width, int maxClasses);
 } // namespace dsurf

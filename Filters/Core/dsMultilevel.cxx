@@ -139,11 +139,17 @@ bool MultilevelSolver::RegionRange(
     }
     lo = estimate.Range[0];
     hi = estimate.Range[1];
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
+    {
+      this->Warnings.push_back("the region force is off: the estimated intensity range is empty "
+                               "or not finite");
+      return false;
+    }
     // Without a background to compare with (a click inside one region), the range's end is
     // not where the boundary lies: the region force only grows the surface through its
     // region, and the edge force finds the boundary beyond.
     this->RegionOutwardOnly = !estimate.Contrast;
-    this->RegionFollowsFront = estimate.Classes > 1;
+    this->RegionFollowsFront = estimate.Classes > 1 && estimate.Contrast;
   }
   const long long matching = this->Distributed
     ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
@@ -312,10 +318,13 @@ bool MultilevelSolver::SolveLevel(
     }
     // Every process of a distributed solve reaches GoOn's reduction here, with or without a
     // progress callback of its own (a process without one votes to go on).
+    // Never backwards: front levels come after the planned ones (their share stays at the top).
+    const double fraction = std::max(this->ProgressReached,
+      std::min(
+        1.0, (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1)));
+    this->ProgressReached = fraction;
     if (!stop && !rec.Converged && (this->Progress || this->Distributed) &&
-      !this->GoOn(!this->Progress ||
-        this->Progress(
-          (rec.Level + std::min(1.0, double(s) / std::min(cap, 400))) / (plannedLevels + 1))))
+      !this->GoOn(!this->Progress || this->Progress(fraction)))
     {
       this->Aborted = true;
       this->Stop = StopReason::Aborted;
@@ -413,6 +422,7 @@ void MultilevelSolver::ClearResults()
   this->UsedRange[0] = this->UsedRange[1] = 0;
   this->RegionOutwardOnly = false;
   this->RegionFollowsFront = false;
+  this->ProgressReached = 0.0;
 }
 
 bool MultilevelSolver::Start(
@@ -639,14 +649,14 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh,
     }
   }
   // The front (docs/METHOD.md §9.3): a triangle with a corner the region force still pushes
-  // out is split down to the voxel, whatever its internal force, so the front fits into a
-  // horn or a tube as narrow as the image shows.
+  // out is split down to half a voxel (FrontEdgeVoxels), whatever its internal force, so the
+  // front fits into a horn or a tube as narrow as the image shows.
   for (size_t t = 0; t < marks.size() && !front.empty(); ++t)
   {
     const auto& tri = mesh.Triangles[t];
     if (!marks[t] && (front[tri[0]] || front[tri[1]] || front[tri[2]]))
     {
-      marks[t] = LongestEdge(mesh, t) > voxel ? 1 : 0;
+      marks[t] = LongestEdge(mesh, t) > FrontEdgeVoxels * voxel ? 1 : 0;
     }
   }
   return marks;
@@ -747,7 +757,8 @@ bool MultilevelSolver::RunLevels(
     // (a start near its object reaches the floor after a few halvings).
     const bool atFloor = P.HierarchicalSigma && !(state.Sigma > sigmaFloor * (1 + 1e-9));
     // At the floor the levels go on while the region force still pushes part of the surface
-    // out (a thin part not yet followed to its end, docs/METHOD.md §9.3), within MaxLevels.
+    // out (a thin part not yet followed to its end, docs/METHOD.md §9.3): front levels, beyond
+    // MaxLevels, at most MaxFrontLevels.
     state.Front.clear();
     if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&
       this->RegionFollowsFront)

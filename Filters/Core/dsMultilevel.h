@@ -190,6 +190,10 @@ constexpr int MaxFrontLevels = 32;
 constexpr int FrontLevelSweeps = 200;
 /// Front levels follow a front of at most this share of the surface's vertices.
 constexpr double FrontShare = 0.1;
+/// Front levels split the triangles around the front down to this many voxels: a horn two
+/// voxels wide needs edges below a voxel around it (with a voxel, the committed horned
+/// phantom's narrowest horn stayed unentered: reference -> surface 2.6 voxels; 0.88 with half).
+constexpr double FrontEdgeVoxels = 0.5;
 /// A front level ends when no vertex moves more than this many voxels in a sweep.
 constexpr double FrontRestVoxels = 0.01;
 
@@ -377,7 +381,8 @@ private:
   /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
   /// levels follow the parts the region force still pushes out (FrontVertices).
   bool RegionFollowsFront = false;
-  bool Distributed = false; ///< SetDistribution was called
+  double ProgressReached = 0.0; ///< the largest progress reported so far in this run
+  bool Distributed = false;     ///< SetDistribution was called
   ImagePiece Piece;
   PieceReductions Reduce;
   /// Whether the run goes on after this process's progress callback answered `here`

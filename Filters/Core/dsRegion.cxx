@@ -464,9 +464,15 @@ bool Competes(const Mixture& m, int o, int k, double direction)
 /// explains the image better (Mixture::LogDensity), or NaN when none does before `stop`.
 double CompetitorBoundary(const Mixture& m, int o, double start, double stop, double step)
 {
-  const double direction = stop < start ? -1.0 : 1.0;
-  for (double x = start; direction * (stop - x) >= 0; x += direction * step)
+  if (!(step > 0) || !std::isfinite(start) || !std::isfinite(stop))
   {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const double direction = stop < start ? -1.0 : 1.0;
+  const long long steps = static_cast<long long>(std::ceil(std::abs(stop - start) / step));
+  for (long long i = 0; i <= steps; ++i)
+  {
+    const double x = start + direction * static_cast<double>(i) * step;
     for (int k = 0; k < m.Size(); ++k)
     {
       if (Competes(m, o, k, direction) && m.LogDensity(k, x) > m.LogDensity(o, x))
@@ -481,11 +487,12 @@ double CompetitorBoundary(const Mixture& m, int o, double start, double stop, do
 /// A start inside one region (a click): its competitors are the other classes of intensity
 /// around it. The voxels within `reach` of the start's bounding box are fitted as a Gaussian
 /// mixture (dsMixture.h, 256 bins between their 0.5 % and 99.5 % quantiles); the object's class
-/// is the one likeliest at the inside median, and the range runs, on each side, to where a class
-/// lying on that side explains the image better: the decision boundary of region competition
-/// (Zhu and Yuille, IEEE PAMI 18(9), 1996) between the object's model and its neighbour's. A
-/// side without a competitor stays open (to beyond the neighbourhood's extreme value, so the
-/// speed's ramp lies outside the data). Nothing changes when the neighbourhood holds one class.
+/// is the one likeliest at the inside median, and the range runs from there, on each side, to where
+/// a class lying on that side explains the image better: the decision boundary of region
+/// competition (Zhu and Yuille, IEEE PAMI 18(9), 1996) between the object's model and its
+/// neighbour's. A side without a competitor stays open (to beyond the neighbourhood's extreme
+/// value, so the speed's ramp lies outside the data). Nothing changes when the neighbourhood holds
+/// one class.
 void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double reach,
   const PieceReductions& reduce, RangeEstimate& estimate)
 {
@@ -497,14 +504,24 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
     box.Begin[a] = std::max(around.Begin[a], counted.Begin[a]);
     box.End[a] = std::max(box.Begin[a], std::min(around.End[a], counted.End[a]));
   }
+  // Every n-th voxel id of the neighbourhood (n from its whole size, so every process takes
+  // the same voxels), at most ~2^24 values; non-finite values (a float image's NaN background)
+  // belong to no class.
+  const long long every = 1 + around.NumberOfVoxels() / (1LL << 24);
+  const long long nx = piece.Whole.Dimensions[0], ny = piece.Whole.Dimensions[1];
   std::vector<float> values;
-  values.reserve(static_cast<std::size_t>(box.NumberOfVoxels()));
+  values.reserve(static_cast<std::size_t>(box.NumberOfVoxels() / every + 1));
   ForEachCountedRow(piece, box,
-    [&](int, int, const auto* row)
+    [&](int j, int k, const auto* row)
     {
+      const long long first = (static_cast<long long>(k) * ny + j) * nx + box.Begin[0];
       for (int i = 0; i < box.End[0] - box.Begin[0]; ++i)
       {
-        values.push_back(AsFloat(row[i]));
+        const float v = AsFloat(row[i]);
+        if ((first + i) % every == 0 && std::isfinite(v))
+        {
+          values.push_back(v);
+        }
       }
     });
   const SharedValues all{ values, CountOfAll(values, reduce) };
@@ -523,7 +540,7 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   std::vector<double> counts(Bins, 0.0);
   for (float v : values)
   {
-    counts[std::min(Bins - 1, std::max(0, static_cast<int>((v - low) / width)))] += 1.0;
+    counts[static_cast<int>(std::min(Bins - 1.0, std::max(0.0, (v - low) / width)))] += 1.0;
   }
   reduce.Sum(counts);
   const Mixture m = FitHistogramMixture(counts, low, width, 4);
@@ -539,15 +556,19 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
     reachLow = std::min(reachLow, m.Mean[k] - 5.0 * m.Sd[k]);
     reachHigh = std::max(reachHigh, m.Mean[k] + 5.0 * m.Sd[k]);
   }
-  const double lo = CompetitorBoundary(m, o, m.Mean[o], reachLow, width / 8);
-  const double hi = CompetitorBoundary(m, o, m.Mean[o], reachHigh, width / 8);
-  if (std::isnan(lo) && std::isnan(hi))
+  // From the click's median, where its class is the likeliest (not always at the class's mean:
+  // a narrow neighbour can win there).
+  const double m0 = estimate.Median;
+  const double lo = CompetitorBoundary(m, o, m0, reachLow, width / 8);
+  const double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
+  if ((std::isnan(lo) && std::isnan(hi)) || !(std::isnan(lo) || lo < m0) ||
+    !(std::isnan(hi) || hi > m0))
   {
-    return;
+    return; // no competitor, or none that leaves the click in its range: m -+ 3 s, grow only
   }
   const double minimum = Quantile(all, 0.0, reduce), maximum = Quantile(all, 1.0, reduce);
-  const double closedLow = std::isnan(lo) ? m.Mean[o] : lo;
-  const double closedHigh = std::isnan(hi) ? m.Mean[o] : hi;
+  const double closedLow = std::isnan(lo) ? m0 : lo;
+  const double closedHigh = std::isnan(hi) ? m0 : hi;
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
   estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
   estimate.Contrast = true;
