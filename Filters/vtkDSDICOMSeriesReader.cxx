@@ -70,10 +70,13 @@ int vtkDSDICOMSeriesReader::CanReadFile(const char* name)
   }
   // A folder: one DICOM file among its first entries is enough (folders can be large).
   int looked = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(name, ec))
+  // increment(ec), not ++, which throws when the folder changes while it is listed.
+  std::filesystem::directory_iterator it(name, ec), end;
+  for (; !ec && it != end; it.increment(ec))
   {
-    if (entry.is_regular_file(ec) &&
-      dsurf::dicom::ReadHeader(entry.path().string(), header, error) ==
+    std::error_code fileEc;
+    if (it->is_regular_file(fileEc) &&
+      dsurf::dicom::ReadHeader(it->path().string(), header, error) ==
         dsurf::dicom::HeaderStatus::Ok)
     {
       return 1;

@@ -388,11 +388,15 @@ bool ScanFolder(const std::string& folder, std::vector<Series>& series,
   skipped.clear();
   std::error_code ec;
   std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+  // increment(ec), not ++: a folder changed or made unreadable while it is listed must give an
+  // error, not a std::filesystem_error nothing catches.
+  std::filesystem::directory_iterator it(folder, ec), end;
+  for (; !ec && it != end; it.increment(ec))
   {
-    if (entry.is_regular_file(ec))
+    std::error_code fileEc;
+    if (it->is_regular_file(fileEc))
     {
-      files.push_back(entry.path().string());
+      files.push_back(it->path().string());
     }
   }
   if (ec)
