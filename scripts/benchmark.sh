@@ -8,7 +8,8 @@
 #   the accuracy phantoms; about 10 minutes) and Scale (128^3..1024^3 CT-like volumes, time and
 #   peak memory; about 5 minutes) and Objects (issue 24: one click on the spine and horned
 #   phantoms, Colin27's caudates and 50 white-matter clicks, beside a connected threshold, with
-#   the issue's goals; about 10 minutes; BENCH_ARGS="spine horned" runs the cases named) run
+#   the issue's goals; about 25 minutes, 30 s a white-matter click; BENCH_ARGS="spine horned"
+#   runs the cases named, "--wm-clicks 10 wm" the first 10 clicks) run
 #   when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
 #   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
 #   its column is skipped and why).

@@ -165,9 +165,13 @@ inline std::vector<unsigned char> SurfaceInterior(vtkPolyData* surface, vtkImage
   return inside;
 }
 
-/// The distance of every stride-th point of from to the triangles of to.
+/// The distance of every stride-th point of from to the triangles of to; of at most MaxSamples
+/// points evenly spread over from's list (a leaked iso-surface has millions of points far from
+/// the reference, where each locator query is slow; the statistics do not need them all).
+constexpr vtkIdType MaxSamples = 50000;
 inline std::vector<double> Distances(vtkPolyData* from, vtkPolyData* to, vtkIdType stride = 1)
 {
+  stride = std::max(stride, (from->GetNumberOfPoints() + MaxSamples - 1) / MaxSamples);
   std::vector<double> d;
   if (to->GetNumberOfCells() == 0)
     return d;
