@@ -37,6 +37,34 @@ struct Walker
     return false;
   }
 
+  /// Whether an explicit VR is the one the standard gives the elements GDCM's image reader
+  /// reads through gdcm::Attribute, which asserts (aborting the process) on another one: a
+  /// fuzzed Samples per Pixel (0028,0002) of another VR did. Other elements pass.
+  static bool ExpectedVR(uint16_t group, uint16_t element, const std::string& vr)
+  {
+    struct Expected
+    {
+      uint16_t Group, Element;
+      const char* VR;
+    };
+    static const Expected table[] = { { 0x0018, 0x0050, "DS" }, { 0x0018, 0x0088, "DS" },
+      { 0x0020, 0x000e, "UI" }, { 0x0020, 0x0013, "IS" }, { 0x0020, 0x0032, "DS" },
+      { 0x0020, 0x0037, "DS" }, { 0x0028, 0x0002, "US" }, { 0x0028, 0x0004, "CS" },
+      { 0x0028, 0x0006, "US" }, { 0x0028, 0x0008, "IS" }, { 0x0028, 0x0010, "US" },
+      { 0x0028, 0x0011, "US" }, { 0x0028, 0x0030, "DS" }, { 0x0028, 0x0100, "US" },
+      { 0x0028, 0x0101, "US" }, { 0x0028, 0x0102, "US" }, { 0x0028, 0x0103, "US" },
+      { 0x0028, 0x1050, "DS" }, { 0x0028, 0x1051, "DS" }, { 0x0028, 0x1052, "DS" },
+      { 0x0028, 0x1053, "DS" }, { 0x0028, 0x1054, "LO" } };
+    for (const Expected& e : table)
+    {
+      if (e.Group == group && e.Element == element)
+      {
+        return vr == e.VR;
+      }
+    }
+    return true;
+  }
+
   /// The element header at p: tag, value length, header size; false when it does not fit.
   bool Header(
     size_t p, uint16_t& group, uint16_t& element, uint32_t& length, size_t& size, std::string& vr)
@@ -110,6 +138,13 @@ struct Walker
           return length == 0 || Fail("an item delimiter with a length", p - 8);
         }
         return Fail("a misplaced item or delimiter tag", p);
+      }
+      if (depth == 0 && !vr.empty() && !ExpectedVR(group, element, vr))
+      {
+        return Fail("an element of the image's description with another value representation "
+                    "than the standard's (" +
+            vr + ")",
+          p);
       }
       p += size;
       if (depth == 0 && group == 0x7fe0 && element == 0x0010)
