@@ -49,7 +49,8 @@
 // region force (dsRegion.h), RegionWeight * h * min(1, sigma_l / sigma_0) * speed * normal,
 // joins the edge force; folds are smoothed open on the delivered surface and after levels
 // whose mesh resolves their sigma (dsUntangle.h); a start far finer than sigma_0 begins on a
-// coarse copy (CoarsenStart).
+// coarse copy (CoarsenStart); a click whose range came from the classes around it takes front
+// levels at sigma's floor while the region force still pushes part of it out (FrontVertices).
 #ifndef dsMultilevel_h
 #define dsMultilevel_h
 
