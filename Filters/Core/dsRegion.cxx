@@ -566,7 +566,14 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   {
     return; // no competitor, or none that leaves the click in its range: m -+ 3 s, grow only
   }
-  const double minimum = Quantile(all, 0.0, reduce), maximum = Quantile(all, 1.0, reduce);
+  float lowest = std::numeric_limits<float>::max(), highest = std::numeric_limits<float>::lowest();
+  for (float v : values)
+  {
+    lowest = std::min(lowest, v);
+    highest = std::max(highest, v);
+  }
+  const double minimum = -reduce.Max(-static_cast<double>(lowest));
+  const double maximum = reduce.Max(highest);
   const double closedLow = std::isnan(lo) ? m0 : lo;
   const double closedHigh = std::isnan(hi) ? m0 : hi;
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
