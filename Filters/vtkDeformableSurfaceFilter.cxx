@@ -2,6 +2,7 @@
 #include "vtkDeformableSurfaceFilter.h"
 
 #include "dsMultilevel.h"
+#include "dsObjects.h"
 #include "dsScaleSpace.h"
 #include "dsSelfIntersectionCount.h"
 #include "dsSolver.h"
@@ -9,6 +10,7 @@
 #include "dsVTKAnimation.h"
 #include "dsVTKImage.h"
 #include "dsVTKMesh.h"
+#include "dsVTKObjects.h"
 #include "dsVTKPieces.h"
 #include "dsVTKWarmStart.h"
 
@@ -186,6 +188,11 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     error = "the initial surface has a non-finite point coordinate (NaN, infinite or beyond 1e100)";
     return false;
   }
+  std::vector<long long> objectIds;
+  if (!dsurf::ReadObjectIds(input, objectIds, error))
+  {
+    return false;
+  }
   vtkNew<vtkPolyData> copy;
   copy->ShallowCopy(input);
   vtkNew<vtkTriangleFilter> triangulate;
@@ -229,6 +236,12 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     tri->GetPoint(i, mesh.Points[i].data());
   }
   mesh.Triangles.reserve(tri->GetNumberOfPolys());
+  // The ObjectId of each triangle, passed on by the triangulation and the cleaning.
+  std::vector<long long> cellObjects, triangleObjects;
+  if (!objectIds.empty() && !dsurf::ReadObjectIds(tri, cellObjects, error))
+  {
+    return false;
+  }
   auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
   {
@@ -239,6 +252,10 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     {
       mesh.Triangles.push_back(
         { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+      if (!cellObjects.empty())
+      {
+        triangleObjects.push_back(cellObjects[it->GetCurrentCellId()]);
+      }
     }
   }
   // The cleaning drops a triangle that names a point twice but keeps its points.
@@ -247,6 +264,12 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
   if (!mesh.BuildTopology(&topologyError))
   {
     error = "the initial surface is not a manifold triangle mesh: " + topologyError;
+    return false;
+  }
+  // Several objects (docs/METHOD.md §9.9): each triangle's ObjectId names its object.
+  if (!triangleObjects.empty() &&
+    !dsurf::AssignObjects(mesh, triangleObjects, mesh.ObjectIds, &error))
+  {
     return false;
   }
   return true;
@@ -347,6 +370,7 @@ vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
   piece->SetPoints(owned->GetPoints());
   piece->SetPolys(owned->GetPolys());
   piece->SetStrips(owned->GetStrips());
+  dsurf::CopyPolygonObjectIds(owned, piece);
   return piece;
 }
 
@@ -783,6 +807,12 @@ void vtkDeformableSurfaceFilter::Deliver(const dsurf::TriangleMesh& mesh,
   FillOutput(mesh, solver, output);
   const double* used = solver.GetIntensityRange();
   AddFieldData(solver, mesh, used[0] < used[1], warm, output->GetFieldData());
+  if (!mesh.ObjectIds.empty())
+  {
+    dsurf::AddObjectArrays(mesh, output);
+    dsurf::AddObjectFieldData(
+      mesh, solver.GetObjectRegions(), solver.GetCrossingPairs(), output->GetFieldData());
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -4,6 +4,7 @@
 #include "dsGaussianSmoother.h"
 
 #include "dsFieldBricks.h"
+#include "dsObjects.h"
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
 #include "dsUntangle.h"
@@ -103,15 +104,16 @@ bool MultilevelSolver::FirstSigma(
   return true;
 }
 
-bool MultilevelSolver::RegionRange(
-  const ImageView& image, const TriangleMesh& mesh, double firstSigma)
+bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& mesh,
+  double firstSigma, const std::string& which, ObjectRegion& model)
 {
   const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
   if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(hi - lo))
   {
-    this->Warnings.push_back("the region force is off: the intensity range must be finite");
+    this->Warnings.push_back(
+      "the region force" + which + " is off: the intensity range must be finite");
     return false;
   }
   if (!(lo < hi) && (StartSpansImage(geometry, mesh) || !mesh.IsClosed()))
@@ -131,38 +133,65 @@ bool MultilevelSolver::RegionRange(
       : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg, reach);
     if (!estimated)
     {
-      this->Warnings.push_back(
-        "the region force is off: no intensity range was given and none could be "
-        "estimated (" +
-        msg + ")");
+      this->Warnings.push_back("the region force" + which +
+        " is off: no intensity range was given and none could be estimated (" + msg + ")");
       return false;
     }
     lo = estimate.Range[0];
     hi = estimate.Range[1];
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
     {
-      this->Warnings.push_back("the region force is off: the estimated intensity range is empty "
-                               "or not finite");
+      this->Warnings.push_back("the region force" + which +
+        " is off: the estimated intensity range is empty or not finite");
       return false;
     }
     // Without a background to compare with (a click inside one region), the range's end is
     // not where the boundary lies: the region force only grows the surface through its
     // region, and the edge force finds the boundary beyond.
-    this->RegionOutwardOnly = !estimate.Contrast;
-    this->RegionFollowsFront = estimate.Classes > 1 && estimate.Contrast;
+    model.OutwardOnly = !estimate.Contrast;
+    model.FollowsFront = estimate.Classes > 1 && estimate.Contrast;
   }
   const long long matching = this->Distributed
     ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
     : CountVoxelsInRange(image, lo, hi);
   if (matching == 0)
   {
-    this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) +
-      ", " + std::to_string(hi) + "] matches no voxel of the image");
+    this->Warnings.push_back("the region force" + which + " is off: the intensity range [" +
+      std::to_string(lo) + ", " + std::to_string(hi) + "] matches no voxel of the image");
     return false;
   }
-  this->UsedRange[0] = lo;
-  this->UsedRange[1] = hi;
+  model.Low = lo;
+  model.High = hi;
+  model.On = true;
   return true;
+}
+
+bool MultilevelSolver::RegionRange(
+  const ImageView& image, const TriangleMesh& mesh, double firstSigma)
+{
+  // One object: its range from the whole start; several: each from its own start surface
+  // (its own click, its own seed), so each region competes with what lies around it.
+  const int objects = mesh.NumberOfObjects();
+  this->ObjectRegions.assign(objects, ObjectRegion());
+  bool any = false;
+  for (int o = 0; o < objects; ++o)
+  {
+    ObjectRegion& model = this->ObjectRegions[o];
+    any = (objects == 1 ? this->ObjectRange(image, mesh, firstSigma, "", model)
+                        : this->ObjectRange(image, ObjectSurface(mesh, o), firstSigma,
+                            " of object " + std::to_string(o), model)) ||
+      any;
+  }
+  for (const ObjectRegion& model : this->ObjectRegions)
+  {
+    if (model.On)
+    {
+      this->UsedRange[0] = model.Low; // the first object's, for the IntensityRange field
+      this->UsedRange[1] = model.High;
+      break;
+    }
+  }
+  return any;
 }
 
 bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
@@ -240,6 +269,14 @@ bool MultilevelSolver::GoOn(bool here) const
   return this->Distributed ? this->Reduce.Max(here ? 0.0 : 1.0) == 0.0 : here;
 }
 
+void MultilevelSolver::LimitSteps(const TriangleMesh& mesh)
+{
+  // The budget follows the mesh: a coarse level's steps are long, and a budget near them keeps
+  // the list from being made every sweep; a fine level's list stays short.
+  const double budget = std::max(this->Voxel, 0.5 * mesh.MeanEdgeLength());
+  this->Contact.Limits(mesh, ContactClearanceVoxels * this->Voxel, budget, this->StepLimits);
+}
+
 bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
@@ -253,8 +290,14 @@ bool MultilevelSolver::SolveLevel(
   // batches, and the sweep records are handed on after each batch.
   // Batches shrink on big meshes so that progress moves and an abort is answered within
   // about the time of 16 sweeps of 50 000 vertices (one sweep from 800 000 vertices on).
-  const int batchSize = std::max(
-    1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
+  // Several objects: one sweep per batch, each with its step limits (dsContact.h).
+  const bool contact = mesh.NumberOfObjects() > 1;
+  const int batchSize = contact
+    ? 1
+    : std::max(1,
+        std::min(
+          P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
+  solver.SetStepLimits(contact ? &this->StepLimits : nullptr);
   std::vector<SweepStatistics> batchStats;
   const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
@@ -272,6 +315,10 @@ bool MultilevelSolver::SolveLevel(
     if (field.Bricks)
     {
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
+    }
+    if (contact)
+    {
+      this->LimitSteps(mesh);
     }
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
@@ -331,6 +378,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
     }
   }
+  solver.SetStepLimits(nullptr);
   rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
@@ -372,7 +420,8 @@ bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::st
   // tiny edges per sweep: level 0 alone took the 2000-sweep cap (docs/METHOD.md §9.5). The
   // hierarchy starts coarse instead, and refines again where the image has detail.
   // MaxLevels 0 asks for one level on the given mesh: nothing would refine a copy back.
-  if (!this->Coarsen || this->Parameters.MaxLevels < 1 ||
+  // Several objects are not coarsened: the copy would have to keep each one apart.
+  if (!this->Coarsen || this->Parameters.MaxLevels < 1 || mesh.NumberOfObjects() > 1 ||
     mesh.NumberOfTriangles() <= CoarsenAboveTriangles ||
     !(mesh.MeanEdgeLength() < 0.5 * state.Sigma))
   {
@@ -420,8 +469,10 @@ void MultilevelSolver::ClearResults()
   this->PlannedLevels = 0;
   this->SigmaChoice = InitialSigmaChoice();
   this->UsedRange[0] = this->UsedRange[1] = 0;
-  this->RegionOutwardOnly = false;
-  this->RegionFollowsFront = false;
+  this->ObjectRegions.clear();
+  this->Contact.Reset();
+  this->StepLimits.clear();
+  this->Crossings = 0;
   this->ProgressReached = 0.0;
 }
 
@@ -452,8 +503,16 @@ bool MultilevelSolver::Start(
     *error = "the initial surface has no triangles";
     return false;
   }
+  if (!mesh.Objects.empty() &&
+    (mesh.Objects.size() != mesh.Points.size() ||
+      *std::min_element(mesh.Objects.begin(), mesh.Objects.end()) < 0))
+  {
+    *error = "the objects of the initial surface need one index >= 0 per point";
+    return false;
+  }
   // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
   state.Voxel = geometry.MeanSpacing();
+  this->Voxel = state.Voxel;
   std::string msg;
   if (!state.Refiner.Initialize(mesh, &msg))
   {
@@ -473,6 +532,7 @@ bool MultilevelSolver::Start(
   {
     return false;
   }
+  mesh.ExtendObjects(); // the points the start's subdivision added
 #ifndef NDEBUG
   state.CheckTopology = true;
 #else
@@ -495,6 +555,7 @@ bool MultilevelSolver::SetUpLevel(
   const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
+  mesh.ExtendObjects(); // the points refinement added
   // Force field at this level's sigma, over the whole image on the first level (a start may
   // travel far, e.g. grown by the region force) and the surface's neighbourhood after it
   // (dsFieldGrid.h); rebuilt when sigma changed or the surface needs more than it covers.
@@ -536,8 +597,18 @@ bool MultilevelSolver::SetUpLevel(
     // surface where the range ends (docs/METHOD.md §9.3).
     const double decay = state.FrontLevel ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
-    state.LevelSolver.SetRegionForce(this->Distributed ? this->Piece.Image : image,
-      this->UsedRange[0], this->UsedRange[1], decay * P.RegionWeight * h, this->RegionOutwardOnly);
+    std::vector<Solver::RegionModel> models;
+    for (const ObjectRegion& o : this->ObjectRegions)
+    {
+      Solver::RegionModel m;
+      m.On = o.On;
+      m.Low = o.Low;
+      m.High = o.High;
+      m.OutwardOnly = o.OutwardOnly;
+      models.push_back(m);
+    }
+    state.LevelSolver.SetRegionForce(
+      this->Distributed ? this->Piece.Image : image, std::move(models), decay * P.RegionWeight * h);
   }
   rec.Sigma = sigma;
   rec.Vertices = mesh.NumberOfPoints();
@@ -701,8 +772,12 @@ bool MultilevelSolver::RefineLevel(
   {
     return true;
   }
-  const Prolongation prolongation =
-    P.ButterflyProlongation ? Prolongation::Butterfly : Prolongation::Linear;
+  // Several objects refine at edge midpoints: the surface keeps its shape, so a refinement
+  // cannot bring two objects nearer than their sweeps did (a butterfly point can bulge out by a
+  // share of the edge, through a neighbour resting the clearance away; dsContact.h).
+  const Prolongation prolongation = P.ButterflyProlongation && mesh.NumberOfObjects() == 1
+    ? Prolongation::Butterfly
+    : Prolongation::Linear;
   const RefinementCounts& rc = this->Levels.back().Refinement =
     state.Refiner.Refine(mesh, marks, prolongation);
   if (!rc.Ok)
@@ -761,7 +836,8 @@ bool MultilevelSolver::RunLevels(
     // MaxLevels, at most MaxFrontLevels.
     state.Front.clear();
     if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&
-      this->RegionFollowsFront)
+      std::any_of(this->ObjectRegions.begin(), this->ObjectRegions.end(),
+        [](const ObjectRegion& o) { return o.On && o.FollowsFront; }))
     {
       state.Front = this->FrontVertices(image, mesh);
       const auto onFront = std::count(state.Front.begin(), state.Front.end(), 1);
@@ -822,7 +898,10 @@ std::vector<char> MultilevelSolver::FrontVertices(
     bool inside = false;
     const double value = this->Distributed ? this->Piece.SampleOwned(mesh.Points[v].data(), &inside)
                                            : SampleVolume(image, mesh.Points[v].data(), &inside);
-    speed[v] = inside ? RegionSpeed(value, this->UsedRange[0], this->UsedRange[1]) : 0.0;
+    const ObjectRegion& o = this->ObjectRegions[mesh.Objects.empty()
+        ? 0
+        : std::min<std::size_t>(mesh.Objects[v], this->ObjectRegions.size() - 1)];
+    speed[v] = inside && o.On && o.FollowsFront ? RegionSpeed(value, o.Low, o.High) : 0.0;
   }
   if (this->Distributed)
   {
@@ -870,7 +949,8 @@ bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::stri
   this->ClearResults();
   std::string msg;
   RunState state;
-  if (!this->Start(image, mesh, state, &msg) || !this->RunLevels(image, mesh, state, &msg))
+  if (!this->Start(image, mesh, state, &msg) || !this->CheckStartsApart(mesh) ||
+    !this->RunLevels(image, mesh, state, &msg))
   {
     if (error)
     {
@@ -878,9 +958,30 @@ bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::stri
     }
     return false;
   }
+  if (mesh.NumberOfObjects() > 1)
+  {
+    this->Crossings = CountCrossingPairs(mesh);
+    if (this->Crossings > 0)
+    {
+      this->Warnings.push_back(std::to_string(this->Crossings) +
+        " pairs of triangles of different objects intersect on the result");
+    }
+  }
   if (this->Progress)
   {
     this->Progress(1.0);
+  }
+  return true;
+}
+
+bool MultilevelSolver::CheckStartsApart(const TriangleMesh& mesh)
+{
+  // The contact keeps objects apart, it cannot pull crossing starts apart (dsContact.h).
+  const int crossing = mesh.NumberOfObjects() > 1 ? CountCrossingPairs(mesh) : 0;
+  if (crossing > 0)
+  {
+    this->Warnings.push_back("the start surfaces of different objects already cross (" +
+      std::to_string(crossing) + " pairs of triangles): they stay crossed there");
   }
   return true;
 }

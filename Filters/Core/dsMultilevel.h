@@ -55,6 +55,7 @@
 #define dsMultilevel_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsContact.h"
 #include "dsFieldGrid.h"
 #include "dsInitialSigma.h"
 #include "dsPieceField.h"
@@ -221,6 +222,17 @@ constexpr double FadedEdgeSigmaRatio = 2.0;
 DEFORMABLESURFACEFILTERS_EXPORT double UnsplitEdgeLength(
   double voxel, double sigma, double firstSigma, bool region);
 
+/// The region force of one object: its range and how it is used.
+struct DEFORMABLESURFACEFILTERS_EXPORT ObjectRegion
+{
+  bool On = false;
+  double Low = 0, High = 0;
+  bool OutwardOnly = false; ///< an estimate without contrast: grow only
+  /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
+  /// levels follow the parts the region force still pushes out (FrontVertices).
+  bool FollowsFront = false;
+};
+
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
 enum class StopReason
 {
@@ -355,7 +367,13 @@ public:
   /// How sigma_0 was chosen (Rays 0 when it was given or the start spans the volume).
   const InitialSigmaChoice& GetInitialSigmaChoice() const { return this->SigmaChoice; }
   /// The intensity range the region force used (estimated or given); both 0 when it was off.
+  /// With several objects, the first one's whose force was on.
   const double* GetIntensityRange() const { return this->UsedRange; }
+  /// The region model of each object (mesh.Objects; one when the start has none).
+  const std::vector<ObjectRegion>& GetObjectRegions() const { return this->ObjectRegions; }
+  /// Triangle pairs of different objects that intersect on the delivered surface (0 with one
+  /// object; dsContact.h keeps it 0 unless the starts already crossed).
+  int GetCrossingPairs() const { return this->Crossings; }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
   static std::vector<char> MarkTriangles(
@@ -378,10 +396,11 @@ private:
   int PlannedLevels = 0; ///< levels to sigma's floor within MaxLevels (progress)
   InitialSigmaChoice SigmaChoice;
   double UsedRange[2] = { 0, 0 };
-  bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
-  /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
-  /// levels follow the parts the region force still pushes out (FrontVertices).
-  bool RegionFollowsFront = false;
+  std::vector<ObjectRegion> ObjectRegions; ///< per object (one unless the start has several)
+  /// Several objects: no step brings two objects' triangles within the clearance (dsContact.h).
+  ContactLimiter Contact;
+  std::vector<double> StepLimits; ///< the limiter's, for the solver
+  int Crossings = 0;
   double ProgressReached = 0.0; ///< the largest progress reported so far in this run
   bool Distributed = false;     ///< SetDistribution was called
   ImagePiece Piece;
@@ -438,9 +457,19 @@ private:
   /// (the sum of its sweeps' largest corrections).
   bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
     int& sweepCounter);
-  /// The region force's range (given or estimated); false = no region force (a warning says
-  /// why, except for a start spanning the image or an open start without a given range).
+  /// The region force's range of every object (given or estimated, ObjectRange); false = no
+  /// region force for any.
   bool RegionRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma);
+  /// One object's range (given or estimated from `mesh`, its start); false = no region force
+  /// for it (a warning says why, naming the object `which`, except for a start spanning the
+  /// image or an open start without a given range).
+  bool ObjectRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma,
+    const std::string& which, ObjectRegion& model);
+  /// Several objects: the step limits for the next sweep (StepLimits).
+  void LimitSteps(const TriangleMesh& mesh);
+  /// A warning when the start surfaces of different objects already cross; always true.
+  bool CheckStartsApart(const TriangleMesh& mesh);
+  double Voxel = 0; ///< the image's mean spacing (the contact's clearance and budget)
 };
 } // namespace dsurf
 

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Several objects in one run (docs/METHOD.md §9.9): clicks carrying an ObjectId into Delaunay
+// Seed Surface, its output into Deformable Surface with every default.
+// - Assembly (SeveralObjectPhantoms.h: two blocks of one material joined by a darker glue line
+//   one voxel thick), a click in each: each surface within half a voxel (mean, both ways) of its
+//   own block, no intersecting pair between them, no voxel inside both.
+// - Spine (ObjectPhantoms.h), a click in each of three adjacent vertebrae: no intersecting pair,
+//   no voxel inside two, each vertebra within half a voxel (mean, both ways).
+// - One object with an ObjectId gives the same surface as without one, and the output carries
+//   ObjectId per point and per cell and the per-object field data.
+// - Delaunay Seed Surface seeds each ObjectId group on its own and numbers TetraIds on.
+#include "DSTestHelpers.h"
+#include "OneClick.h"
+#include "SeveralObjects.h"
+#include "TestDelaunaySeedUtils.h"
+
+#include "vtkCommand.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <iostream>
+
+using namespace dsobjects;
+
+namespace
+{
+/// Scores every object of `result` against its label; checks what the user checks.
+void CheckObjects(const SeveralPhantom& s, const SeveralResult& result, const std::vector<int>& ids,
+  double meanGoal, const std::string& name)
+{
+  vtkPolyData* out = result.Surface;
+  std::cout << name << ": " << out->GetNumberOfPoints() << " vertices, " << result.Seconds << " s, "
+            << FieldValue(out, "CrossingPairs") << " crossing pairs, "
+            << FieldValue(out, "SelfIntersections") << " intersecting pairs" << std::endl;
+  DS_CHECK(FieldValue(out, "CrossingPairs") == 0, name + ": no pair of objects crosses");
+  DS_CHECK(out->GetPointData()->GetArray("ObjectId") && out->GetCellData()->GetArray("ObjectId"),
+    name + ": ObjectId per point and per cell");
+  std::vector<std::vector<unsigned char>> interiors(ids.size());
+  for (size_t i = 0; i < ids.size(); ++i)
+  {
+    vtkSmartPointer<vtkPolyData> part = ObjectPart(out, ids[i]);
+    const ObjectScore sc = ScoreObject(part, s.Phantom, s.Labels[i], interiors[i]);
+    const double voxel = s.Phantom.Image->GetSpacing()[0];
+    std::cout << "  object " << ids[i] << ": " << sc.Vertices << " vertices; surface -> label "
+              << sc.SurfaceMean / voxel << " (95 % " << sc.SurfaceP95 / voxel
+              << "), label -> surface " << sc.ReferenceMean / voxel << " (95 % "
+              << sc.ReferenceP95 / voxel << ") voxels; Dice " << sc.Dice << ", volume ratio "
+              << sc.VolumeRatio << std::endl;
+    DS_CHECK_LE(sc.SurfaceMean / voxel, meanGoal, name + ": surface -> its label, mean (voxels)");
+    DS_CHECK_LE(sc.ReferenceMean / voxel, meanGoal, name + ": its label -> surface, mean (voxels)");
+  }
+  const long long overlap = OverlapVoxels(interiors);
+  std::cout << "  voxels inside two objects: " << overlap << std::endl;
+  DS_CHECK(overlap == 0, name + ": no voxel inside two objects");
+}
+
+void Assembly()
+{
+  const SeveralPhantom s = AssemblyPhantom();
+  const std::vector<int> ids = { 1, 2 };
+  const SeveralResult r = RunSeveral(s.Phantom.Image, SeedObjects(LabelledPoints(s.Clicks, ids)));
+  CheckObjects(s, r, ids, 0.5, "assembly");
+  vtkDataArray* objectIds = r.Surface->GetFieldData()->GetArray("ObjectIds");
+  DS_CHECK(objectIds && objectIds->GetNumberOfTuples() == 2 && objectIds->GetTuple1(0) == 1 &&
+      objectIds->GetTuple1(1) == 2,
+    "field ObjectIds lists the objects");
+  DS_CHECK(r.Surface->GetFieldData()->GetArray("ObjectVolumes") &&
+      r.Surface->GetFieldData()->GetArray("ObjectIntensityRanges"),
+    "per-object volumes and ranges");
+}
+
+void Spine()
+{
+  const SeveralPhantom s = SpineThreeClicks();
+  const std::vector<int> ids = { 2, 3, 4 };
+  const SeveralResult r = RunSeveral(s.Phantom.Image, SeedObjects(LabelledPoints(s.Clicks, ids)));
+  CheckObjects(s, r, ids, 0.5, "spine, three clicks");
+}
+
+void OneObjectUnchanged()
+{
+  // A click with ObjectId 7 is the same solve as the click without it.
+  const ObjectPhantom p = HornedPhantom();
+  const SeveralResult with = RunSeveral(p.Image, SeedObjects(LabelledPoints({ p.Click }, { 7 })));
+  const SeveralResult without = RunSeveral(p.Image, SeedFromClick(p.Click, 5.0));
+  bool same = with.Surface->GetNumberOfPoints() == without.Surface->GetNumberOfPoints() &&
+    with.Surface->GetNumberOfPoints() > 0;
+  for (vtkIdType i = 0; same && i < with.Surface->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    with.Surface->GetPoint(i, a);
+    without.Surface->GetPoint(i, b);
+    same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  }
+  DS_CHECK(same, "one object with an ObjectId: the same surface as without");
+  vtkDataArray* pointIds = with.Surface->GetPointData()->GetArray("ObjectId");
+  DS_CHECK(pointIds && pointIds->GetRange()[0] == 7 && pointIds->GetRange()[1] == 7,
+    "every point carries the object's id");
+  DS_CHECK(!without.Surface->GetPointData()->GetArray("ObjectId"),
+    "no ObjectId array without one on the start");
+}
+
+void SeedGroups()
+{
+  // Two tetrahedra's corners, ObjectIds 5 and 3: two hulls, cells labelled, TetraIds on.
+  const std::vector<Point3> points = { { 0, 0, 0 }, { 10, 0, 0 }, { 0, 10, 0 }, { 0, 0, 10 },
+    { 30, 0, 0 }, { 40, 0, 0 }, { 30, 10, 0 }, { 30, 0, 10 } };
+  const std::vector<int> ids = { 5, 5, 5, 5, 3, 3, 3, 3 };
+  vtkNew<vtkDelaunaySeedSurface> seed;
+  seed->SetInputData(LabelledPoints(points, ids));
+  seed->Update();
+  vtkPolyData* surface = seed->GetOutput();
+  vtkDataArray* cellIds = surface->GetCellData()->GetArray("ObjectId");
+  DS_CHECK(surface->GetNumberOfPolys() == 8 && cellIds, "two tetrahedra's surfaces, labelled");
+  vtkUnstructuredGrid* tets = seed->GetTetrahedra();
+  vtkDataArray* tetraIds = tets->GetCellData()->GetArray("TetraId");
+  vtkDataArray* tetObjects = tets->GetCellData()->GetArray("ObjectId");
+  DS_CHECK(tets->GetNumberOfCells() == 2 && tetraIds && tetObjects && tetraIds->GetTuple1(0) == 0 &&
+      tetraIds->GetTuple1(1) == 1 && tetObjects->GetTuple1(0) == 3 && tetObjects->GetTuple1(1) == 5,
+    "TetraIds 0 and 1, ascending ObjectId first");
+  for (vtkIdType c = 0; cellIds && c < surface->GetNumberOfCells(); ++c)
+  {
+    double x[3];
+    surface->GetPoint(surface->GetCell(c)->GetPointId(0), x);
+    DS_CHECK(cellIds->GetTuple1(c) == (x[0] >= 30 ? 3 : 5), "each cell carries its group's id");
+  }
+  // Removing the second group's tetrahedron by its TetraId (1) leaves that group no seed.
+  seed->AddRemovedTetrahedron(1);
+  vtkNew<dsseedtest::MessageCounter> messages;
+  seed->AddObserver(vtkCommand::ErrorEvent, messages);
+  seed->AddObserver(vtkCommand::WarningEvent, messages);
+  seed->Update();
+  DS_CHECK(seed->GetOutput()->GetNumberOfCells() == 0 && messages->Errors > 0,
+    "a group without a seed: an error and an empty output");
+}
+} // namespace
+
+int TestSeveralObjects(int, char*[])
+{
+  SeedGroups();
+  OneObjectUnchanged();
+  Assembly();
+  Spine();
+  return dstest::Result("TestSeveralObjects");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestSeveralObjects(argc, argv);
+}
