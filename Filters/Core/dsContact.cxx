@@ -4,6 +4,8 @@
 #include "dsSelfIntersectionCount.h"
 #include "dsTriangleDistance.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -102,6 +104,7 @@ void ContactLimiter::Build(const TriangleMesh& mesh, double reach)
 {
   this->Anchor = mesh.Points;
   this->Candidates = NearPairs(mesh, mesh.Points, 0.5 * reach);
+  this->Measured.clear(); // the new list's distances are measured next
   ++this->BuildCount;
 }
 
@@ -123,16 +126,33 @@ void ContactLimiter::Limits(
     this->Build(mesh, clearance + 2 * budget);
   }
   limits.resize(n);
+  double moved = this->Measured.size() == static_cast<std::size_t>(n) ? 0.0 : budget;
   for (int v = 0; v < n; ++v)
   {
     limits[v] = std::max(0.0, budget - Norm(mesh.Points[v] - this->Anchor[v]));
+    if (this->Measured.size() == static_cast<std::size_t>(n))
+    {
+      moved = std::max(moved, Norm(mesh.Points[v] - this->Measured[v]));
+    }
   }
-  const std::vector<Vec3>& p = mesh.Points;
-  for (const auto& pair : this->Candidates)
+  if (this->Measured.empty() || moved > 0.125 * budget)
   {
-    const auto& a = mesh.Triangles[pair.first];
-    const auto& b = mesh.Triangles[pair.second];
-    const double g = TriangleDistance(p[a[0]], p[a[1]], p[a[2]], p[b[0]], p[b[1]], p[b[2]]);
+    this->Measure(mesh, clearance + 2 * budget);
+  }
+  // Since they were measured, a pair's triangles have closed in by at most their corners'
+  // longest moves.
+  std::vector<double>& away = this->Moved;
+  away.resize(n);
+  for (int v = 0; v < n; ++v)
+  {
+    away[v] = Norm(mesh.Points[v] - this->Measured[v]);
+  }
+  for (std::size_t i = 0; i < this->Candidates.size(); ++i)
+  {
+    const auto& a = mesh.Triangles[this->Candidates[i].first];
+    const auto& b = mesh.Triangles[this->Candidates[i].second];
+    const double g = this->Gaps[i] - std::max({ away[a[0]], away[a[1]], away[a[2]] }) -
+      std::max({ away[b[0]], away[b[1]], away[b[2]] });
     const double limit = std::max(0.0, 0.5 * (g - clearance));
     for (int k = 0; k < 3; ++k)
     {
@@ -140,6 +160,35 @@ void ContactLimiter::Limits(
       limits[b[k]] = std::min(limits[b[k]], limit);
     }
   }
+}
+
+void ContactLimiter::Measure(const TriangleMesh& mesh, double far)
+{
+  // In parallel: each pair's distance is its own (the limits take their minima in order after).
+  // A pair whose boxes lie `far` apart (2 B + c) limits nothing the budget does not already.
+  this->Measured = mesh.Points;
+  const std::vector<Vec3>& p = mesh.Points;
+  this->Gaps.resize(this->Candidates.size());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(this->Candidates.size()),
+    [&](vtkIdType first, vtkIdType last)
+    {
+      for (vtkIdType i = first; i < last; ++i)
+      {
+        const auto& a = mesh.Triangles[this->Candidates[i].first];
+        const auto& b = mesh.Triangles[this->Candidates[i].second];
+        const Box ba = TriangleBox(mesh, p, this->Candidates[i].first, 0.0);
+        const Box bb = TriangleBox(mesh, p, this->Candidates[i].second, 0.0);
+        double gap2 = 0;
+        for (int x = 0; x < 3; ++x)
+        {
+          const double g = std::max({ 0.0, bb[x] - ba[x + 3], ba[x] - bb[x + 3] });
+          gap2 += g * g;
+        }
+        this->Gaps[i] = gap2 >= far * far
+          ? far
+          : TriangleDistance(p[a[0]], p[a[1]], p[a[2]], p[b[0]], p[b[1]], p[b[2]]);
+      }
+    });
 }
 
 int CountCrossingPairs(const TriangleMesh& mesh)

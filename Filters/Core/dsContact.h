@@ -37,7 +37,11 @@ public:
   void Limits(
     const TriangleMesh& mesh, double clearance, double budget, std::vector<double>& limits);
   /// Forget the list (a new mesh).
-  void Reset() { this->Anchor.clear(); }
+  void Reset()
+  {
+    this->Anchor.clear();
+    this->Measured.clear();
+  }
   /// How often the list was made, and its length now.
   int Builds() const { return this->BuildCount; }
   std::size_t Pairs() const { return this->Candidates.size(); }
@@ -46,6 +50,14 @@ private:
   void Build(const TriangleMesh& mesh, double reach);
   std::vector<Vec3> Anchor; ///< the points when the list was made
   std::vector<std::pair<int, int>> Candidates;
+  /// Measuring every pair every sweep would cost more than the sweep: the distances are
+  /// measured when the list is made and again once a vertex has moved B / 8 since, and in
+  /// between bounded from below by the distance measured less the corners' moves (which leaves
+  /// objects at rest at most c + B / 4 apart).
+  void Measure(const TriangleMesh& mesh, double far);
+  std::vector<Vec3> Measured; ///< the points when Gaps were measured
+  std::vector<double> Gaps;   ///< per candidate, its distance then
+  std::vector<double> Moved;  ///< per point, how far from Measured (scratch)
   double Clearance = 0, Budget = 0;
   int BuildCount = 0;
 };

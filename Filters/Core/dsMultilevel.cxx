@@ -269,11 +269,18 @@ bool MultilevelSolver::GoOn(bool here) const
   return this->Distributed ? this->Reduce.Max(here ? 0.0 : 1.0) == 0.0 : here;
 }
 
-void MultilevelSolver::LimitSteps(const TriangleMesh& mesh)
+void MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
 {
-  // The budget follows the mesh: a coarse level's steps are long, and a budget near them keeps
-  // the list from being made every sweep; a fine level's list stays short.
-  const double budget = std::max(this->Voxel, 0.5 * mesh.MeanEdgeLength());
+  // The budget follows the steps: eight times the last sweep's longest (a list made for long
+  // steps would be made again every sweep), from a quarter voxel (a surface at rest: a short
+  // list) to half the mean edge; in powers of two of the voxel, so that it changes, and the list
+  // is made again, only when the steps change by a factor of two.
+  const double most = std::max(0.25 * this->Voxel, 0.5 * mesh.MeanEdgeLength());
+  double budget = 0.25 * this->Voxel;
+  while (budget < std::min(most, 8 * lastStep))
+  {
+    budget *= 2;
+  }
   this->Contact.Limits(mesh, ContactClearanceVoxels * this->Voxel, budget, this->StepLimits);
 }
 
@@ -318,7 +325,7 @@ bool MultilevelSolver::SolveLevel(
     }
     if (contact)
     {
-      this->LimitSteps(mesh);
+      this->LimitSteps(mesh, this->Sweeps.empty() || s == 0 ? 0.0 : this->Sweeps.back().MaxCorrection);
     }
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more

@@ -465,8 +465,9 @@ private:
   /// image or an open start without a given range).
   bool ObjectRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma,
     const std::string& which, ObjectRegion& model);
-  /// Several objects: the step limits for the next sweep (StepLimits).
-  void LimitSteps(const TriangleMesh& mesh);
+  /// Several objects: the step limits for the next sweep (StepLimits), the last sweep's longest
+  /// step `lastStep` (0 at a level's first).
+  void LimitSteps(const TriangleMesh& mesh, double lastStep);
   /// A warning when the start surfaces of different objects already cross; always true.
   bool CheckStartsApart(const TriangleMesh& mesh);
   double Voxel = 0; ///< the image's mean spacing (the contact's clearance and budget)
