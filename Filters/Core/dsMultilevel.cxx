@@ -104,6 +104,37 @@ bool MultilevelSolver::FirstSigma(
   return true;
 }
 
+bool MultilevelSolver::ObjectSigmas(
+  const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error)
+{
+  // One object: sigma_0 of the whole start. Several: each object's own (its start's distance
+  // to its edges), and the hierarchy begins at the largest, so that every object starts at a
+  // sigma that reaches its edges; each is subdivided to its own (PrepareStart).
+  this->StartSigmas.clear();
+  if (mesh.NumberOfObjects() == 1)
+  {
+    return this->FirstSigma(image, mesh, sigma, error);
+  }
+  InitialSigmaChoice largest;
+  sigma = 0;
+  for (int o = 0; o < mesh.NumberOfObjects(); ++o)
+  {
+    double own = 0;
+    if (!this->FirstSigma(image, ObjectSurface(mesh, o), own, error))
+    {
+      return false;
+    }
+    this->StartSigmas.push_back(own);
+    if (own > sigma)
+    {
+      sigma = own;
+      largest = this->SigmaChoice;
+    }
+  }
+  this->SigmaChoice = largest;
+  return true;
+}
+
 bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& mesh,
   double firstSigma, const std::string& which, ObjectRegion& model)
 {
@@ -194,6 +225,54 @@ bool MultilevelSolver::RegionRange(
   return any;
 }
 
+namespace
+{
+/// The start's subdivision (PrepareStart) of one surface: its elongated edges split, then
+/// uniform 1 -> 4 subdivisions while its mean edge exceeds sqrt 2 x target.
+bool SubdivideStart(TriangleMesh& mesh, double target, long long maxVertices, int& subdivisions,
+  bool& subdivided, std::string* error)
+{
+  // Elongated triangles first (a long box's faces: 12 x 84 voxels, 3 x 21 after the splits
+  // below): at their creases the umbrella points along the crease, §5's rule turns the
+  // region force into a slide along it, and the faces overtake the crease until they fold
+  // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
+  // edge of a triangle they border are halved; a start of about isotropic triangles is left
+  // as it is.
+  std::string msg;
+  const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, maxVertices, &msg);
+  if (split < 0)
+  {
+    *error = "splitting the initial surface's elongated triangles failed: " + msg;
+    return false;
+  }
+  subdivided = split > 0;
+  while (
+    mesh.MeanEdgeLength() > std::sqrt(2.0) * target && 4LL * mesh.NumberOfPoints() <= maxVertices)
+  {
+    if (!mesh.SubdivideUniformly(&msg))
+    {
+      *error = "subdividing the initial surface failed: " + msg;
+      return false;
+    }
+    ++subdivisions;
+    subdivided = true;
+  }
+  return true;
+}
+
+/// `part` (points and triangles) appended to `all` as object `object`.
+void AppendObject(TriangleMesh& all, const TriangleMesh& part, int object)
+{
+  const int offset = all.NumberOfPoints();
+  all.Points.insert(all.Points.end(), part.Points.begin(), part.Points.end());
+  all.Objects.resize(all.Points.size(), object);
+  for (const auto& t : part.Triangles)
+  {
+    all.Triangles.push_back({ t[0] + offset, t[1] + offset, t[2] + offset });
+  }
+}
+} // namespace
+
 bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
   RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
@@ -233,23 +312,42 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
     // edge of a triangle they border are halved; a start of about isotropic triangles is left
     // as it is.
-    const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, P.MaxVertices, &msg);
-    if (split < 0)
+    // Several objects are subdivided one by one, each to its own edges: a seed of picks around
+    // a large part has edges tens of voxels long, a click's sphere edges of a voxel, and the
+    // mean of both would leave the large one as it is.
+    bool subdivided = false;
+    if (mesh.NumberOfObjects() == 1)
     {
-      *error = "splitting the initial surface's elongated triangles failed: " + msg;
-      return false;
-    }
-    bool subdivided = split > 0;
-    while (mesh.MeanEdgeLength() > std::sqrt(2.0) * target &&
-      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
-    {
-      if (!mesh.SubdivideUniformly(&msg))
+      int subdivisions = 0;
+      if (!SubdivideStart(mesh, target, P.MaxVertices, subdivisions, subdivided, error))
       {
-        *error = "subdividing the initial surface failed: " + msg;
         return false;
       }
-      ++this->InitialSubdivisions;
-      subdivided = true;
+      this->InitialSubdivisions = subdivisions;
+    }
+    else
+    {
+      TriangleMesh all;
+      for (int o = 0; o < mesh.NumberOfObjects(); ++o)
+      {
+        TriangleMesh part = ObjectSurface(mesh, o);
+        int subdivisions = 0;
+        bool split = false;
+        const double own = std::max(InitialEdgeSigmaRatio * this->StartSigmas[o], 2.0 * voxel);
+        if (!SubdivideStart(
+              part, own, P.MaxVertices / mesh.NumberOfObjects(), subdivisions, split, error))
+        {
+          return false;
+        }
+        this->InitialSubdivisions = std::max(this->InitialSubdivisions, subdivisions);
+        subdivided = subdivided || split;
+        AppendObject(all, part, o);
+      }
+      if (subdivided)
+      {
+        all.ObjectIds = mesh.ObjectIds;
+        mesh = std::move(all);
+      }
     }
     if (subdivided)
     {
@@ -325,7 +423,8 @@ bool MultilevelSolver::SolveLevel(
     }
     if (contact)
     {
-      this->LimitSteps(mesh, this->Sweeps.empty() || s == 0 ? 0.0 : this->Sweeps.back().MaxCorrection);
+      this->LimitSteps(
+        mesh, this->Sweeps.empty() || s == 0 ? 0.0 : this->Sweeps.back().MaxCorrection);
     }
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
@@ -526,7 +625,7 @@ bool MultilevelSolver::Start(
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
     return false;
   }
-  if (!this->FirstSigma(image, mesh, state.Sigma, error))
+  if (!this->ObjectSigmas(image, mesh, state.Sigma, error))
   {
     return false;
   }

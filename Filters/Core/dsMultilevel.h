@@ -443,6 +443,11 @@ private:
   /// is replaced by the Coarsen callback's copy with edges of about sigma_0, when that copy
   /// keeps the start's topology (closed or not, Euler characteristic, orientation).
   bool CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error);
+  /// sigma_0 of the run: FirstSigma of the start, or with several objects the largest of each
+  /// object's FirstSigma (kept in StartSigmas).
+  bool ObjectSigmas(
+    const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error);
+  std::vector<double> StartSigmas; ///< per object, its own sigma_0 (several objects only)
   /// sigma_0 by the rule of Sigma / SigmaFraction / the start.
   bool FirstSigma(
     const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error);

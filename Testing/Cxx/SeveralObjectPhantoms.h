@@ -111,6 +111,22 @@ inline SeveralPhantom EnginePhantom()
   return s;
 }
 
+/// The picks a user makes for the engine's block: its eight corners, and eight points around
+/// each bore's rim on the top and bottom faces (on the bore's wall): ObjectId 1.
+inline std::vector<Point3> EngineBlockPicks()
+{
+  std::vector<Point3> picks;
+  for (int c = 0; c < 8; ++c)
+    picks.push_back({ c & 1 ? engine::High[0] : engine::Low[0],
+      c & 2 ? engine::High[1] : engine::Low[1], c & 4 ? engine::High[2] : engine::Low[2] });
+  for (int b = 0; b < 2; ++b)
+    for (double z : { engine::Low[2], engine::High[2] })
+      for (int k = 0; k < 8; ++k)
+        picks.push_back({ engine::BoreX[b] + engine::BoreRadius * std::cos(k * M_PI / 4),
+          engine::BoreY + engine::BoreRadius * std::sin(k * M_PI / 4), z });
+  return picks;
+}
+
 /// The spine phantom (ObjectPhantoms.h) with a click in the middle of vertebrae 2, 3 and 4.
 inline SeveralPhantom SpineThreeClicks()
 {
