@@ -58,8 +58,10 @@ void CheckObjects(const SeveralPhantom& s, const SeveralResult& result, const st
               << "), label -> surface " << sc.ReferenceMean / voxel << " (95 % "
               << sc.ReferenceP95 / voxel << ") voxels; Dice " << sc.Dice << ", volume ratio "
               << sc.VolumeRatio << std::endl;
-    DS_CHECK_LE(sc.SurfaceMean / voxel, meanGoal, name + ": surface -> its label, mean (voxels)");
-    DS_CHECK_LE(sc.ReferenceMean / voxel, meanGoal, name + ": its label -> surface, mean (voxels)");
+    DS_CHECK_LE(
+      sc.SurfaceMean / voxel, meanGoals[i], name + ": surface -> its label, mean (voxels)");
+    DS_CHECK_LE(
+      sc.ReferenceMean / voxel, meanGoals[i], name + ": its label -> surface, mean (voxels)");
   }
   const long long overlap = OverlapVoxels(interiors);
   std::cout << "  voxels inside two objects: " << overlap << std::endl;
