@@ -50,6 +50,11 @@
  * with a bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
  * level), StopReason (why the levels ended: "sigma floor", "no detail", "MaxLevels", "MaxSweeps"
  * or "aborted"), WarmStart and, with the region force, IntensityRange (the range it used).
+ * Several objects (docs/METHOD.md §9.9): a start with a cell array ObjectId is one object per
+ * value, solved together, each with its own sigma_0, start subdivision and region range, never
+ * crossing another (each step limited to keep 0.1 voxel between objects); the output then has
+ * ObjectId per point and per cell and field data ObjectIds, ObjectVolumes, ObjectVertices,
+ * ObjectIntensityRanges (0 0 where the object's region force was off) and CrossingPairs.
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
