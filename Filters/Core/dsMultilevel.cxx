@@ -7,6 +7,7 @@
 #include "dsObjects.h"
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
+#include "dsSelfIntersectionCount.h"
 #include "dsUntangle.h"
 
 #include <algorithm>
@@ -208,8 +209,11 @@ bool MultilevelSolver::RegionRange(
   for (int o = 0; o < objects; ++o)
   {
     ObjectRegion& model = this->ObjectRegions[o];
+    // Each click looks for its competitors within reach of its own sigma_0.
+    const double own =
+      o < static_cast<int>(this->StartSigmas.size()) ? this->StartSigmas[o] : firstSigma;
     any = (objects == 1 ? this->ObjectRange(image, mesh, firstSigma, "", model)
-                        : this->ObjectRange(image, ObjectSurface(mesh, o), firstSigma,
+                        : this->ObjectRange(image, ObjectSurface(mesh, o), own,
                             " of object " + std::to_string(o), model)) ||
       any;
   }
@@ -748,8 +752,19 @@ void MultilevelSolver::EndSweeps(
 void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
 {
   // Folds the forces left (two parts of the surface pushed together) are smoothed open
-  // (dsUntangle.h).
+  // (dsUntangle.h). Its umbrella steps know nothing of other objects: where smoothing one
+  // object's folds would pass through another, the folds stay (docs/METHOD.md §9.9).
+  const bool several = mesh.NumberOfObjects() > 1;
+  const std::vector<Vec3> before = several ? mesh.Points : std::vector<Vec3>();
+  const int crossingBefore = several ? CountCrossingPairs(mesh) : 0;
   rec.Folds = Untangle(mesh);
+  if (several && CountCrossingPairs(mesh) > crossingBefore)
+  {
+    mesh.Points = before;
+    rec.Folds.After = CountSelfIntersections(mesh);
+    this->Warnings.push_back("the folds of level " + std::to_string(rec.Level) +
+      " were left as they are: smoothing them would pass through another object");
+  }
   if (rec.Folds.After > 0)
   {
     this->Warnings.push_back(std::to_string(rec.Folds.After) +

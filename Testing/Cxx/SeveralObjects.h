@@ -20,6 +20,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkThreshold.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <chrono>
 #include <vector>
@@ -94,6 +95,32 @@ inline vtkSmartPointer<vtkPolyData> ObjectPart(vtkPolyData* surface, int id)
   auto out = vtkSmartPointer<vtkPolyData>::New();
   out->ShallowCopy(geometry->GetOutput());
   return out;
+}
+
+/// The TetraIds a user removes from the engine's seed (EngineBlockPicks and two clicks): the
+/// tetrahedra whose centroids lie in a bore, the dark air the user sees.
+inline std::vector<vtkIdType> TetrahedraInBores(vtkPolyData* labelledPoints)
+{
+  vtkNew<vtkDelaunaySeedSurface> probe;
+  probe->SetInputData(labelledPoints);
+  probe->Update();
+  std::vector<vtkIdType> inBores;
+  vtkUnstructuredGrid* tets = probe->GetTetrahedra();
+  vtkDataArray* ids = tets->GetCellData()->GetArray("TetraId");
+  for (vtkIdType t = 0; ids && t < tets->GetNumberOfCells(); ++t)
+  {
+    double c[3] = { 0, 0, 0 }, x[3];
+    for (int k = 0; k < 4; ++k)
+    {
+      tets->GetPoint(tets->GetCell(t)->GetPointId(k), x);
+      for (int a = 0; a < 3; ++a)
+        c[a] += x[a] / 4;
+    }
+    for (double bx : engine::BoreX)
+      if (std::hypot(c[0] - bx, c[1] - engine::BoreY) < engine::BoreRadius)
+        inBores.push_back(static_cast<vtkIdType>(ids->GetTuple1(t)));
+  }
+  return inBores;
 }
 
 /// One object's score (ObjectScore.h) against label `label`, and its interior's voxels.

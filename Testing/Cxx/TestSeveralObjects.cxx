@@ -103,25 +103,7 @@ void Engine()
   ids.push_back(2);
   ids.push_back(3);
   vtkSmartPointer<vtkPolyData> labelled = LabelledPoints(points, ids);
-  vtkNew<vtkDelaunaySeedSurface> probe;
-  probe->SetInputData(labelled);
-  probe->Update();
-  std::vector<vtkIdType> inBores;
-  vtkUnstructuredGrid* tets = probe->GetTetrahedra();
-  for (vtkIdType t = 0; t < tets->GetNumberOfCells(); ++t)
-  {
-    double c[3] = { 0, 0, 0 }, x[3];
-    for (int k = 0; k < 4; ++k)
-    {
-      tets->GetPoint(tets->GetCell(t)->GetPointId(k), x);
-      for (int a = 0; a < 3; ++a)
-        c[a] += x[a] / 4;
-    }
-    for (double bx : engine::BoreX)
-      if (std::hypot(c[0] - bx, c[1] - engine::BoreY) < engine::BoreRadius)
-        inBores.push_back(
-          static_cast<vtkIdType>(tets->GetCellData()->GetArray("TetraId")->GetTuple1(t)));
-  }
+  const std::vector<vtkIdType> inBores = TetrahedraInBores(labelled);
   vtkSmartPointer<vtkPolyData> seed = SeedObjects(labelled, inBores);
   const SeveralResult r = RunSeveral(s.Phantom.Image, seed);
   vtkSmartPointer<vtkPolyData> block = ObjectPart(r.Surface, 1);
