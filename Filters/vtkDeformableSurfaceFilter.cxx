@@ -955,6 +955,24 @@ int vtkDeformableSurfaceFilter::RequestData(
 }
 
 //------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::AddObjectIntensityRange(double objectId, double low, double high)
+{
+  std::vector<double>& table = this->Parameters->ObjectIntensityRanges;
+  table.insert(table.end(), { objectId, low, high });
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::RemoveAllObjectIntensityRanges()
+{
+  if (!this->Parameters->ObjectIntensityRanges.empty())
+  {
+    this->Parameters->ObjectIntensityRanges.clear();
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -963,5 +981,10 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_PRINT,
     vtkDeformableSurfaceFilter_PRINT, vtkDeformableSurfaceFilter_PRINT,
     vtkDeformableSurfaceFilter_PRINT);
-  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "ObjectIntensityRanges:";
+  for (double v : this->Parameters->ObjectIntensityRanges)
+  {
+    os << " " << v;
+  }
+  os << "\n" << indent << "Controller: " << this->Controller << "\n";
 }

@@ -235,6 +235,16 @@ public:
 
   ///@{
   /**
+   * Several objects: the region force's range of the object whose ObjectId is `objectId`
+   * (dsurf::MultilevelParameters::ObjectIntensityRanges; ParaView's ObjectIntensityRanges, a
+   * table of ObjectId, low, high). An object not listed uses IntensityRange.
+   */
+  void AddObjectIntensityRange(double objectId, double low, double high);
+  void RemoveAllObjectIntensityRanges();
+  ///@}
+
+  ///@{
+  /**
    * Processes whose surface pieces are gathered (by default the global controller). nullptr
    * or one process: serial behaviour.
    */

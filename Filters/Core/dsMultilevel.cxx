@@ -136,12 +136,28 @@ bool MultilevelSolver::ObjectSigmas(
   return true;
 }
 
+void MultilevelSolver::GivenRange(const TriangleMesh& mesh, int object, double range[2]) const
+{
+  const MultilevelParameters& P = this->Parameters;
+  range[0] = P.IntensityRange[0];
+  range[1] = P.IntensityRange[1];
+  const std::vector<double>& table = P.ObjectIntensityRanges;
+  for (std::size_t i = 0; i + 2 < table.size() && object < static_cast<int>(mesh.ObjectIds.size());
+       i += 3)
+  {
+    if (table[i] == static_cast<double>(mesh.ObjectIds[object]) && table[i + 1] < table[i + 2])
+    {
+      range[0] = table[i + 1];
+      range[1] = table[i + 2];
+    }
+  }
+}
+
 bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& mesh,
-  double firstSigma, const std::string& which, ObjectRegion& model)
+  double firstSigma, const std::string& which, const double given[2], ObjectRegion& model)
 {
   const ImageGeometry& geometry = image.Geometry;
-  const MultilevelParameters& P = this->Parameters;
-  double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
+  double lo = given[0], hi = given[1];
   if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(hi - lo))
   {
     this->Warnings.push_back(
@@ -212,9 +228,11 @@ bool MultilevelSolver::RegionRange(
     // Each click looks for its competitors within reach of its own sigma_0.
     const double own =
       o < static_cast<int>(this->StartSigmas.size()) ? this->StartSigmas[o] : firstSigma;
-    any = (objects == 1 ? this->ObjectRange(image, mesh, firstSigma, "", model)
+    double given[2];
+    this->GivenRange(mesh, o, given);
+    any = (objects == 1 ? this->ObjectRange(image, mesh, firstSigma, "", given, model)
                         : this->ObjectRange(image, ObjectSurface(mesh, o), own,
-                            " of object " + std::to_string(o), model)) ||
+                            " of object " + std::to_string(o), given, model)) ||
       any;
   }
   for (const ObjectRegion& model : this->ObjectRegions)

@@ -121,6 +121,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// the filter's field data IntensityRange.
   double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
+  /// Several objects (docs/METHOD.md §9.9): a range per object, as triples ObjectId, low, high
+  /// (the object's id in the start's ObjectId array); an object listed with low < high uses its
+  /// range, any other IntensityRange (given or estimated from its own start).
+  std::vector<double> ObjectIntensityRanges;
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
   int MaxLevels = 10; ///< cap on the refinement steps (levels 0..MaxLevels at most; see above)
   int MaxSweepsPerLevel = 2000; ///< cap per level (the phantom tests need <= ~130)
@@ -469,7 +473,9 @@ private:
   /// for it (a warning says why, naming the object `which`, except for a start spanning the
   /// image or an open start without a given range).
   bool ObjectRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma,
-    const std::string& which, ObjectRegion& model);
+    const std::string& which, const double given[2], ObjectRegion& model);
+  /// The range given for object `object` of `mesh` (ObjectIntensityRanges, else IntensityRange).
+  void GivenRange(const TriangleMesh& mesh, int object, double range[2]) const;
   /// Several objects: the step limits for the next sweep (StepLimits), the last sweep's longest
   /// step `lastStep` (0 at a level's first).
   void LimitSteps(const TriangleMesh& mesh, double lastStep);

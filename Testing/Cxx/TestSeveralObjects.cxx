@@ -12,6 +12,7 @@
 //   ways), none crossing another, no voxel inside two.
 // - One object with an ObjectId gives the same surface as without one, and the output carries
 //   ObjectId per point and per cell and the per-object field data.
+// - A range given for one object (ObjectIntensityRanges) is the one it uses.
 // - Delaunay Seed Surface seeds each ObjectId group on its own and numbers TetraIds on.
 #include "DSTestHelpers.h"
 #include "OneClick.h"
@@ -81,6 +82,26 @@ void Assembly()
   DS_CHECK(r.Surface->GetFieldData()->GetArray("ObjectVolumes") &&
       r.Surface->GetFieldData()->GetArray("ObjectIntensityRanges"),
     "per-object volumes and ranges");
+}
+
+void GivenRanges()
+{
+  // A range given for object 2 only: it uses it, object 1 its estimate.
+  const SeveralPhantom s = AssemblyPhantom();
+  vtkNew<vtkDeformableSurfaceFilter> filter;
+  filter->SetInputData(0, s.Phantom.Image);
+  filter->SetInitialSurfaceData(SeedObjects(LabelledPoints(s.Clicks, { 1, 2 })));
+  filter->AddObjectIntensityRange(2, 80, 150);
+  filter->AddObjectIntensityRange(7, 1, 2); // no such object: ignored
+  filter->Update();
+  vtkDataArray* ranges = filter->GetOutput()->GetFieldData()->GetArray("ObjectIntensityRanges");
+  DS_CHECK(ranges && ranges->GetNumberOfTuples() == 2 && ranges->GetComponent(1, 0) == 80 &&
+      ranges->GetComponent(1, 1) == 150 && ranges->GetComponent(0, 0) != 80,
+    "object 2 uses its given range, object 1 its estimate");
+  filter->RemoveAllObjectIntensityRanges();
+  filter->Update();
+  ranges = filter->GetOutput()->GetFieldData()->GetArray("ObjectIntensityRanges");
+  DS_CHECK(ranges && ranges->GetComponent(1, 0) != 80, "removed: estimated again");
 }
 
 void Spine()
@@ -181,6 +202,7 @@ int TestSeveralObjects(int, char*[])
   SeedGroups();
   OneObjectUnchanged();
   Assembly();
+  GivenRanges();
   Spine();
   Engine();
   return dstest::Result("TestSeveralObjects");
