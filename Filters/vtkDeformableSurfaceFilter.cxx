@@ -12,6 +12,7 @@
 #include "dsVTKMesh.h"
 #include "dsVTKObjects.h"
 #include "dsVTKPieces.h"
+#include "dsVTKRegionPreview.h"
 #include "dsVTKWarmStart.h"
 
 #include "vtkArrayDispatch.h"
@@ -507,6 +508,7 @@ vtkDeformableSurfaceFilter::vtkDeformableSurfaceFilter()
   : Parameters(std::make_unique<dsurf::MultilevelParameters>())
   , Animation(std::make_unique<dsurf::SweepAnimation>())
   , Warm(std::make_unique<dsurf::WarmStart>())
+  , Preview(std::make_unique<dsurf::RegionPreviewMode>())
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
@@ -795,8 +797,9 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
 //------------------------------------------------------------------------------
 bool vtkDeformableSurfaceFilter::ImageInPieces()
 {
+  // The preview reads the whole image on process 0 (RegionPreview is serial).
   return vtkDSPolyDataGather::IsDistributed(this->Controller) &&
-    dsurf::PotentialAllowsPieces(*this->Parameters);
+    dsurf::PotentialAllowsPieces(*this->Parameters) && !this->Preview->PreviewRegion;
 }
 
 //------------------------------------------------------------------------------
@@ -925,6 +928,18 @@ int vtkDeformableSurfaceFilter::RequestData(
   if (!this->ReadImage(image, this->GetInputArrayToProcess(0, inputVector), volume) ||
     !this->ParametersAreFinite())
   {
+    return 1;
+  }
+  if (this->Preview->PreviewRegion)
+  {
+    // The region before the solve (dsVTKRegionPreview.h): no sweeps, no warm start.
+    dsurf::TriangleMesh mesh;
+    std::string error;
+    if (this->StartMesh(surface, mesh) &&
+      !dsurf::DeliverRegionPreview(volume.Image, mesh, *this->Parameters, output, error))
+    {
+      vtkErrorMacro("Region preview: " << error << ".");
+    }
     return 1;
   }
   // The start: the input, or the last result (warm start) when only the filter's own

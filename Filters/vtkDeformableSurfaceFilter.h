@@ -139,6 +139,7 @@ struct MultilevelParameters;
 class MultilevelSolver;
 struct TriangleMesh;
 class SweepAnimation;
+struct RegionPreviewMode;
 class WarmStart;
 }
 
@@ -177,7 +178,8 @@ class WarmStart;
   NUMBER(MaxSweeps, int, Parameters->MaxSweeps, 0, VTK_INT_MAX)                                    \
   FLAG(AnimateSweeps, Animation->AnimateSweeps)                                                    \
   NUMBER(SweepsPerTimeStep, int, Animation->SweepsPerTimeStep, 1, 1000000)                         \
-  FLAG(ContinueFromLastResult, Warm->ContinueFromLastResult)
+  FLAG(ContinueFromLastResult, Warm->ContinueFromLastResult)                                       \
+  FLAG(PreviewRegion, Preview->PreviewRegion)
 
 // The methods each kind of line declares (defined in vtkDeformableSurfaceFilter.cxx).
 #define vtkDeformableSurfaceFilter_NUMBER(name, type, field, min, max)                            \
@@ -224,10 +226,11 @@ public:
    * The parameters' Set<Name> and Get<Name> (vtkDeformableSurfaceFilter_PARAMETERS above). What
    * each one does is said once, at the field that holds it: dsurf::MultilevelParameters
    * (Core/dsMultilevel.h; Tau, Gamma, NumberOfThreads in SolverParameters, Core/dsSolver.h),
-   * dsVTKAnimation.h (AnimateSweeps, SweepsPerTimeStep) and dsVTKWarmStart.h
-   * (ContinueFromLastResult); for users, with its default and range, in its Documentation in
-   * xml/DeformableSurface.xml (the ParaView help). EdgeNormalization takes the values of
-   * EdgeNormalizationModes (dsurf::EdgeNormalization, Core/dsScaleSpace.h).
+   * dsVTKAnimation.h (AnimateSweeps, SweepsPerTimeStep), dsVTKWarmStart.h
+   * (ContinueFromLastResult) and dsVTKRegionPreview.h (PreviewRegion); for users, with its default
+   * and range, in its Documentation in xml/DeformableSurface.xml (the ParaView help).
+   * EdgeNormalization takes the values of EdgeNormalizationModes (dsurf::EdgeNormalization,
+   * Core/dsScaleSpace.h).
    */
   vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_NUMBER,
     vtkDeformableSurfaceFilter_CUSTOM, vtkDeformableSurfaceFilter_FLAG,
@@ -273,6 +276,7 @@ protected:
   std::unique_ptr<dsurf::SweepAnimation> Animation;
   /// ContinueFromLastResult's copy of the last result.
   std::unique_ptr<dsurf::WarmStart> Warm;
+  std::unique_ptr<dsurf::RegionPreviewMode> Preview; ///< PreviewRegion (dsVTKRegionPreview.h)
   vtkMultiProcessController* Controller = nullptr;
 
 private:

@@ -1083,6 +1083,31 @@ int MultilevelSolver::DistributedGhostVoxels(
   return std::min(ghost, whole.Dimensions[a]);
 }
 
+bool MultilevelSolver::EstimateRegions(
+  const ImageView& image, TriangleMesh& mesh, std::string* error)
+{
+  this->ClearResults();
+  std::string msg;
+  RedGreenRefiner refiner;
+  double sigma = 0;
+  const bool ok = image.Data && !mesh.Triangles.empty() && refiner.Initialize(mesh, &msg) &&
+    this->ObjectSigmas(image, mesh, sigma, &msg);
+  if (!ok)
+  {
+    if (error)
+    {
+      *error = msg.empty() ? std::string("no volume or no initial surface") : msg;
+    }
+    return false;
+  }
+  if (this->Parameters.RegionWeight > 0)
+  {
+    mesh.OrientPiecesOutward();
+    this->RegionRange(image, mesh, sigma);
+  }
+  return true;
+}
+
 bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::string* error)
 {
   this->ClearResults();

@@ -341,6 +341,13 @@ public:
     return this->Run(ImageView::Of(scalars, geometry), mesh, error);
   }
 
+  /// The region model of every object as Run makes it (sigma_0 of the start, each range given or
+  /// estimated; docs/METHOD.md §9.3, §9.9), without solving: GetObjectRegions() then holds
+  /// them (none On when the region force is off). `mesh` (Points/Triangles, Objects) is
+  /// turned outward as Run turns it. False with a message on bad input. Serial; a start Run
+  /// would coarsen (§9.5) gives here the range of the start itself.
+  bool EstimateRegions(const ImageView& image, TriangleMesh& mesh, std::string* error);
+
   const std::vector<SweepRecord>& GetSweeps() const { return this->Sweeps; }
   const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
   const std::vector<std::string>& GetWarnings() const { return this->Warnings; }
