@@ -46,6 +46,7 @@ void CheckObjects(const SeveralPhantom& s, const SeveralResult& result, const st
             << FieldValue(out, "CrossingPairs") << " crossing pairs, "
             << FieldValue(out, "SelfIntersections") << " intersecting pairs" << std::endl;
   DS_CHECK(FieldValue(out, "CrossingPairs") == 0, name + ": no pair of objects crosses");
+  DS_CHECK(FieldValue(out, "SelfIntersections") == 0, name + ": no surface intersects itself");
   DS_CHECK(out->GetPointData()->GetArray("ObjectId") && out->GetCellData()->GetArray("ObjectId"),
     name + ": ObjectId per point and per cell");
   std::vector<std::vector<unsigned char>> interiors(ids.size());
