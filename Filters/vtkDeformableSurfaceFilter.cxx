@@ -2,6 +2,7 @@
 #include "vtkDeformableSurfaceFilter.h"
 
 #include "dsMultilevel.h"
+#include "dsObjects.h"
 #include "dsScaleSpace.h"
 #include "dsSelfIntersectionCount.h"
 #include "dsSolver.h"
@@ -9,7 +10,9 @@
 #include "dsVTKAnimation.h"
 #include "dsVTKImage.h"
 #include "dsVTKMesh.h"
+#include "dsVTKObjects.h"
 #include "dsVTKPieces.h"
+#include "dsVTKRegionPreview.h"
 #include "dsVTKWarmStart.h"
 
 #include "vtkArrayDispatch.h"
@@ -186,6 +189,11 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     error = "the initial surface has a non-finite point coordinate (NaN, infinite or beyond 1e100)";
     return false;
   }
+  std::vector<long long> objectIds;
+  if (!dsurf::ReadObjectIds(input, objectIds, error))
+  {
+    return false;
+  }
   vtkNew<vtkPolyData> copy;
   copy->ShallowCopy(input);
   vtkNew<vtkTriangleFilter> triangulate;
@@ -229,6 +237,12 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     tri->GetPoint(i, mesh.Points[i].data());
   }
   mesh.Triangles.reserve(tri->GetNumberOfPolys());
+  // The ObjectId of each triangle, passed on by the triangulation and the cleaning.
+  std::vector<long long> cellObjects, triangleObjects;
+  if (!objectIds.empty() && !dsurf::ReadObjectIds(tri, cellObjects, error))
+  {
+    return false;
+  }
   auto it = vtk::TakeSmartPointer(tri->GetPolys()->NewIterator());
   for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
   {
@@ -239,6 +253,10 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
     {
       mesh.Triangles.push_back(
         { static_cast<int>(ids[0]), static_cast<int>(ids[1]), static_cast<int>(ids[2]) });
+      if (!cellObjects.empty())
+      {
+        triangleObjects.push_back(cellObjects[it->GetCurrentCellId()]);
+      }
     }
   }
   // The cleaning drops a triangle that names a point twice but keeps its points.
@@ -247,6 +265,12 @@ bool BuildMesh(vtkPolyData* input, dsurf::TriangleMesh& mesh, std::string& error
   if (!mesh.BuildTopology(&topologyError))
   {
     error = "the initial surface is not a manifold triangle mesh: " + topologyError;
+    return false;
+  }
+  // Several objects (docs/METHOD.md §9.9): each triangle's ObjectId names its object.
+  if (!triangleObjects.empty() &&
+    !dsurf::AssignObjects(mesh, triangleObjects, mesh.ObjectIds, &error))
+  {
     return false;
   }
   return true;
@@ -347,6 +371,7 @@ vtkSmartPointer<vtkPolyData> OwnedSurfacePiece(vtkPolyData* surface)
   piece->SetPoints(owned->GetPoints());
   piece->SetPolys(owned->GetPolys());
   piece->SetStrips(owned->GetStrips());
+  dsurf::CopyPolygonObjectIds(owned, piece);
   return piece;
 }
 
@@ -483,6 +508,7 @@ vtkDeformableSurfaceFilter::vtkDeformableSurfaceFilter()
   : Parameters(std::make_unique<dsurf::MultilevelParameters>())
   , Animation(std::make_unique<dsurf::SweepAnimation>())
   , Warm(std::make_unique<dsurf::WarmStart>())
+  , Preview(std::make_unique<dsurf::RegionPreviewMode>())
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
@@ -771,8 +797,9 @@ bool vtkDeformableSurfaceFilter::Solve(const dsurf::ImageVolume& volume, dsurf::
 //------------------------------------------------------------------------------
 bool vtkDeformableSurfaceFilter::ImageInPieces()
 {
+  // The preview reads the whole image on process 0 (RegionPreview is serial).
   return vtkDSPolyDataGather::IsDistributed(this->Controller) &&
-    dsurf::PotentialAllowsPieces(*this->Parameters);
+    dsurf::PotentialAllowsPieces(*this->Parameters) && !this->Preview->PreviewRegion;
 }
 
 //------------------------------------------------------------------------------
@@ -783,6 +810,12 @@ void vtkDeformableSurfaceFilter::Deliver(const dsurf::TriangleMesh& mesh,
   FillOutput(mesh, solver, output);
   const double* used = solver.GetIntensityRange();
   AddFieldData(solver, mesh, used[0] < used[1], warm, output->GetFieldData());
+  if (!mesh.ObjectIds.empty())
+  {
+    dsurf::AddObjectArrays(mesh, output);
+    dsurf::AddObjectFieldData(
+      mesh, solver.GetObjectRegions(), solver.GetCrossingPairs(), output->GetFieldData());
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -897,6 +930,18 @@ int vtkDeformableSurfaceFilter::RequestData(
   {
     return 1;
   }
+  if (this->Preview->PreviewRegion)
+  {
+    // The region before the solve (dsVTKRegionPreview.h): no sweeps, no warm start.
+    dsurf::TriangleMesh mesh;
+    std::string error;
+    if (this->StartMesh(surface, mesh) &&
+      !dsurf::DeliverRegionPreview(volume.Image, mesh, *this->Parameters, output, error))
+    {
+      vtkErrorMacro("Region preview: " << error << ".");
+    }
+    return 1;
+  }
   // The start: the input, or the last result (warm start) when only the filter's own
   // parameters changed since.
   vtkPolyData* last = distributed ? nullptr : this->Warm->StartFor(image, surface);
@@ -925,6 +970,24 @@ int vtkDeformableSurfaceFilter::RequestData(
 }
 
 //------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::AddObjectIntensityRange(double objectId, double low, double high)
+{
+  std::vector<double>& table = this->Parameters->ObjectIntensityRanges;
+  table.insert(table.end(), { objectId, low, high });
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkDeformableSurfaceFilter::RemoveAllObjectIntensityRanges()
+{
+  if (!this->Parameters->ObjectIntensityRanges.empty())
+  {
+    this->Parameters->ObjectIntensityRanges.clear();
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -933,5 +996,10 @@ void vtkDeformableSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
   vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_PRINT,
     vtkDeformableSurfaceFilter_PRINT, vtkDeformableSurfaceFilter_PRINT,
     vtkDeformableSurfaceFilter_PRINT);
-  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "ObjectIntensityRanges:";
+  for (double v : this->Parameters->ObjectIntensityRanges)
+  {
+    os << " " << v;
+  }
+  os << "\n" << indent << "Controller: " << this->Controller << "\n";
 }

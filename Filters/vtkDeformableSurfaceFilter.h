@@ -50,6 +50,11 @@
  * with a bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
  * level), StopReason (why the levels ended: "sigma floor", "no detail", "MaxLevels", "MaxSweeps"
  * or "aborted"), WarmStart and, with the region force, IntensityRange (the range it used).
+ * Several objects (docs/METHOD.md §9.9): a start with a cell array ObjectId is one object per
+ * value, solved together, each with its own sigma_0, start subdivision and region range, never
+ * crossing another (each step limited to keep 0.1 voxel between objects); the output then has
+ * ObjectId per point and per cell and field data ObjectIds, ObjectVolumes, ObjectVertices,
+ * ObjectIntensityRanges (0 0 where the object's region force was off) and CrossingPairs.
  * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
  * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
@@ -134,6 +139,7 @@ struct MultilevelParameters;
 class MultilevelSolver;
 struct TriangleMesh;
 class SweepAnimation;
+struct RegionPreviewMode;
 class WarmStart;
 }
 
@@ -172,7 +178,8 @@ class WarmStart;
   NUMBER(MaxSweeps, int, Parameters->MaxSweeps, 0, VTK_INT_MAX)                                    \
   FLAG(AnimateSweeps, Animation->AnimateSweeps)                                                    \
   NUMBER(SweepsPerTimeStep, int, Animation->SweepsPerTimeStep, 1, 1000000)                         \
-  FLAG(ContinueFromLastResult, Warm->ContinueFromLastResult)
+  FLAG(ContinueFromLastResult, Warm->ContinueFromLastResult)                                       \
+  FLAG(PreviewRegion, Preview->PreviewRegion)
 
 // The methods each kind of line declares (defined in vtkDeformableSurfaceFilter.cxx).
 #define vtkDeformableSurfaceFilter_NUMBER(name, type, field, min, max)                            \
@@ -219,14 +226,25 @@ public:
    * The parameters' Set<Name> and Get<Name> (vtkDeformableSurfaceFilter_PARAMETERS above). What
    * each one does is said once, at the field that holds it: dsurf::MultilevelParameters
    * (Core/dsMultilevel.h; Tau, Gamma, NumberOfThreads in SolverParameters, Core/dsSolver.h),
-   * dsVTKAnimation.h (AnimateSweeps, SweepsPerTimeStep) and dsVTKWarmStart.h
-   * (ContinueFromLastResult); for users, with its default and range, in its Documentation in
-   * xml/DeformableSurface.xml (the ParaView help). EdgeNormalization takes the values of
-   * EdgeNormalizationModes (dsurf::EdgeNormalization, Core/dsScaleSpace.h).
+   * dsVTKAnimation.h (AnimateSweeps, SweepsPerTimeStep), dsVTKWarmStart.h
+   * (ContinueFromLastResult) and dsVTKRegionPreview.h (PreviewRegion); for users, with its default
+   * and range, in its Documentation in xml/DeformableSurface.xml (the ParaView help).
+   * EdgeNormalization takes the values of EdgeNormalizationModes (dsurf::EdgeNormalization,
+   * Core/dsScaleSpace.h).
    */
   vtkDeformableSurfaceFilter_PARAMETERS(vtkDeformableSurfaceFilter_NUMBER,
     vtkDeformableSurfaceFilter_CUSTOM, vtkDeformableSurfaceFilter_FLAG,
     vtkDeformableSurfaceFilter_PAIR);
+
+  ///@{
+  /**
+   * Several objects: the region force's range of the object whose ObjectId is `objectId`
+   * (dsurf::MultilevelParameters::ObjectIntensityRanges; ParaView's ObjectIntensityRanges, a
+   * table of ObjectId, low, high). An object not listed uses IntensityRange.
+   */
+  void AddObjectIntensityRange(double objectId, double low, double high);
+  void RemoveAllObjectIntensityRanges();
+  ///@}
 
   ///@{
   /**
@@ -258,6 +276,7 @@ protected:
   std::unique_ptr<dsurf::SweepAnimation> Animation;
   /// ContinueFromLastResult's copy of the last result.
   std::unique_ptr<dsurf::WarmStart> Warm;
+  std::unique_ptr<dsurf::RegionPreviewMode> Preview; ///< PreviewRegion (dsVTKRegionPreview.h)
   vtkMultiProcessController* Controller = nullptr;
 
 private:

@@ -5,6 +5,8 @@
 #include "dsTrilinear.h"
 #include "dsVTKImage.h"
 
+#include "vtkAppendFilter.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
@@ -36,6 +38,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -426,6 +429,28 @@ void BuildTetrahedraOutput(const SeedComplex& complex, const std::vector<unsigne
   }
 }
 
+// Every cell of `data` labelled `value` in an id-type cell array `name`.
+void LabelCells(vtkDataSet* data, const char* name, long long value)
+{
+  vtkNew<vtkIdTypeArray> labels;
+  labels->SetName(name);
+  labels->SetNumberOfTuples(data->GetNumberOfCells());
+  labels->FillValue(static_cast<vtkIdType>(value));
+  data->GetCellData()->AddArray(labels);
+}
+
+// The TetraIds of one group's tetrahedra moved past the groups before it.
+void ShiftTetraIds(vtkUnstructuredGrid* tets, vtkIdType first)
+{
+  vtkIdTypeArray* ids = vtkIdTypeArray::SafeDownCast(tets->GetCellData()->GetArray("TetraId"));
+  for (vtkIdType t = 0; ids && t < ids->GetNumberOfTuples(); ++t)
+  {
+    ids->SetValue(t, ids->GetValue(t) + first);
+  }
+}
+
+constexpr const char* ObjectIdName = "ObjectId";
+
 // Indices of the first `enough` points of `points` that are pairwise farther apart than
 // tolerance x the bounding-box diagonal (vtkDelaunay3D's merge distance), in input order.
 std::vector<vtkIdType> FirstDistinctPoints(
@@ -664,6 +689,89 @@ int vtkDelaunaySeedSurface::RequestData(
     vtkErrorMacro("No point with finite coordinates (within 1e100): nothing to seed from.");
     return 1;
   }
+  vtkDataArray* objectIds = finite->GetPointData()->GetArray("ObjectId");
+  if (!objectIds)
+  {
+    this->SeedObject(finite, inputId, image, this->RemovedTetrahedra, surfaceOut, tetsOut);
+    return 1;
+  }
+  this->SeedObjects(finite, inputId, objectIds, image, surfaceOut, tetsOut);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+// Several objects (docs/METHOD.md §9.9): each group of points with one ObjectId is seeded on
+// its own, in ascending ObjectId; TetraIds run on from one group to the next.
+void vtkDelaunaySeedSurface::SeedObjects(vtkPolyData* finite, const std::vector<vtkIdType>& inputId,
+  vtkDataArray* objectIds, vtkImageData* image, vtkPolyData* surfaceOut,
+  vtkUnstructuredGrid* tetsOut)
+{
+  std::map<long long, std::vector<vtkIdType>> groups;
+  for (vtkIdType p = 0; p < finite->GetNumberOfPoints(); ++p)
+  {
+    const double value = objectIds->GetComponent(p, 0);
+    if (objectIds->GetNumberOfComponents() != 1 || !(std::abs(value) < 9e15) ||
+      value != std::floor(value))
+    {
+      vtkErrorMacro("The point array ObjectId must hold one whole number per point (point "
+        << inputId[p] << " has " << value << "): no surface.");
+      return;
+    }
+    groups[static_cast<long long>(value)].push_back(p);
+  }
+  vtkNew<vtkAppendPolyData> surfaces;
+  vtkNew<vtkAppendFilter> tetrahedra;
+  vtkIdType firstTetra = 0;
+  for (const auto& group : groups)
+  {
+    vtkNew<vtkPolyData> points;
+    vtkNew<vtkPoints> xyz;
+    xyz->SetDataTypeToDouble();
+    std::vector<vtkIdType> ids;
+    for (vtkIdType p : group.second)
+    {
+      xyz->InsertNextPoint(finite->GetPoint(p));
+      ids.push_back(inputId[p]);
+    }
+    points->SetPoints(xyz);
+    std::vector<vtkIdType> removed;
+    for (vtkIdType id : this->RemovedTetrahedra)
+    {
+      removed.push_back(id - firstTetra); // ids of other groups fall outside this one's range
+    }
+    vtkNew<vtkPolyData> surface;
+    vtkNew<vtkUnstructuredGrid> tets;
+    if (!this->SeedObject(points, ids, image, removed, surface, tets))
+    {
+      vtkErrorMacro("The points of ObjectId " << group.first << " give no seed: no surface.");
+      surfaceOut->Initialize();
+      tetsOut->Initialize();
+      return;
+    }
+    LabelCells(surface, ObjectIdName, group.first);
+    surfaces->AddInputData(surface);
+    if (tets->GetNumberOfCells() > 0)
+    {
+      ShiftTetraIds(tets, firstTetra);
+      LabelCells(tets, ObjectIdName, group.first);
+      tetrahedra->AddInputData(tets);
+      firstTetra += tets->GetNumberOfCells();
+    }
+  }
+  surfaces->Update();
+  surfaceOut->ShallowCopy(surfaces->GetOutput());
+  if (tetrahedra->GetNumberOfInputConnections(0) > 0)
+  {
+    tetrahedra->Update();
+    tetsOut->ShallowCopy(tetrahedra->GetOutput());
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkDelaunaySeedSurface::SeedObject(vtkPolyData* finite, const std::vector<vtkIdType>& inputId,
+  vtkImageData* image, const std::vector<vtkIdType>& removedIds, vtkPolyData* surfaceOut,
+  vtkUnstructuredGrid* tetsOut)
+{
   const std::vector<vtkIdType> distinct = FirstDistinctPoints(finite, this->Tolerance, 4);
   if (distinct.size() < 4)
   {
@@ -688,7 +796,7 @@ int vtkDelaunaySeedSurface::RequestData(
     clicks->SetPoints(centres);
     BuildSphereSeeds(this, clicks, centreIds, this->SeedRadius, surfaceOut);
     EmptyIfNotFinite(this, surfaceOut);
-    return 1;
+    return surfaceOut->GetNumberOfPolys() > 0;
   }
 
   const SeedComplex complex = Tetrahedralize(finite, this->Tolerance);
@@ -697,12 +805,12 @@ int vtkDelaunaySeedSurface::RequestData(
     vtkErrorMacro("The " << inputId.size()
                          << " points span no volume (all coplanar, collinear or coincident): "
                             "no tetrahedra, no surface.");
-    return 1;
+    return surfaceOut->GetNumberOfPolys() > 0;
   }
 
   // The removal rules in order of precedence: a tetrahedron keeps the first reason it got.
   std::vector<unsigned char> status(complex.Tets.size(), dsurf::SeedKept);
-  RemoveById(this, this->RemovedTetrahedra, status);
+  RemoveById(this, removedIds, status);
   if (this->Alpha > 0.0)
   {
     RemoveByAlpha(complex.Radius, this->Alpha, status);
@@ -717,7 +825,7 @@ int vtkDelaunaySeedSurface::RequestData(
   BuildSurfaceOutput(surface, inputId, surfaceOut);
   EmptyIfNotFinite(this, surfaceOut);
   BuildTetrahedraOutput(complex, status, centroidValue, tetsOut);
-  return 1;
+  return surfaceOut->GetNumberOfPolys() > 0;
 }
 
 void vtkDelaunaySeedSurface::PrintSelf(ostream& os, vtkIndent indent)

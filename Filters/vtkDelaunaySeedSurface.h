@@ -41,6 +41,14 @@
  * tetrahedra output is empty. Pick one point inside an object and run Deformable Surface with
  * its region force (RegionWeight) to grow it to the object's boundary.
  *
+ * Several objects (docs/METHOD.md §9.9): when the input has a point array `ObjectId`, the
+ * points of each ObjectId value are seeded on their own, as above (one to three points: a sphere
+ * around each; four or more: their Delaunay hull with its own removals), in ascending ObjectId,
+ * and every cell of both outputs carries its group's value in a cell array `ObjectId`, which
+ * Deformable Surface reads to solve the objects together. TetraIds run on from one group to the
+ * next (group by group, in ascending ObjectId). A group that gives no seed (four coplanar points)
+ * is an error and empties both outputs. Without the array everything is one group, as before.
+ *
  * Bad input (no finite point, four or more points all coplanar, every tetrahedron removed, a
  * NaN parameter) gives an error or warning and an empty surface; NaN/inf points, and points with
  * a coordinate beyond 1e100 (vtkDelaunay3D would overflow), are dropped with a warning; a
@@ -71,7 +79,9 @@
 
 #include <vector> // for the ID list
 
+class vtkDataArray;
 class vtkImageData;
+class vtkPolyData;
 class vtkMultiProcessController;
 class vtkUnstructuredGrid;
 
@@ -154,6 +164,14 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// The seed of one object from its finite points (their input ids in inputId), with the
+  /// removed tetrahedra `removedIds` (its own TetraIds); false (after an error or a warning)
+  /// when it gives no surface.
+  bool SeedObject(vtkPolyData* points, const std::vector<vtkIdType>& inputId, vtkImageData* image,
+    const std::vector<vtkIdType>& removedIds, vtkPolyData* surface, vtkUnstructuredGrid* tets);
+  /// One seed per ObjectId group, appended, cells labelled (see the class comment).
+  void SeedObjects(vtkPolyData* points, const std::vector<vtkIdType>& inputId,
+    vtkDataArray* objectIds, vtkImageData* image, vtkPolyData* surface, vtkUnstructuredGrid* tets);
 
   std::vector<vtkIdType> RemovedTetrahedra;
   // The defaults live here (the core, dsSeedSurface.h, takes each value as an argument); the

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Runs the benchmark programs (Testing/Benchmarks) and prints their tables.
-# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Heads|Accuracy|Scale|Objects ...]
+# Usage: scripts/benchmark.sh [ScaleSpace|Solver|Hierarchy|HugeStart|Heads|Accuracy|Scale|Objects|SeveralObjects ...]
 #   default: ScaleSpace Solver Hierarchy HugeStart (about 3 minutes). Heads (the README's
 #   whole-head solves in VTK Python against vtkFlyingEdges3D; about a minute; BENCH_ARGS = the
 #   runs of each), Accuracy (our filter, vtkFlyingEdges3D and ITK's geodesic active contour on
@@ -9,7 +9,9 @@
 #   peak memory; about 5 minutes) and Objects (issue 24: one click on the spine and horned
 #   phantoms, Colin27's caudates and 50 white-matter clicks, beside a connected threshold, with
 #   the issue's goals; about 25 minutes, 30 s a white-matter click; BENCH_ARGS="spine horned"
-#   runs the cases named, "--wm-clicks 10 wm" the first 10 clicks) run
+#   runs the cases named, "--wm-clicks 10 wm" the first 10 clicks) and SeveralObjects (issue 25:
+#   several objects in one run with ObjectIds on the spine, assembly and engine phantoms and
+#   Colin27's caudates and putamina, beside the same seeds as one object; about a minute) run
 #   when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
 #   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
 #   its column is skipped and why).

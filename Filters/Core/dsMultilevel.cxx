@@ -4,8 +4,10 @@
 #include "dsGaussianSmoother.h"
 
 #include "dsFieldBricks.h"
+#include "dsObjects.h"
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
+#include "dsSelfIntersectionCount.h"
 #include "dsUntangle.h"
 
 #include <algorithm>
@@ -103,15 +105,63 @@ bool MultilevelSolver::FirstSigma(
   return true;
 }
 
-bool MultilevelSolver::RegionRange(
-  const ImageView& image, const TriangleMesh& mesh, double firstSigma)
+bool MultilevelSolver::ObjectSigmas(
+  const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error)
+{
+  // One object: sigma_0 of the whole start. Several: each object's own (its start's distance
+  // to its edges), and the hierarchy begins at the largest, so that every object starts at a
+  // sigma that reaches its edges; each is subdivided to its own (PrepareStart).
+  this->StartSigmas.clear();
+  if (mesh.NumberOfObjects() == 1)
+  {
+    return this->FirstSigma(image, mesh, sigma, error);
+  }
+  InitialSigmaChoice largest;
+  sigma = 0;
+  for (int o = 0; o < mesh.NumberOfObjects(); ++o)
+  {
+    double own = 0;
+    if (!this->FirstSigma(image, ObjectSurface(mesh, o), own, error))
+    {
+      return false;
+    }
+    this->StartSigmas.push_back(own);
+    if (own > sigma)
+    {
+      sigma = own;
+      largest = this->SigmaChoice;
+    }
+  }
+  this->SigmaChoice = largest;
+  return true;
+}
+
+void MultilevelSolver::GivenRange(const TriangleMesh& mesh, int object, double range[2]) const
+{
+  const MultilevelParameters& P = this->Parameters;
+  range[0] = P.IntensityRange[0];
+  range[1] = P.IntensityRange[1];
+  const std::vector<double>& table = P.ObjectIntensityRanges;
+  for (std::size_t i = 0; i + 2 < table.size() && object < static_cast<int>(mesh.ObjectIds.size());
+       i += 3)
+  {
+    if (table[i] == static_cast<double>(mesh.ObjectIds[object]) && table[i + 1] < table[i + 2])
+    {
+      range[0] = table[i + 1];
+      range[1] = table[i + 2];
+    }
+  }
+}
+
+bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& mesh,
+  double firstSigma, const std::string& which, const double given[2], ObjectRegion& model)
 {
   const ImageGeometry& geometry = image.Geometry;
-  const MultilevelParameters& P = this->Parameters;
-  double lo = P.IntensityRange[0], hi = P.IntensityRange[1];
+  double lo = given[0], hi = given[1];
   if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(hi - lo))
   {
-    this->Warnings.push_back("the region force is off: the intensity range must be finite");
+    this->Warnings.push_back(
+      "the region force" + which + " is off: the intensity range must be finite");
     return false;
   }
   if (!(lo < hi) && (StartSpansImage(geometry, mesh) || !mesh.IsClosed()))
@@ -131,39 +181,119 @@ bool MultilevelSolver::RegionRange(
       : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg, reach);
     if (!estimated)
     {
-      this->Warnings.push_back(
-        "the region force is off: no intensity range was given and none could be "
-        "estimated (" +
-        msg + ")");
+      this->Warnings.push_back("the region force" + which +
+        " is off: no intensity range was given and none could be estimated (" + msg + ")");
       return false;
     }
     lo = estimate.Range[0];
     hi = estimate.Range[1];
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi))
     {
-      this->Warnings.push_back("the region force is off: the estimated intensity range is empty "
-                               "or not finite");
+      this->Warnings.push_back("the region force" + which +
+        " is off: the estimated intensity range is empty or not finite");
       return false;
     }
     // Without a background to compare with (a click inside one region), the range's end is
     // not where the boundary lies: the region force only grows the surface through its
     // region, and the edge force finds the boundary beyond.
-    this->RegionOutwardOnly = !estimate.Contrast;
-    this->RegionFollowsFront = estimate.Classes > 1 && estimate.Contrast;
+    model.OutwardOnly = !estimate.Contrast;
+    model.FollowsFront = estimate.Classes > 1 && estimate.Contrast;
   }
   const long long matching = this->Distributed
     ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
     : CountVoxelsInRange(image, lo, hi);
   if (matching == 0)
   {
-    this->Warnings.push_back("the region force is off: the intensity range [" + std::to_string(lo) +
-      ", " + std::to_string(hi) + "] matches no voxel of the image");
+    this->Warnings.push_back("the region force" + which + " is off: the intensity range [" +
+      std::to_string(lo) + ", " + std::to_string(hi) + "] matches no voxel of the image");
     return false;
   }
-  this->UsedRange[0] = lo;
-  this->UsedRange[1] = hi;
+  model.Low = lo;
+  model.High = hi;
+  model.On = true;
   return true;
 }
+
+bool MultilevelSolver::RegionRange(
+  const ImageView& image, const TriangleMesh& mesh, double firstSigma)
+{
+  // One object: its range from the whole start; several: each from its own start surface
+  // (its own click, its own seed), so each region competes with what lies around it.
+  const int objects = mesh.NumberOfObjects();
+  this->ObjectRegions.assign(objects, ObjectRegion());
+  bool any = false;
+  for (int o = 0; o < objects; ++o)
+  {
+    ObjectRegion& model = this->ObjectRegions[o];
+    // Each click looks for its competitors within reach of its own sigma_0.
+    const double own =
+      o < static_cast<int>(this->StartSigmas.size()) ? this->StartSigmas[o] : firstSigma;
+    double given[2];
+    this->GivenRange(mesh, o, given);
+    any = (objects == 1 ? this->ObjectRange(image, mesh, firstSigma, "", given, model)
+                        : this->ObjectRange(image, ObjectSurface(mesh, o), own,
+                            " of object " + std::to_string(o), given, model)) ||
+      any;
+  }
+  for (const ObjectRegion& model : this->ObjectRegions)
+  {
+    if (model.On)
+    {
+      this->UsedRange[0] = model.Low; // the first object's, for the IntensityRange field
+      this->UsedRange[1] = model.High;
+      break;
+    }
+  }
+  return any;
+}
+
+namespace
+{
+/// The start's subdivision (PrepareStart) of one surface: its elongated edges split, then
+/// uniform 1 -> 4 subdivisions while its mean edge exceeds sqrt 2 x target.
+bool SubdivideStart(TriangleMesh& mesh, double target, long long maxVertices, int& subdivisions,
+  bool& subdivided, std::string* error)
+{
+  // Elongated triangles first (a long box's faces: 12 x 84 voxels, 3 x 21 after the splits
+  // below): at their creases the umbrella points along the crease, §5's rule turns the
+  // region force into a slide along it, and the faces overtake the crease until they fold
+  // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
+  // edge of a triangle they border are halved; a start of about isotropic triangles is left
+  // as it is.
+  std::string msg;
+  const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, maxVertices, &msg);
+  if (split < 0)
+  {
+    *error = "splitting the initial surface's elongated triangles failed: " + msg;
+    return false;
+  }
+  subdivided = split > 0;
+  while (
+    mesh.MeanEdgeLength() > std::sqrt(2.0) * target && 4LL * mesh.NumberOfPoints() <= maxVertices)
+  {
+    if (!mesh.SubdivideUniformly(&msg))
+    {
+      *error = "subdividing the initial surface failed: " + msg;
+      return false;
+    }
+    ++subdivisions;
+    subdivided = true;
+  }
+  return true;
+}
+
+/// `part` (points and triangles) appended to `all` as object `object`.
+void AppendObject(TriangleMesh& all, const TriangleMesh& part, int object)
+{
+  const int offset = all.NumberOfPoints();
+  all.Points.insert(all.Points.end(), part.Points.begin(), part.Points.end());
+  all.Objects.resize(all.Points.size(), object);
+  for (const auto& t : part.Triangles)
+  {
+    all.Triangles.push_back({ t[0] + offset, t[1] + offset, t[2] + offset });
+  }
+}
+} // namespace
 
 bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
   RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
@@ -204,23 +334,42 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
     // edge of a triangle they border are halved; a start of about isotropic triangles is left
     // as it is.
-    const int split = mesh.SplitElongatedEdges(std::sqrt(2.0) * target, P.MaxVertices, &msg);
-    if (split < 0)
+    // Several objects are subdivided one by one, each to its own edges: a seed of picks around
+    // a large part has edges tens of voxels long, a click's sphere edges of a voxel, and the
+    // mean of both would leave the large one as it is.
+    bool subdivided = false;
+    if (mesh.NumberOfObjects() == 1)
     {
-      *error = "splitting the initial surface's elongated triangles failed: " + msg;
-      return false;
-    }
-    bool subdivided = split > 0;
-    while (mesh.MeanEdgeLength() > std::sqrt(2.0) * target &&
-      4LL * mesh.NumberOfPoints() <= P.MaxVertices)
-    {
-      if (!mesh.SubdivideUniformly(&msg))
+      int subdivisions = 0;
+      if (!SubdivideStart(mesh, target, P.MaxVertices, subdivisions, subdivided, error))
       {
-        *error = "subdividing the initial surface failed: " + msg;
         return false;
       }
-      ++this->InitialSubdivisions;
-      subdivided = true;
+      this->InitialSubdivisions = subdivisions;
+    }
+    else
+    {
+      TriangleMesh all;
+      for (int o = 0; o < mesh.NumberOfObjects(); ++o)
+      {
+        TriangleMesh part = ObjectSurface(mesh, o);
+        int subdivisions = 0;
+        bool split = false;
+        const double own = std::max(InitialEdgeSigmaRatio * this->StartSigmas[o], 2.0 * voxel);
+        if (!SubdivideStart(
+              part, own, P.MaxVertices / mesh.NumberOfObjects(), subdivisions, split, error))
+        {
+          return false;
+        }
+        this->InitialSubdivisions = std::max(this->InitialSubdivisions, subdivisions);
+        subdivided = subdivided || split;
+        AppendObject(all, part, o);
+      }
+      if (subdivided)
+      {
+        all.ObjectIds = mesh.ObjectIds;
+        mesh = std::move(all);
+      }
     }
     if (subdivided)
     {
@@ -240,6 +389,21 @@ bool MultilevelSolver::GoOn(bool here) const
   return this->Distributed ? this->Reduce.Max(here ? 0.0 : 1.0) == 0.0 : here;
 }
 
+void MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
+{
+  // The budget follows the steps: eight times the last sweep's longest (a list made for long
+  // steps would be made again every sweep), from a quarter voxel (a surface at rest: a short
+  // list) to half the mean edge; in powers of two of the voxel, so that it changes, and the list
+  // is made again, only when the steps change by a factor of two.
+  const double most = std::max(0.25 * this->Voxel, 0.5 * mesh.MeanEdgeLength());
+  double budget = 0.25 * this->Voxel;
+  while (budget < std::min(most, 8 * lastStep))
+  {
+    budget *= 2;
+  }
+  this->Contact.Limits(mesh, ContactClearanceVoxels * this->Voxel, budget, this->StepLimits);
+}
+
 bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
@@ -253,8 +417,14 @@ bool MultilevelSolver::SolveLevel(
   // batches, and the sweep records are handed on after each batch.
   // Batches shrink on big meshes so that progress moves and an abort is answered within
   // about the time of 16 sweeps of 50 000 vertices (one sweep from 800 000 vertices on).
-  const int batchSize = std::max(
-    1, std::min(P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
+  // Several objects: one sweep per batch, each with its step limits (dsContact.h).
+  const bool contact = mesh.NumberOfObjects() > 1;
+  const int batchSize = contact
+    ? 1
+    : std::max(1,
+        std::min(
+          P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
+  solver.SetStepLimits(contact ? &this->StepLimits : nullptr);
   std::vector<SweepStatistics> batchStats;
   const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
@@ -272,6 +442,11 @@ bool MultilevelSolver::SolveLevel(
     if (field.Bricks)
     {
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
+    }
+    if (contact)
+    {
+      this->LimitSteps(
+        mesh, this->Sweeps.empty() || s == 0 ? 0.0 : this->Sweeps.back().MaxCorrection);
     }
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
@@ -331,6 +506,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
     }
   }
+  solver.SetStepLimits(nullptr);
   rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
@@ -372,7 +548,8 @@ bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::st
   // tiny edges per sweep: level 0 alone took the 2000-sweep cap (docs/METHOD.md §9.5). The
   // hierarchy starts coarse instead, and refines again where the image has detail.
   // MaxLevels 0 asks for one level on the given mesh: nothing would refine a copy back.
-  if (!this->Coarsen || this->Parameters.MaxLevels < 1 ||
+  // Several objects are not coarsened: the copy would have to keep each one apart.
+  if (!this->Coarsen || this->Parameters.MaxLevels < 1 || mesh.NumberOfObjects() > 1 ||
     mesh.NumberOfTriangles() <= CoarsenAboveTriangles ||
     !(mesh.MeanEdgeLength() < 0.5 * state.Sigma))
   {
@@ -420,8 +597,10 @@ void MultilevelSolver::ClearResults()
   this->PlannedLevels = 0;
   this->SigmaChoice = InitialSigmaChoice();
   this->UsedRange[0] = this->UsedRange[1] = 0;
-  this->RegionOutwardOnly = false;
-  this->RegionFollowsFront = false;
+  this->ObjectRegions.clear();
+  this->Contact.Reset();
+  this->StepLimits.clear();
+  this->Crossings = 0;
   this->ProgressReached = 0.0;
 }
 
@@ -452,15 +631,23 @@ bool MultilevelSolver::Start(
     *error = "the initial surface has no triangles";
     return false;
   }
+  if (!mesh.Objects.empty() &&
+    (mesh.Objects.size() != mesh.Points.size() ||
+      *std::min_element(mesh.Objects.begin(), mesh.Objects.end()) < 0))
+  {
+    *error = "the objects of the initial surface need one index >= 0 per point";
+    return false;
+  }
   // The voxel size (mean spacing) bounds how fine the mesh usefully gets.
   state.Voxel = geometry.MeanSpacing();
+  this->Voxel = state.Voxel;
   std::string msg;
   if (!state.Refiner.Initialize(mesh, &msg))
   {
     *error = "the initial surface is not a manifold triangle mesh: " + msg;
     return false;
   }
-  if (!this->FirstSigma(image, mesh, state.Sigma, error))
+  if (!this->ObjectSigmas(image, mesh, state.Sigma, error))
   {
     return false;
   }
@@ -473,6 +660,7 @@ bool MultilevelSolver::Start(
   {
     return false;
   }
+  mesh.ExtendObjects(); // the points the start's subdivision added
 #ifndef NDEBUG
   state.CheckTopology = true;
 #else
@@ -495,6 +683,7 @@ bool MultilevelSolver::SetUpLevel(
   const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
+  mesh.ExtendObjects(); // the points refinement added
   // Force field at this level's sigma, over the whole image on the first level (a start may
   // travel far, e.g. grown by the region force) and the surface's neighbourhood after it
   // (dsFieldGrid.h); rebuilt when sigma changed or the surface needs more than it covers.
@@ -536,8 +725,18 @@ bool MultilevelSolver::SetUpLevel(
     // surface where the range ends (docs/METHOD.md §9.3).
     const double decay = state.FrontLevel ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
-    state.LevelSolver.SetRegionForce(this->Distributed ? this->Piece.Image : image,
-      this->UsedRange[0], this->UsedRange[1], decay * P.RegionWeight * h, this->RegionOutwardOnly);
+    std::vector<Solver::RegionModel> models;
+    for (const ObjectRegion& o : this->ObjectRegions)
+    {
+      Solver::RegionModel m;
+      m.On = o.On;
+      m.Low = o.Low;
+      m.High = o.High;
+      m.OutwardOnly = o.OutwardOnly;
+      models.push_back(m);
+    }
+    state.LevelSolver.SetRegionForce(
+      this->Distributed ? this->Piece.Image : image, std::move(models), decay * P.RegionWeight * h);
   }
   rec.Sigma = sigma;
   rec.Vertices = mesh.NumberOfPoints();
@@ -571,8 +770,19 @@ void MultilevelSolver::EndSweeps(
 void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
 {
   // Folds the forces left (two parts of the surface pushed together) are smoothed open
-  // (dsUntangle.h).
+  // (dsUntangle.h). Its umbrella steps know nothing of other objects: where smoothing one
+  // object's folds would pass through another, the folds stay (docs/METHOD.md §9.9).
+  const bool several = mesh.NumberOfObjects() > 1;
+  const std::vector<Vec3> before = several ? mesh.Points : std::vector<Vec3>();
+  const int crossingBefore = several ? CountCrossingPairs(mesh) : 0;
   rec.Folds = Untangle(mesh);
+  if (several && CountCrossingPairs(mesh) > crossingBefore)
+  {
+    mesh.Points = before;
+    rec.Folds.After = CountSelfIntersections(mesh);
+    this->Warnings.push_back("the folds of level " + std::to_string(rec.Level) +
+      " were left as they are: smoothing them would pass through another object");
+  }
   if (rec.Folds.After > 0)
   {
     this->Warnings.push_back(std::to_string(rec.Folds.After) +
@@ -701,8 +911,12 @@ bool MultilevelSolver::RefineLevel(
   {
     return true;
   }
-  const Prolongation prolongation =
-    P.ButterflyProlongation ? Prolongation::Butterfly : Prolongation::Linear;
+  // Several objects refine at edge midpoints: the surface keeps its shape, so a refinement
+  // cannot bring two objects nearer than their sweeps did (a butterfly point can bulge out by a
+  // share of the edge, through a neighbour resting the clearance away; dsContact.h).
+  const Prolongation prolongation = P.ButterflyProlongation && mesh.NumberOfObjects() == 1
+    ? Prolongation::Butterfly
+    : Prolongation::Linear;
   const RefinementCounts& rc = this->Levels.back().Refinement =
     state.Refiner.Refine(mesh, marks, prolongation);
   if (!rc.Ok)
@@ -761,7 +975,8 @@ bool MultilevelSolver::RunLevels(
     // MaxLevels, at most MaxFrontLevels.
     state.Front.clear();
     if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&
-      this->RegionFollowsFront)
+      std::any_of(this->ObjectRegions.begin(), this->ObjectRegions.end(),
+        [](const ObjectRegion& o) { return o.On && o.FollowsFront; }))
     {
       state.Front = this->FrontVertices(image, mesh);
       const auto onFront = std::count(state.Front.begin(), state.Front.end(), 1);
@@ -822,7 +1037,10 @@ std::vector<char> MultilevelSolver::FrontVertices(
     bool inside = false;
     const double value = this->Distributed ? this->Piece.SampleOwned(mesh.Points[v].data(), &inside)
                                            : SampleVolume(image, mesh.Points[v].data(), &inside);
-    speed[v] = inside ? RegionSpeed(value, this->UsedRange[0], this->UsedRange[1]) : 0.0;
+    const ObjectRegion& o = this->ObjectRegions[mesh.Objects.empty()
+        ? 0
+        : std::min<std::size_t>(mesh.Objects[v], this->ObjectRegions.size() - 1)];
+    speed[v] = inside && o.On && o.FollowsFront ? RegionSpeed(value, o.Low, o.High) : 0.0;
   }
   if (this->Distributed)
   {
@@ -865,12 +1083,38 @@ int MultilevelSolver::DistributedGhostVoxels(
   return std::min(ghost, whole.Dimensions[a]);
 }
 
+bool MultilevelSolver::EstimateRegions(
+  const ImageView& image, TriangleMesh& mesh, std::string* error)
+{
+  this->ClearResults();
+  std::string msg;
+  RedGreenRefiner refiner;
+  double sigma = 0;
+  const bool ok = image.Data && !mesh.Triangles.empty() && refiner.Initialize(mesh, &msg) &&
+    this->ObjectSigmas(image, mesh, sigma, &msg);
+  if (!ok)
+  {
+    if (error)
+    {
+      *error = msg.empty() ? std::string("no volume or no initial surface") : msg;
+    }
+    return false;
+  }
+  if (this->Parameters.RegionWeight > 0)
+  {
+    mesh.OrientPiecesOutward();
+    this->RegionRange(image, mesh, sigma);
+  }
+  return true;
+}
+
 bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::string* error)
 {
   this->ClearResults();
   std::string msg;
   RunState state;
-  if (!this->Start(image, mesh, state, &msg) || !this->RunLevels(image, mesh, state, &msg))
+  if (!this->Start(image, mesh, state, &msg) || !this->CheckStartsApart(mesh) ||
+    !this->RunLevels(image, mesh, state, &msg))
   {
     if (error)
     {
@@ -878,9 +1122,30 @@ bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::stri
     }
     return false;
   }
+  if (mesh.NumberOfObjects() > 1)
+  {
+    this->Crossings = CountCrossingPairs(mesh);
+    if (this->Crossings > 0)
+    {
+      this->Warnings.push_back(std::to_string(this->Crossings) +
+        " pairs of triangles of different objects intersect on the result");
+    }
+  }
   if (this->Progress)
   {
     this->Progress(1.0);
+  }
+  return true;
+}
+
+bool MultilevelSolver::CheckStartsApart(const TriangleMesh& mesh)
+{
+  // The contact keeps objects apart, it cannot pull crossing starts apart (dsContact.h).
+  const int crossing = mesh.NumberOfObjects() > 1 ? CountCrossingPairs(mesh) : 0;
+  if (crossing > 0)
+  {
+    this->Warnings.push_back("the start surfaces of different objects already cross (" +
+      std::to_string(crossing) + " pairs of triangles): they stay crossed there");
   }
   return true;
 }

@@ -55,6 +55,7 @@
 #define dsMultilevel_h
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
+#include "dsContact.h"
 #include "dsFieldGrid.h"
 #include "dsInitialSigma.h"
 #include "dsPieceField.h"
@@ -120,6 +121,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// the filter's field data IntensityRange.
   double RegionWeight = 0.3;
   double IntensityRange[2] = { 0.0, 0.0 };
+  /// Several objects (docs/METHOD.md §9.9): a range per object, as triples ObjectId, low, high
+  /// (the object's id in the start's ObjectId array); an object listed with low < high uses its
+  /// range, any other IntensityRange (given or estimated from its own start).
+  std::vector<double> ObjectIntensityRanges;
   bool HierarchicalSigma = true; ///< halve sigma per refinement; off = constant sigma_0
   int MaxLevels = 10; ///< cap on the refinement steps (levels 0..MaxLevels at most; see above)
   int MaxSweepsPerLevel = 2000; ///< cap per level (the phantom tests need <= ~130)
@@ -220,6 +225,17 @@ constexpr double FadedEdgeSigmaRatio = 2.0;
 /// click changed.
 DEFORMABLESURFACEFILTERS_EXPORT double UnsplitEdgeLength(
   double voxel, double sigma, double firstSigma, bool region);
+
+/// The region force of one object: its range and how it is used.
+struct DEFORMABLESURFACEFILTERS_EXPORT ObjectRegion
+{
+  bool On = false;
+  double Low = 0, High = 0;
+  bool OutwardOnly = false; ///< an estimate without contrast: grow only
+  /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
+  /// levels follow the parts the region force still pushes out (FrontVertices).
+  bool FollowsFront = false;
+};
 
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
 enum class StopReason
@@ -325,6 +341,13 @@ public:
     return this->Run(ImageView::Of(scalars, geometry), mesh, error);
   }
 
+  /// The region model of every object as Run makes it (sigma_0 of the start, each range given or
+  /// estimated; docs/METHOD.md §9.3, §9.9), without solving: GetObjectRegions() then holds
+  /// them (none On when the region force is off). `mesh` (Points/Triangles, Objects) is
+  /// turned outward as Run turns it. False with a message on bad input. Serial; a start Run
+  /// would coarsen (§9.5) gives here the range of the start itself.
+  bool EstimateRegions(const ImageView& image, TriangleMesh& mesh, std::string* error);
+
   const std::vector<SweepRecord>& GetSweeps() const { return this->Sweeps; }
   const std::vector<LevelRecord>& GetLevels() const { return this->Levels; }
   const std::vector<std::string>& GetWarnings() const { return this->Warnings; }
@@ -355,7 +378,13 @@ public:
   /// How sigma_0 was chosen (Rays 0 when it was given or the start spans the volume).
   const InitialSigmaChoice& GetInitialSigmaChoice() const { return this->SigmaChoice; }
   /// The intensity range the region force used (estimated or given); both 0 when it was off.
+  /// With several objects, the first one's whose force was on.
   const double* GetIntensityRange() const { return this->UsedRange; }
+  /// The region model of each object (mesh.Objects; one when the start has none).
+  const std::vector<ObjectRegion>& GetObjectRegions() const { return this->ObjectRegions; }
+  /// Triangle pairs of different objects that intersect on the delivered surface (0 with one
+  /// object; dsContact.h keeps it 0 unless the starts already crossed).
+  int GetCrossingPairs() const { return this->Crossings; }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
   static std::vector<char> MarkTriangles(
@@ -378,10 +407,11 @@ private:
   int PlannedLevels = 0; ///< levels to sigma's floor within MaxLevels (progress)
   InitialSigmaChoice SigmaChoice;
   double UsedRange[2] = { 0, 0 };
-  bool RegionOutwardOnly = false; ///< an estimate without contrast: grow only
-  /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
-  /// levels follow the parts the region force still pushes out (FrontVertices).
-  bool RegionFollowsFront = false;
+  std::vector<ObjectRegion> ObjectRegions; ///< per object (one unless the start has several)
+  /// Several objects: no step brings two objects' triangles within the clearance (dsContact.h).
+  ContactLimiter Contact;
+  std::vector<double> StepLimits; ///< the limiter's, for the solver
+  int Crossings = 0;
   double ProgressReached = 0.0; ///< the largest progress reported so far in this run
   bool Distributed = false;     ///< SetDistribution was called
   ImagePiece Piece;
@@ -424,6 +454,11 @@ private:
   /// is replaced by the Coarsen callback's copy with edges of about sigma_0, when that copy
   /// keeps the start's topology (closed or not, Euler characteristic, orientation).
   bool CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error);
+  /// sigma_0 of the run: FirstSigma of the start, or with several objects the largest of each
+  /// object's FirstSigma (kept in StartSigmas).
+  bool ObjectSigmas(
+    const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error);
+  std::vector<double> StartSigmas; ///< per object, its own sigma_0 (several objects only)
   /// sigma_0 by the rule of Sigma / SigmaFraction / the start.
   bool FirstSigma(
     const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error);
@@ -438,9 +473,22 @@ private:
   /// (the sum of its sweeps' largest corrections).
   bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
     int& sweepCounter);
-  /// The region force's range (given or estimated); false = no region force (a warning says
-  /// why, except for a start spanning the image or an open start without a given range).
+  /// The region force's range of every object (given or estimated, ObjectRange); false = no
+  /// region force for any.
   bool RegionRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma);
+  /// One object's range (given or estimated from `mesh`, its start); false = no region force
+  /// for it (a warning says why, naming the object `which`, except for a start spanning the
+  /// image or an open start without a given range).
+  bool ObjectRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma,
+    const std::string& which, const double given[2], ObjectRegion& model);
+  /// The range given for object `object` of `mesh` (ObjectIntensityRanges, else IntensityRange).
+  void GivenRange(const TriangleMesh& mesh, int object, double range[2]) const;
+  /// Several objects: the step limits for the next sweep (StepLimits), the last sweep's longest
+  /// step `lastStep` (0 at a level's first).
+  void LimitSteps(const TriangleMesh& mesh, double lastStep);
+  /// A warning when the start surfaces of different objects already cross; always true.
+  bool CheckStartsApart(const TriangleMesh& mesh);
+  double Voxel = 0; ///< the image's mean spacing (the contact's clearance and budget)
 };
 } // namespace dsurf
 

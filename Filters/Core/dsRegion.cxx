@@ -2,6 +2,7 @@
 #include "dsRegion.h"
 
 #include "dsFieldGrid.h"
+#include "dsInsideVoxels.h"
 #include "dsMixture.h"
 
 #include <algorithm>
@@ -15,12 +16,6 @@ namespace dsurf
 {
 namespace
 {
-/// x clamped to [-1, n] in double, then cast: the callers clamp to 0..n-1 as before, without a
-/// cast of a double beyond int (undefined) for a start far outside the image.
-int ClampedIndex(double x, int n)
-{
-  return static_cast<int>(std::min(static_cast<double>(n), std::max(-1.0, x)));
-}
 
 /// Calls row(j, k, values) for every row (j, k) of `box` (whole-image indices, held by the
 /// piece), values pointing at voxel (box.Begin[0], j, k) in the input's own type.
@@ -105,64 +100,22 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
   return KeyValue(prefix);
 }
 
-/// The voxels whose centres lie inside the closed mesh, of those the piece counts
-/// (ImagePiece::CountedVoxels: each voxel by one process). For every voxel row (j, k) the
-/// crossings of the row's line with the triangles are sorted and the centres between the
-/// 1st and 2nd, 3rd and 4th... crossing are inside (parity). Works in continuous index space
-/// of the whole image, so spacing and direction are honoured and every process finds the same
-/// crossings for a row.
+/// The values of the voxels whose centres lie inside the closed mesh (RowCrossings,
+/// dsInsideVoxels.h), of those the piece counts (ImagePiece::CountedVoxels: each voxel by one
+/// process).
 std::vector<float> ValuesInside(const ImagePiece& piece, const TriangleMesh& mesh)
 {
-  const ImageGeometry& g = piece.Whole;
-  const int nx = g.Dimensions[0], ny = g.Dimensions[1], nz = g.Dimensions[2];
+  const int nx = piece.Whole.Dimensions[0];
   const VoxelBox rows = piece.CountedVoxels();
   const std::size_t rowsY = static_cast<std::size_t>(rows.End[1] - rows.Begin[1]);
   const auto rowIndex = [&](int j, int k)
   { return (j - rows.Begin[1]) + rowsY * static_cast<std::size_t>(k - rows.Begin[2]); };
-  std::vector<Vec3> ijk(mesh.Points.size());
-  for (std::size_t i = 0; i < ijk.size(); ++i)
-  {
-    g.WorldToIndex(mesh.Points[i].data(), ijk[i].data());
-  }
-  // Crossings per counted row.
-  std::vector<std::vector<double>> crossings(rowsY * (rows.End[2] - rows.Begin[2]));
-  for (const auto& t : mesh.Triangles)
-  {
-    const Vec3 &a = ijk[t[0]], &b = ijk[t[1]], &c = ijk[t[2]];
-    // Clamped in double before the cast: a start far outside the image has indices beyond int.
-    const int j0 = std::max(0, ClampedIndex(std::ceil(std::min({ a[1], b[1], c[1] })), ny));
-    const int j1 = std::min(ny - 1, ClampedIndex(std::floor(std::max({ a[1], b[1], c[1] })), ny));
-    const int k0 = std::max(0, ClampedIndex(std::ceil(std::min({ a[2], b[2], c[2] })), nz));
-    const int k1 = std::min(nz - 1, ClampedIndex(std::floor(std::max({ a[2], b[2], c[2] })), nz));
-    // Barycentric coordinates of (y, z) in the triangle's projection onto the y-z plane.
-    const double det = (b[1] - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (b[2] - a[2]);
-    if (det == 0.0)
-    {
-      continue; // edge-on: the row lines graze it, the neighbours count the crossing
-    }
-    for (int k = std::max(k0, rows.Begin[2]); k <= std::min(k1, rows.End[2] - 1); ++k)
-    {
-      for (int j = std::max(j0, rows.Begin[1]); j <= std::min(j1, rows.End[1] - 1); ++j)
-      {
-        // The row's line is moved by a tiny irrational offset, so it never passes exactly
-        // through a vertex or an edge (picked points often lie on whole voxel indices): every
-        // crossing then belongs to exactly one triangle.
-        const double y = j + 1.1e-7 * M_SQRT2, z = k + 1.3e-7 * M_PI;
-        const double u = ((y - a[1]) * (c[2] - a[2]) - (c[1] - a[1]) * (z - a[2])) / det;
-        const double v = ((b[1] - a[1]) * (z - a[2]) - (y - a[1]) * (b[2] - a[2])) / det;
-        if (u >= 0 && v >= 0 && u + v <= 1)
-        {
-          crossings[rowIndex(j, k)].push_back(a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]));
-        }
-      }
-    }
-  }
+  std::vector<std::vector<double>> crossings = RowCrossings(piece.Whole, rows, mesh);
   std::vector<float> values;
   ForEachCountedRow(piece, rows,
     [&](int j, int k, const auto* row)
     {
-      std::vector<double>& xs = crossings[rowIndex(j, k)];
-      std::sort(xs.begin(), xs.end());
+      const std::vector<double>& xs = crossings[rowIndex(j, k)];
       for (std::size_t p = 0; p + 1 < xs.size(); p += 2)
       {
         const int i0 = std::max(0, ClampedIndex(std::ceil(xs[p]), nx));

@@ -452,8 +452,10 @@ Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) 
     const double nn = Norm(normal);
     if (inside && nn > 0)
     {
-      double speed = RegionSpeed(intensity, this->RegionLow, this->RegionHigh);
-      speed = this->RegionOutwardOnly ? std::max(speed, 0.0) : speed;
+      const RegionModel& model =
+        this->RegionModels[this->LocalObjects.empty() ? 0 : this->LocalObjects[v]];
+      double speed = model.On ? RegionSpeed(intensity, model.Low, model.High) : 0.0;
+      speed = model.OutwardOnly ? std::max(speed, 0.0) : speed;
       force = force + (this->RegionScale * speed / nn) * normal;
     }
   }
@@ -532,7 +534,14 @@ void Solver::CorrectVertex(int k, bool external, const Vec3& force, int outside,
   }
 
   const double gamma = this->Parameters.Gamma;
-  const Vec3 c = gamma * (internal + applied);
+  Vec3 c = gamma * (internal + applied);
+  if (!this->LocalStepLimits.empty())
+  {
+    // Several objects: no step brings a triangle nearer another object's than the clearance
+    // (dsContact.h).
+    const double length = Norm(c), limit = this->LocalStepLimits[v];
+    c = length > limit ? (limit / length) * c : c;
+  }
   Vec3& point = this->LocalPoints[v];
   point = point + c;
   // The umbrellas the move changes: v's own and its ring's. No other vertex of v's colour
@@ -693,12 +702,23 @@ void Solver::BuildRingCoefficients()
 
 void Solver::RefreshLocal(int first, int last)
 {
-  // The caller may have moved points since the last call (labels are read by SetMesh()).
+  // The caller may have moved points since the last call (labels are read by SetMesh()), and
+  // changed the step limits or the objects.
   const TriangleMesh& m = *this->Mesh;
+  const bool objects = !this->LocalObjects.empty(), limits = !this->LocalStepLimits.empty();
   for (int l = first; l < last; ++l)
   {
     const int v = this->Original[l];
     this->LocalPoints[l] = m.Points[v];
+    if (objects)
+    {
+      this->LocalObjects[l] =
+        std::min(m.Objects[v], static_cast<int>(this->RegionModels.size()) - 1);
+    }
+    if (limits)
+    {
+      this->LocalStepLimits[l] = (*this->StepLimits)[v];
+    }
   }
 }
 
@@ -740,6 +760,13 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
     }
     this->ColorForces.resize(largest);
   }
+  // Sized here, filled by RefreshLocal with the points.
+  const std::size_t n = static_cast<std::size_t>(this->Mesh->NumberOfPoints());
+  const bool objects =
+    this->RegionImage.Data && this->RegionModels.size() > 1 && this->Mesh->Objects.size() == n;
+  this->LocalObjects.assign(objects ? n : 0, 0);
+  const bool limits = this->StepLimits && this->StepLimits->size() == n;
+  this->LocalStepLimits.assign(limits ? n : 0, 0.0);
   const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
   if (numThreads <= 1 || this->Colors.Offsets.back() < 256)
   {

@@ -108,13 +108,32 @@ public:
   void SetRegionForce(
     const ImageView& image, double low, double high, double scale, bool outwardOnly = false)
   {
-    this->RegionOutwardOnly = outwardOnly;
+    RegionModel model;
+    model.Low = low;
+    model.High = high;
+    model.OutwardOnly = outwardOnly;
+    this->SetRegionForce(image, std::vector<RegionModel>{ model }, scale);
+  }
+  /// The region force of several objects (docs/METHOD.md §9.9): each vertex reads the model of
+  /// its object (the mesh's Objects; model 0 when it has none); a model that is not On gives its
+  /// object no region force.
+  struct RegionModel
+  {
+    double Low = 0, High = 0;
+    bool OutwardOnly = false;
+    bool On = true;
+  };
+  void SetRegionForce(const ImageView& image, std::vector<RegionModel> models, double scale)
+  {
     this->RegionImage = image;
-    this->RegionImage.Data = scale != 0.0 ? image.Data : nullptr;
-    this->RegionLow = low;
-    this->RegionHigh = high;
+    this->RegionImage.Data = scale != 0.0 && !models.empty() ? image.Data : nullptr;
+    this->RegionModels = std::move(models);
     this->RegionScale = scale;
   }
+
+  /// The longest step of each vertex in the next sweeps (mesh order; ContactLimiter,
+  /// dsContact.h), or nullptr for none. Not copied: it must outlive the sweeps.
+  void SetStepLimits(const std::vector<double>* limits) { this->StepLimits = limits; }
 
   /// The hook between sampling and applying the external forces of each colour (see
   /// ForceExchange); empty (the default) = none. With a hook a colour is swept in three
@@ -229,8 +248,12 @@ private:
   ForceExchange Exchange;
   std::vector<VertexForce> ColorForces; ///< phase (a) to (c) of one colour, with an exchange
   ImageView RegionImage;                ///< Data nullptr: no region force
-  double RegionLow = 0, RegionHigh = 0, RegionScale = 0;
-  bool RegionOutwardOnly = false;
+  std::vector<RegionModel> RegionModels;
+  double RegionScale = 0;
+  /// Per local vertex, its object's index into RegionModels (refreshed by every call).
+  std::vector<int> LocalObjects;
+  const std::vector<double>* StepLimits = nullptr;
+  std::vector<double> LocalStepLimits; ///< StepLimits in the local layout, empty when none
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped

@@ -427,6 +427,43 @@ double TriangleMesh::SignedVolume() const
   return vol / 6.0;
 }
 
+int TriangleMesh::NumberOfObjects() const
+{
+  return this->Objects.empty() ? 1
+                               : 1 + *std::max_element(this->Objects.begin(), this->Objects.end());
+}
+
+void TriangleMesh::ExtendObjects()
+{
+  const int n = this->NumberOfPoints();
+  if (this->Objects.empty() || static_cast<int>(this->Objects.size()) >= n)
+  {
+    return;
+  }
+  // Breadth first from the points that have an object: a new point is joined by edges to the
+  // points of its component only.
+  std::vector<int> queue;
+  for (int v = 0; v < static_cast<int>(this->Objects.size()); ++v)
+  {
+    queue.push_back(v);
+  }
+  this->Objects.resize(n, -1);
+  for (std::size_t q = 0; q < queue.size(); ++q)
+  {
+    const int v = queue[q];
+    for (int i = this->NeighborOffsets[v]; i < this->NeighborOffsets[v + 1]; ++i)
+    {
+      const int w = this->Neighbors[i];
+      if (this->Objects[w] < 0)
+      {
+        this->Objects[w] = this->Objects[v];
+        queue.push_back(w);
+      }
+    }
+  }
+  std::replace(this->Objects.begin(), this->Objects.end(), -1, 0); // isolated points
+}
+
 double TriangleMesh::MeanEdgeLength() const
 {
   if (this->Edges.empty())

@@ -123,6 +123,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   /// points of a late level but a low depth). Set by refinement (dsRedGreen.h); empty or stale
   /// in size: unknown, Levels stands in.
   std::vector<int> Depths;
+  /// Per point, the index (0, 1, ...) of the object it belongs to when one run solves several
+  /// (docs/METHOD.md §9.9); empty: one object. Points appended by subdivision or refinement get
+  /// theirs from ExtendObjects.
+  std::vector<int> Objects;
+  /// The caller's label of each object (the filter's ObjectId array), empty when none was given.
+  std::vector<long long> ObjectIds;
 
   // --- topology, derived by BuildTopology() ---
   /// One-ring of vertex v: Neighbors[NeighborOffsets[v] .. NeighborOffsets[v+1]), sorted ascending.
@@ -138,6 +144,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh
   std::vector<unsigned char> BoundaryVertex;
 
   int NumberOfPoints() const { return static_cast<int>(this->Points.size()); }
+  /// 1 + the largest entry of Objects (1 when it is empty).
+  int NumberOfObjects() const;
+  /// Gives every point beyond the end of Objects the object of a neighbour (a point appended by
+  /// a split lies on an edge of its own object); nothing when Objects is empty. Needs the
+  /// topology.
+  void ExtendObjects();
   int NumberOfTriangles() const { return static_cast<int>(this->Triangles.size()); }
 
   /// Derive the topology from Points/Triangles; fills Labels/Levels with N/0 when their

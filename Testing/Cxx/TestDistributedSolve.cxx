@@ -15,6 +15,8 @@
 // - A click grown by the region force in the ridged ball of TestRegionForce (RegionWeight 1,
 //   every other default), 2 slabs: the serial surface bit for bit through the levels where the
 //   force has faded and refinement keeps triangles finer than 2 sigma (UnsplitEdgeLength).
+// - Two clicks in the capsule as two objects (RegionWeight 1): they grow toward each other and
+//   meet without crossing; the serial surface bit for bit on 2 ranks, and on two threads.
 // - The ghost layers the request allows for (DistributedGhostVoxels): 13 with every default on
 //   this image (the sampled Gaussian's largest radius and one, or the sigma_0 probe's), twice the
 //   coarsest block for sigma_0 = extent / 6 at 512^3 and 1024^3 (54, 110), 11 with Sigma 2.5
@@ -155,6 +157,52 @@ Phantom RidgedBall()
   return phantom;
 }
 
+/// Two clicks in the capsule as two objects (docs/METHOD.md §9.9), RegionWeight 1: they grow
+/// along it and meet. Two threads give the one-thread surface bit for bit, the ranks the serial
+/// one, and no pair of the objects' triangles crosses.
+void TwoObjects(const MultilevelParameters& defaults)
+{
+  TriangleMesh start = dstest::MakeIcosphere(2, 3.0, { 15.5, 15.5, 90.5 });
+  const TriangleMesh second = dstest::MakeIcosphere(2, 3.0, { 15.5, 15.5, 150.5 });
+  const int offset = start.NumberOfPoints();
+  start.Objects.assign(offset, 0);
+  for (const Vec3& x : second.Points)
+  {
+    start.Points.push_back(x);
+    start.Objects.push_back(1);
+  }
+  for (const auto& t : second.Triangles)
+  {
+    start.Triangles.push_back({ t[0] + offset, t[1] + offset, t[2] + offset });
+  }
+  MultilevelParameters p = defaults;
+  p.RegionWeight = 1.0;
+  SameAsSerial("two objects grown toward each other in the capsule", p, start, true, { 2 });
+  const ImageGeometry g = dstest::CapsuleGeometry();
+  const std::vector<float> image = dstest::CapsuleImage();
+  TriangleMesh one = start, two = start;
+  MultilevelSolver s1, s2;
+  std::string e1, e2;
+  s1.SetParameters(p);
+  p.Solver.NumberOfThreads = 2;
+  s2.SetParameters(p);
+  DS_CHECK(s1.Run(image.data(), g, one, &e1) && s2.Run(image.data(), g, two, &e2), e1 + e2);
+  DS_CHECK(one.Points == two.Points, "two objects: two threads give the one-thread surface");
+  double gap = 1e300; // the nearest vertices of the two objects
+  for (int v = 0; v < one.NumberOfPoints(); ++v)
+  {
+    for (int w = 0; w < one.NumberOfPoints() && one.Objects[v] == 0; ++w)
+    {
+      gap = one.Objects[w] == 1 ? std::min(gap, Norm(one.Points[v] - one.Points[w])) : gap;
+    }
+  }
+  std::cout << "two objects: " << one.NumberOfPoints() << " vertices, " << s1.GetCrossingPairs()
+            << " crossing pairs, nearest vertices " << gap << " apart" << std::endl;
+  DS_CHECK(s1.GetCrossingPairs() == 0, "two objects: no pair crosses");
+  DS_CHECK(gap < 1.0, "two objects: they meet (vertices less than a voxel apart)");
+  DS_CHECK(one.Objects.size() == one.Points.size(), "every point keeps its object");
+}
+
 void GhostLayers(const MultilevelParameters& defaults)
 {
   const auto ghost = [](const MultilevelParameters& p, const ImageGeometry& g)
@@ -276,6 +324,7 @@ int TestDistributedSolve(int, char*[])
   click.RegionWeight = 1.0;
   SameAsSerial("a click grown in the ridged ball, RegionWeight 1", click,
     dstest::MakeIcosphere(2, 3.0, { 49.5, 46.5, 48.5 }), true, { 2 }, RidgedBall());
+  TwoObjects(defaults);
   GhostLayers(defaults);
   BadInput(around);
   AgreedAbort(near);

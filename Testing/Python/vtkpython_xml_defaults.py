@@ -31,6 +31,7 @@ EXCEPTIONS = {
     # filled by repeated Add calls, a file name (no default), reported time steps, a text
     # (the DICOM reader's series description, empty by default).
     "Scalars", "RemovedTetrahedra", "FileName", "TimestepValues", "SeriesDescription",
+    "ObjectIntensityRanges",
 }
 # Clamped by the class without a range domain in the XML, because ParaView 5.11 has none for
 # IdTypeVectorProperty: the property's documentation must state the bound (this text).
