@@ -10,7 +10,8 @@ DS_TEST_OUTPUT/seed_points_phantom.vti, opened with the XML image reader), a Sli
 centres, the view looking down on it (parallel projection), and a Seed Points source, active, so
 its panel (the DeformableSurfaceGUI plugin's table) is shown. The client then plays
 gui_seed_points.xml: the mouse over the view at three fractions of its size, P at each (the third
-with the panel's "object" spin box at 1), Apply, File > Save State.
+with the panel's "object" spin box at 1), a fourth pick removed again with Delete in the table,
+Apply, File > Save State.
 
 The aim: each fraction of the view is turned into the world point the camera shows there, and a
 ball is centred on it; aims and ball centres go to DS_TEST_OUTPUT/seed_points_aims.json for the

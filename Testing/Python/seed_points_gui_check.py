@@ -2,7 +2,7 @@
 """The check of ctest Python.gui_seed_points (gui_seed_points.py explains the GUI part): run with
 pvpython after the client saved DS_TEST_OUTPUT/gui_seed_points.pvsm.
 
-- the state holds three seed points, each within half a voxel (0.5 mm) of where the mouse aimed,
+- the state holds three seed points (the fourth pick was deleted with the Delete key), each within half a voxel (0.5 mm) of where the mouse aimed,
   on the slice, with ObjectIds 0 0 1 as the spin box said;
 - Delaunay Seed Surface (three points: a seed sphere each) and Deformable Surface (RegionWeight 1,
   IntensityRange 50 150) grow them into three closed surfaces, each on its ball: the centre of its
