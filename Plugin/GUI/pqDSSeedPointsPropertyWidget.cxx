@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pqDSSeedPointsPropertyWidget.h"
 
+#include "pqDSPickKey.h"
 #include "pqRenderView.h"
-#include "vtkCommand.h"
-#include "vtkRenderWindowInteractor.h"
 #include "vtkSMPropertyGroup.h"
 #include "vtkSMProxy.h"
 #include "vtkSMRenderViewProxy.h"
@@ -19,7 +18,6 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
-#include <cstring>
 #include <set>
 
 namespace
@@ -80,6 +78,10 @@ pqDSSeedPointsPropertyWidget::pqDSSeedPointsPropertyWidget(
   row->addWidget(clear);
   layout->addLayout(row);
 
+  this->PickKey = new pqDSPickKey(this);
+  QObject::connect(
+    this->PickKey, &pqDSPickKey::pressed, this, &pqDSSeedPointsPropertyWidget::pickAt);
+
   this->Status = new QLabel(this);
   this->Status->setObjectName("SeedPointsStatus");
   layout->addWidget(this->Status);
@@ -92,10 +94,7 @@ pqDSSeedPointsPropertyWidget::pqDSSeedPointsPropertyWidget(
                                       : smproxy->GetProperty("ObjectIds"));
 }
 
-pqDSSeedPointsPropertyWidget::~pqDSSeedPointsPropertyWidget()
-{
-  this->watchInteractor(nullptr);
-}
+pqDSSeedPointsPropertyWidget::~pqDSSeedPointsPropertyWidget() = default;
 
 QList<QVariant> pqDSSeedPointsPropertyWidget::points() const
 {
@@ -239,25 +238,15 @@ void pqDSSeedPointsPropertyWidget::removeAllPoints()
 
 bool pqDSSeedPointsPropertyWidget::eventFilter(QObject* watched, QEvent* event)
 {
-  if (event->type() != QEvent::KeyPress)
-  {
-    return this->Superclass::eventFilter(watched, event);
-  }
-  const auto* keyEvent = static_cast<QKeyEvent*>(event);
   // While a cell is edited, the editor (not the table) receives the keys.
-  if (watched == this->Table &&
-    (keyEvent->key() == Qt::Key_Delete || keyEvent->key() == Qt::Key_Backspace))
+  if (watched == this->Table && event->type() == QEvent::KeyPress)
   {
-    this->removeSelectedPoints();
-    return true;
-  }
-  // A key the view's widget itself receives (on Linux ParaView's view is a container around an
-  // OpenGL window, which passes the keys it gets to the interactor, watched by onKeyPress).
-  if (this->View && watched == this->View->widget() && keyEvent->key() == Qt::Key_P &&
-    this->isVisible())
-  {
-    this->pickUnderCursor((keyEvent->modifiers() & Qt::ControlModifier) != 0);
-    return true;
+    const int key = static_cast<QKeyEvent*>(event)->key();
+    if (key == Qt::Key_Delete || key == Qt::Key_Backspace)
+    {
+      this->removeSelectedPoints();
+      return true;
+    }
   }
   return this->Superclass::eventFilter(watched, event);
 }
@@ -265,59 +254,20 @@ bool pqDSSeedPointsPropertyWidget::eventFilter(QObject* watched, QEvent* event)
 void pqDSSeedPointsPropertyWidget::setView(pqView* view)
 {
   this->Superclass::setView(view);
-  if (this->View && this->View->widget())
-  {
-    this->View->widget()->removeEventFilter(this);
-  }
-  this->View = qobject_cast<pqRenderView*>(view);
-  if (this->View && this->View->widget())
-  {
-    this->View->widget()->installEventFilter(this);
-  }
-  this->watchInteractor(this->View && this->View->getRenderViewProxy()
-      ? this->View->getRenderViewProxy()->GetInteractor()
-      : nullptr);
+  this->PickKey->setView(view);
 }
 
-void pqDSSeedPointsPropertyWidget::watchInteractor(vtkRenderWindowInteractor* interactor)
+void pqDSSeedPointsPropertyWidget::pickAt(int x, int y, bool snapToMeshPoint)
 {
-  if (this->Interactor == interactor)
+  pqRenderView* view = this->PickKey->view();
+  if (!view)
   {
     return;
   }
-  if (this->Interactor)
-  {
-    this->Interactor->RemoveObserver(this->KeyObserver);
-  }
-  this->Interactor = interactor;
-  this->KeyObserver = interactor ? interactor->AddObserver(vtkCommand::KeyPressEvent, this,
-                                     &pqDSSeedPointsPropertyWidget::onKeyPress)
-                                 : 0;
-}
-
-void pqDSSeedPointsPropertyWidget::onKeyPress(vtkObject*, unsigned long, void*)
-{
-  // The render view's interactor sees every key pressed over the view; only the panel on
-  // screen (the active source's) picks, as ParaView's own point-picking keys do.
-  const char* key = this->Interactor ? this->Interactor->GetKeySym() : nullptr;
-  if (!key || !this->isVisible() || (std::strcmp(key, "p") != 0 && std::strcmp(key, "P") != 0))
-  {
-    return;
-  }
-  this->pickUnderCursor(this->Interactor->GetControlKey() != 0);
-}
-
-void pqDSSeedPointsPropertyWidget::pickUnderCursor(bool snapToMeshPoint)
-{
-  vtkSMRenderViewProxy* view = this->View ? this->View->getRenderViewProxy() : nullptr;
-  if (!view || !this->Interactor)
-  {
-    return;
-  }
-  // The last mouse position the view saw: the cursor when the key was pressed over it.
-  const int* position = this->Interactor->GetEventPosition();
+  const int position[2] = { x, y };
   double world[3], normal[3];
-  if (view->ConvertDisplayToPointOnSurface(position, world, normal, snapToMeshPoint))
+  if (view->getRenderViewProxy()->ConvertDisplayToPointOnSurface(
+        position, world, normal, snapToMeshPoint))
   {
     this->addPoint(world[0], world[1], world[2]);
   }

@@ -8,7 +8,7 @@
  * - P with the cursor over the render view adds the point of the surface under the cursor (a
  *   slice, a volume's outline, any surface shown), Ctrl+P the nearest mesh point of it: the keys
  *   and the pick of ParaView's own point picking (pqPointPickingHelper), active while this panel
- *   is shown;
+ *   is shown (pqDSPickKey);
  * - the new point seeds the object set in the "object" spin box (the ObjectId column);
  * - the table shows x, y, z and object per point; cells can be edited; Delete (or the remove
  *   button) removes the selected rows.
@@ -23,10 +23,7 @@
 
 #include "pqPropertyWidget.h"
 
-#include "vtkWeakPointer.h"
-
 #include <QList>
-#include <QPointer>
 #include <QVariant>
 
 #include <array>
@@ -35,9 +32,7 @@
 class QLabel;
 class QSpinBox;
 class QTableWidget;
-class pqRenderView;
-class vtkObject;
-class vtkRenderWindowInteractor;
+class pqDSPickKey;
 class vtkSMPropertyGroup;
 
 class pqDSSeedPointsPropertyWidget : public pqPropertyWidget
@@ -86,10 +81,8 @@ private Q_SLOTS:
 private:
   Q_DISABLE_COPY(pqDSSeedPointsPropertyWidget)
 
-  void onKeyPress(vtkObject* caller, unsigned long event, void* data);
-  void pickUnderCursor(bool snapToMeshPoint);
+  void pickAt(int x, int y, bool snapToMeshPoint);
   void fillTable();
-  void watchInteractor(vtkRenderWindowInteractor* interactor);
 
   std::vector<std::array<double, 3>> Points;
   // Kept as given (it may arrive before the points it belongs to); a missing entry is object 0.
@@ -97,9 +90,7 @@ private:
   QTableWidget* Table = nullptr;
   QSpinBox* Object = nullptr;
   QLabel* Status = nullptr;
-  QPointer<pqRenderView> View;
-  vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
-  unsigned long KeyObserver = 0;
+  pqDSPickKey* PickKey = nullptr;
   bool Filling = false;
 };
 

@@ -14,14 +14,16 @@ with the panel's "object" spin box at 1), a fourth pick removed again with Delet
 Apply, File > Save State.
 
 The aim: each fraction of the view is turned into the world point the camera shows there, and a
-ball is centred on it; aims and ball centres go to DS_TEST_OUTPUT/seed_points_aims.json for the
-check, which reads the saved state. The GUI exits with 0 whatever happens, so the check is the
+ball is centred on it; the aims go to DS_TEST_OUTPUT/gui_seed_points.json for the check, which
+reads the saved state (ds_gui.py). The GUI exits with 0 whatever happens, so the check is the
 verdict."""
-import json
 import os
-import traceback
+import sys
 
-out_dir = os.environ.get("DS_TEST_OUTPUT", "/tmp")
+# The client runs the script without __file__: the helpers come from beside DS_BASELINE_DIR.
+sys.path.insert(0, os.path.join(os.environ["DS_BASELINE_DIR"], "..", "Python"))
+import ds_gui  # noqa: E402
+
 # The fractions gui_seed_points.xml moves the mouse to (x from the left, y from the top) and the
 # object each pick seeds.
 FRACTIONS = [(0.3, 0.4), (0.7, 0.4), (0.5, 0.7)]
@@ -29,14 +31,6 @@ OBJECTS = [0, 0, 1]
 SCALE = 32.0  # the camera's parallel scale: half the view's height, mm
 RADIUS = 8.0  # the balls' radius, mm
 SLICE_Z = 12.0
-
-
-def aims(width, height, focal):
-    """The world point the view shows at each fraction: parallel projection, focal point at the
-    view's centre, SCALE mm from the centre to the top edge."""
-    mm_per_pixel = 2.0 * SCALE / height
-    return [[focal[0] + (fx - 0.5) * width * mm_per_pixel,
-             focal[1] + (0.5 - fy) * height * mm_per_pixel, SLICE_Z] for fx, fy in FRACTIONS]
 
 
 def write_phantom(centres, path):
@@ -70,38 +64,23 @@ def write_phantom(centres, path):
     writer.Write()
 
 
-def main():
+def scene():
     from paraview import simple
     view = simple.GetActiveViewOrCreate("RenderView")
-    simple.Render(view)  # the first Render resets the camera: before the camera is set
-    width, height = view.ViewSize
     focal = [0.0, 0.0, SLICE_Z]
-    targets = aims(width, height, focal)
-    phantom_path = os.path.join(out_dir, "seed_points_phantom.vti")
-    write_phantom(targets, phantom_path)
-    with open(os.path.join(out_dir, "seed_points_aims.json"), "w") as f:
-        json.dump({"aims": targets, "objects": OBJECTS, "radius": RADIUS, "phantom": phantom_path,
-                   "view": [width, height], "mm_per_pixel": 2.0 * SCALE / height}, f)
-
+    aims = ds_gui.top_view(view, focal, SCALE, FRACTIONS)
+    phantom_path = os.path.join(ds_gui.OUT_DIR, "seed_points_phantom.vti")
+    write_phantom(aims, phantom_path)
     phantom = simple.XMLImageDataReader(registrationName="phantom", FileName=[phantom_path])
     cut = simple.Slice(registrationName="Slice", Input=phantom)
     cut.SliceType = "Plane"
     cut.SliceType.Origin, cut.SliceType.Normal = focal, [0.0, 0.0, 1.0]
     shown = simple.Show(cut, view)
     simple.ColorBy(shown, ("POINTS", "density"))
-    view.OrientationAxesVisibility = 0
-    view.CameraParallelProjection = 1
-    view.CameraFocalPoint = focal
-    view.CameraPosition = [focal[0], focal[1], focal[2] + 200.0]
-    view.CameraViewUp = [0.0, 1.0, 0.0]
-    view.CameraParallelScale = SCALE
     simple.Render(view)
     seeds = simple.SeedPoints(registrationName="SeedPoints")
     simple.SetActiveSource(seeds)
+    return {"aims": aims, "objects": OBJECTS, "radius": RADIUS}
 
 
-try:
-    main()
-except Exception:
-    with open(os.path.join(out_dir, "seed_points_aims.json"), "w") as f:
-        json.dump({"error": traceback.format_exc()}, f)
+ds_gui.write_setup("gui_seed_points", scene)

@@ -8,24 +8,16 @@ pvpython after the client saved DS_TEST_OUTPUT/gui_seed_points.pvsm.
   IntensityRange 50 150) grow them into three closed surfaces, each on its ball: the centre of its
   bounding box within 0.5 mm of the ball's centre, the radius of a ball of its volume within
   0.5 mm of the ball's radius."""
-import json
 import math
 import os
 import sys
 
-from paraview import servermanager, simple
-from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkMassProperties, vtkPolyDataConnectivityFilter
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from vtkmodules.vtkFiltersCore import (vtkCleanPolyData, vtkMassProperties,  # noqa: E402
+                                       vtkPolyDataConnectivityFilter)
 
-out_dir = os.environ.get("DS_TEST_OUTPUT", "/tmp")
-simple.LoadPlugin(os.environ["DS_PLUGIN"])
-failures = []
-
-
-def check(ok, what):
-    print(("ok      " if ok else "FAILED  ") + what)
-    if not ok:
-        failures.append(what)
-
+import ds_gui  # noqa: E402
 
 def pieces(poly):
     """[(centre of the bounding box, radius of the ball of the same volume)] of each connected
@@ -50,16 +42,9 @@ def pieces(poly):
     return found
 
 
-with open(os.path.join(out_dir, "seed_points_aims.json")) as f:
-    setup = json.load(f)
-if "error" in setup:
-    sys.exit("FAILED: the GUI script: " + setup["error"])
+check = ds_gui.Check()
+setup = ds_gui.load_state("gui_seed_points", check)
 aims, radius = setup["aims"], setup["radius"]
-state = os.path.join(out_dir, "gui_seed_points.pvsm")
-check(os.path.exists(state), "the client saved its state (%s)" % state)
-if failures:
-    sys.exit(1)
-simple.LoadState(state)
 seeds = simple.FindSource("SeedPoints")
 points = list(seeds.Points) if seeds else []
 check(len(points) == 9, "three points picked (Points holds %d values)" % len(points))
@@ -85,6 +70,4 @@ for centre, equivalent in found:
     check(math.dist(centre, aim) <= 0.5 and abs(equivalent - radius) <= 0.5,
           "surface around (%.1f, %.1f, %.1f): centre %.3f mm off, radius by volume %.3f mm (ball %.1f)"
           % (tuple(aim) + (math.dist(centre, aim), equivalent, radius)))
-for f in failures:
-    print("FAILED:", f)
-sys.exit(1 if failures else 0)
+check.exit()
