@@ -56,6 +56,7 @@ pqDSRemovedTetrahedraPropertyWidget::pqDSRemovedTetrahedraPropertyWidget(
   this->PickKey = new pqDSPickKey(this);
   QObject::connect(
     this->PickKey, &pqDSPickKey::pressed, this, [this](int x, int y, bool) { this->pickAt(x, y); });
+  this->RemovedTetrahedra = smproperty;
   this->addPropertyLink(this, "ids", SIGNAL(idsChanged()), smproperty);
 
   auto* model = pqApplicationCore::instance()->getServerManagerModel();
@@ -264,13 +265,21 @@ void pqDSRemovedTetrahedraPropertyWidget::onDataUpdated()
     return;
   }
   this->PickedOn = now;
-  if (!this->Ids.empty())
+  if (this->Ids.empty())
   {
-    this->Status->setText(tr("The tetrahedrisation changed (its points did): the TetraIds now "
-                             "name other tetrahedra, so the %1 removed were cleared. Apply, then "
-                             "pick again.")
-                            .arg(this->Ids.size()));
-    this->setIds({});
-    Q_EMIT this->idsChanged();
+    return;
+  }
+  // Committed at once, not left for Apply: the panel would take the applied (stale) ids back
+  // when the Apply that changed the points resets the panels.
+  this->Status->setText(tr("The tetrahedrisation changed (its points did): the TetraIds now "
+                           "name other tetrahedra, so the %1 removed were cleared.")
+                          .arg(this->Ids.size()));
+  this->setIds({});
+  vtkSMPropertyHelper(this->RemovedTetrahedra).SetNumberOfElements(0);
+  this->proxy()->UpdateVTKObjects();
+  auto* model = pqApplicationCore::instance()->getServerManagerModel();
+  if (auto* source = model->findItem<pqPipelineSource*>(this->proxy()))
+  {
+    source->renderAllViews();
   }
 }

@@ -13,7 +13,9 @@
  * TetraIds number the tetrahedra of one tetrahedrisation: when the seed points change, the same
  * id names another tetrahedron. The panel notices it (the Tetrahedra output's counts, bounds and
  * circumradius range change, which removals and Alpha never change) and clears the list with a
- * warning; Apply then commits the cleared list. The filter has run once with the old ids by then.
+ * warning, committed at once (the filter runs again without removals; it has run once with the
+ * old ids by then). Keeping a removal by its corner points is left out: a changed point set
+ * usually has none of the old tetrahedra near the change.
  *
  * It is the panel_widget "ds_removed_tetrahedra" of the IdTypeVectorProperty RemovedTetrahedra
  * (xml/DelaunaySeedSurface.xml).
@@ -76,6 +78,7 @@ private:
   std::vector<vtkIdType> Ids;
   // The Tetrahedra output's counts, bounds and circumradius range when the ids were picked.
   std::vector<double> PickedOn;
+  vtkSMProperty* RemovedTetrahedra = nullptr;
   QLineEdit* Text = nullptr;
   QLabel* Status = nullptr;
   pqDSPickKey* PickKey = nullptr;

@@ -5,7 +5,9 @@ part): run with pvpython after the client saved DS_TEST_OUTPUT/gui_removed_tetra
 The aims lie in two different tetrahedra A and B (found here by locating the aimed points in the
 Tetrahedra output); P over A, B, A must leave Removed Tetrahedra = [B]: B removed, A kept again.
 The filter, run on the saved state, marks B removed by ID (Removed = 1) and A kept, and its
-surface stays a closed, manifold, outward-oriented surface (ds_invariants)."""
+surface stays a closed, manifold, outward-oriented surface (ds_invariants). The second state,
+saved after a thirteenth seed point was picked and applied, has an empty Removed Tetrahedra: the
+TetraIds were renumbered, so the panel cleared the list."""
 import os
 import sys
 
@@ -37,4 +39,11 @@ try:
     check(True, "the seed without B is closed and manifold (%d triangles)" % surface.GetNumberOfPolys())
 except AssertionError as error:
     check(False, str(error))
+
+simple.ResetSession()
+simple.LoadState(os.path.join(ds_gui.OUT_DIR, "gui_removed_tetrahedra_renumbered.pvsm"))
+seeds, seed = simple.FindSource("SeedPoints"), simple.FindSource("DelaunaySeedSurface")
+check(len(seeds.Points) == 3 * (len(setup["points"]) + 1), "a thirteenth point picked (%d coordinates)" % len(seeds.Points))
+check(len(seed.RemovedTetrahedra) == 0,
+      "Removed Tetrahedra cleared when the tetrahedrisation changed (%s)" % list(seed.RemovedTetrahedra))
 check.exit()
