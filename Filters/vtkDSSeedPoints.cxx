@@ -146,6 +146,15 @@ bool vtkDSSeedPoints::CheckLists() const
   return true;
 }
 
+int vtkDSSeedPoints::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Pieces are handled (piece 0 holds every point, the others none): without this the pipeline
+  // would hand every piece the whole list.
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkDSSeedPoints::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {

@@ -65,6 +65,7 @@ protected:
   vtkDSSeedPoints();
   ~vtkDSSeedPoints() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::vector<double> PointCoordinates;
