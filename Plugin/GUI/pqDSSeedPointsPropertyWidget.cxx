@@ -3,7 +3,9 @@
 
 #include "pqDSPickKey.h"
 #include "pqRenderView.h"
+#include "vtkSMNewWidgetRepresentationProxy.h"
 #include "vtkSMPropertyGroup.h"
+#include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMRenderViewProxy.h"
 
@@ -34,7 +36,7 @@ QTableWidgetItem* NumberItem(double value)
 
 pqDSSeedPointsPropertyWidget::pqDSSeedPointsPropertyWidget(
   vtkSMProxy* smproxy, vtkSMPropertyGroup* smgroup, QWidget* parentObject)
-  : Superclass(smproxy, parentObject)
+  : Superclass("representations", "HandleWidgetRepresentation", smproxy, smgroup, parentObject)
 {
   this->setShowLabel(false);
   this->setChangeAvailableAsChangeFinished(true);
@@ -57,6 +59,10 @@ pqDSSeedPointsPropertyWidget::pqDSSeedPointsPropertyWidget(
   layout->addWidget(this->Table);
   QObject::connect(
     this->Table, &QTableWidget::cellChanged, this, &pqDSSeedPointsPropertyWidget::onCellChanged);
+  QObject::connect(this->Table, &QTableWidget::currentCellChanged, this,
+    &pqDSSeedPointsPropertyWidget::placeWidget);
+  QObject::connect(this, &pqInteractivePropertyWidgetAbstract::endInteraction, this,
+    &pqDSSeedPointsPropertyWidget::onHandleMoved);
 
   auto* row = new QHBoxLayout();
   row->addWidget(new QLabel(tr("object"), this));
@@ -275,4 +281,33 @@ void pqDSSeedPointsPropertyWidget::pickAt(int x, int y, bool snapToMeshPoint)
   {
     this->Status->setText(tr("Nothing under the cursor to pick."));
   }
+}
+
+void pqDSSeedPointsPropertyWidget::placeWidget()
+{
+  const int row = this->Table->currentRow();
+  const bool onPoint = row >= 0 && row < static_cast<int>(this->Points.size());
+  if (onPoint)
+  {
+    vtkSMNewWidgetRepresentationProxy* handle = this->widgetProxy();
+    vtkSMPropertyHelper(handle, "WorldPosition").Set(this->Points[row].data(), 3);
+    handle->UpdateVTKObjects();
+  }
+  this->setWidgetVisible(onPoint);
+  this->render();
+}
+
+void pqDSSeedPointsPropertyWidget::onHandleMoved()
+{
+  const int row = this->Table->currentRow();
+  if (row < 0 || row >= static_cast<int>(this->Points.size()))
+  {
+    return;
+  }
+  vtkSMNewWidgetRepresentationProxy* handle = this->widgetProxy();
+  handle->UpdatePropertyInformation();
+  vtkSMPropertyHelper(handle, "WorldPositionInfo").Get(this->Points[row].data(), 3);
+  this->fillTable();
+  this->Table->selectRow(row);
+  Q_EMIT this->pointsChanged();
 }

@@ -12,8 +12,9 @@
  * - the new point seeds the object set in the "object" spin box (the ObjectId column);
  * - the table shows x, y, z and object per point; cells can be edited; Delete (or the remove
  *   button) removes the selected rows.
+ * - the selected row's point carries ParaView's point handle (the HandleWidgetRepresentation of
+ *   pqHandlePropertyWidget): drag it in the view to move that point.
  * Every change is a property change, applied with Apply, so undo/redo and state files hold it.
- * Points are not dragged in the view: move one by editing its row, or delete it and pick again.
  *
  * It is the panel_widget "ds_seed_points" of a property group holding the DoubleVectorProperty
  * `Points` (x y z per point) and the IntVectorProperty `ObjectIds` (xml/SeedPoints.xml).
@@ -21,7 +22,7 @@
 #ifndef pqDSSeedPointsPropertyWidget_h
 #define pqDSSeedPointsPropertyWidget_h
 
-#include "pqPropertyWidget.h"
+#include "pqInteractivePropertyWidget.h"
 
 #include <QList>
 #include <QVariant>
@@ -35,12 +36,12 @@ class QTableWidget;
 class pqDSPickKey;
 class vtkSMPropertyGroup;
 
-class pqDSSeedPointsPropertyWidget : public pqPropertyWidget
+class pqDSSeedPointsPropertyWidget : public pqInteractivePropertyWidget
 {
   Q_OBJECT
   Q_PROPERTY(QList<QVariant> points READ points WRITE setPoints NOTIFY pointsChanged)
   Q_PROPERTY(QList<QVariant> objectIds READ objectIds WRITE setObjectIds NOTIFY pointsChanged)
-  typedef pqPropertyWidget Superclass;
+  typedef pqInteractivePropertyWidget Superclass;
 
 public:
   pqDSSeedPointsPropertyWidget(
@@ -75,8 +76,13 @@ Q_SIGNALS:
 protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
 
+protected Q_SLOTS:
+  /// The handle sits on the selected row's point (nothing to place from data bounds).
+  void placeWidget() override;
+
 private Q_SLOTS:
   void onCellChanged(int row, int column);
+  void onHandleMoved();
 
 private:
   Q_DISABLE_COPY(pqDSSeedPointsPropertyWidget)

@@ -11,7 +11,7 @@ centres, the view looking down on it (parallel projection), and a Seed Points so
 its panel (the DeformableSurfaceGUI plugin's table) is shown. The client then plays
 gui_seed_points.xml: the mouse over the view at three fractions of its size, P at each (the third
 with the panel's "object" spin box at 1), a fourth pick removed again with Delete in the table,
-Apply, File > Save State.
+the first row selected and its point handle dragged to the right, Apply, File > Save State.
 
 The aim: each fraction of the view is turned into the world point the camera shows there, and a
 ball is centred on it; the aims go to DS_TEST_OUTPUT/gui_seed_points.json for the check, which
@@ -31,6 +31,7 @@ OBJECTS = [0, 0, 1]
 SCALE = 32.0  # the camera's parallel scale: half the view's height, mm
 RADIUS = 8.0  # the balls' radius, mm
 SLICE_Z = 12.0
+DRAG = (0.3, 0.33)  # the handle of the first point, dragged from x = 0.3 to 0.33 of the view
 
 
 def write_phantom(centres, path):
@@ -80,7 +81,8 @@ def scene():
     simple.Render(view)
     seeds = simple.SeedPoints(registrationName="SeedPoints")
     simple.SetActiveSource(seeds)
-    return {"aims": aims, "objects": OBJECTS, "radius": RADIUS}
+    return {"aims": aims, "objects": OBJECTS, "radius": RADIUS, "view": list(view.ViewSize),
+            "mm_per_pixel": 2.0 * SCALE / view.ViewSize[1], "drag": DRAG}
 
 
 ds_gui.write_setup("gui_seed_points", scene)

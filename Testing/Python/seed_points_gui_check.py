@@ -2,8 +2,10 @@
 """The check of ctest Python.gui_seed_points (gui_seed_points.py explains the GUI part): run with
 pvpython after the client saved DS_TEST_OUTPUT/gui_seed_points.pvsm.
 
-- the state holds three seed points (the fourth pick was deleted with the Delete key), each within half a voxel (0.5 mm) of where the mouse aimed,
-  on the slice, with ObjectIds 0 0 1 as the spin box said;
+- the state holds three seed points (the fourth pick was deleted with the Delete key), each
+  within half a voxel (0.5 mm) of where the mouse aimed, on the slice (the first where its
+  handle was dragged to: as far as the mouse moved, in whole pixels), with ObjectIds 0 0 1 as the
+  spin box said;
 - Delaunay Seed Surface (three points: a seed sphere each) and Deformable Surface (RegionWeight 1,
   IntensityRange 50 150) grow them into three closed surfaces, each on its ball: the centre of its
   bounding box within 0.5 mm of the ball's centre, the radius of a ball of its volume within
@@ -45,10 +47,14 @@ def pieces(poly):
 check = ds_gui.Check()
 setup = ds_gui.load_state("gui_seed_points", check)
 aims, radius = setup["aims"], setup["radius"]
+# Where the points should be: the first one moved with the mouse, in whole pixels.
+expected = [list(a) for a in aims]
+width, start, end = setup["view"][0], setup["drag"][0], setup["drag"][1]
+expected[0][0] += (int(end * width) - int(start * width)) * setup["mm_per_pixel"]
 seeds = simple.FindSource("SeedPoints")
 points = list(seeds.Points) if seeds else []
 check(len(points) == 9, "three points picked (Points holds %d values)" % len(points))
-for i, aim in enumerate(aims[: len(points) // 3]):
+for i, aim in enumerate(expected[: len(points) // 3]):
     got = points[3 * i: 3 * i + 3]
     error = math.dist(got, aim)
     check(error <= 0.5, "pick %d at (%.2f, %.2f, %.2f), %.3f mm from the aim (%.2f, %.2f, %.2f)"
