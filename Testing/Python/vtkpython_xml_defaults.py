@@ -28,10 +28,11 @@ import deformablesurface
 # Properties compared by hand or not at all, and why.
 EXCEPTIONS = {
     # Set/Get with another meaning than the XML element: an input array choice, a list
-    # filled by repeated Add calls, a file name (no default), reported time steps, a text
-    # (the DICOM reader's series description, empty by default).
-    "Scalars", "RemovedTetrahedra", "FileName", "TimestepValues", "SeriesDescription",
-    "ObjectIntensityRanges",
+    # filled by repeated Add calls or by index (the seed points and their objects), a file name
+    # (no default), reported time steps, a text (the DICOM reader's series description, empty by
+    # default).
+    "Scalars", "RemovedTetrahedra", "Points", "ObjectIds", "FileName", "TimestepValues",
+    "SeriesDescription", "ObjectIntensityRanges",
 }
 # Clamped by the class without a range domain in the XML, because ParaView 5.11 has none for
 # IdTypeVectorProperty: the property's documentation must state the bound (this text).
