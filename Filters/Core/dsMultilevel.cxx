@@ -872,6 +872,37 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh,
   return marks;
 }
 
+bool MultilevelSolver::Refine(TriangleMesh& mesh, RunState& state, const std::vector<char>& marks,
+  Prolongation prolongation, bool& refined, std::string* error)
+{
+  // Several objects: a green pair refined red gets triangles that cut across its crease, off
+  // the surface by the crease's bend, which within the clearance could make two objects cross;
+  // such a refinement is undone (docs/METHOD.md §9.9).
+  const bool several = mesh.NumberOfObjects() > 1;
+  const TriangleMesh before = several ? mesh : TriangleMesh();
+  const RedGreenRefiner refinerBefore = several ? state.Refiner : RedGreenRefiner();
+  const int crossingBefore = several ? CountCrossingPairs(mesh) : 0;
+  LevelRecord& rec = this->Levels.back();
+  rec.Refinement = state.Refiner.Refine(mesh, marks, prolongation);
+  if (!rec.Refinement.Ok)
+  {
+    *error = "refinement failed: " + rec.Refinement.Error;
+    return false;
+  }
+  mesh.ExtendObjects();
+  if (several && CountCrossingPairs(mesh) > crossingBefore)
+  {
+    mesh = before;
+    state.Refiner = refinerBefore;
+    rec.Refinement = RefinementCounts();
+    rec.MarkedTriangles = 0;
+    this->Warnings.push_back("the refinement after level " + std::to_string(rec.Level) +
+      " was undone: it would have made two objects cross");
+    refined = false;
+  }
+  return true;
+}
+
 bool MultilevelSolver::RefineLevel(
   TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error)
 {
@@ -911,18 +942,20 @@ bool MultilevelSolver::RefineLevel(
   {
     return true;
   }
-  // Several objects refine at edge midpoints: the surface keeps its shape, so a refinement
-  // cannot bring two objects nearer than their sweeps did (a butterfly point can bulge out by a
-  // share of the edge, through a neighbour resting the clearance away; dsContact.h).
+  // Several objects refine at edge midpoints: the surface keeps its shape (but where a green pair
+  // turns red, which Refine checks), so a refinement does not bring two objects nearer than their
+  // sweeps did (a butterfly point can bulge out by a share of the edge, through a neighbour
+  // resting the clearance away; dsContact.h).
   const Prolongation prolongation = P.ButterflyProlongation && mesh.NumberOfObjects() == 1
     ? Prolongation::Butterfly
     : Prolongation::Linear;
-  const RefinementCounts& rc = this->Levels.back().Refinement =
-    state.Refiner.Refine(mesh, marks, prolongation);
-  if (!rc.Ok)
+  if (!this->Refine(mesh, state, marks, prolongation, refined, error))
   {
-    *error = "refinement failed: " + rc.Error;
     return false;
+  }
+  if (!refined)
+  {
+    return true;
   }
   std::string msg;
   if (state.CheckTopology &&

@@ -449,6 +449,10 @@ private:
   /// and check the invariants.
   bool RefineLevel(
     TriangleMesh& mesh, RunState& state, LevelRecord& rec, bool& refined, std::string* error);
+  /// Step 4 on the marks (recorded in the last level's record); with several objects undone
+  /// (refined false) when it would make two of them cross.
+  bool Refine(TriangleMesh& mesh, RunState& state, const std::vector<char>& marks,
+    Prolongation prolongation, bool& refined, std::string* error);
   /// With MaxLevels >= 1, a start of more than CoarsenAboveTriangles triangles whose mean edge
   /// is below sigma_0 / 2
   /// is replaced by the Coarsen callback's copy with edges of about sigma_0, when that copy
