@@ -18,6 +18,8 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
+
 namespace dsurf
 {
 namespace
@@ -67,7 +69,8 @@ vtkSmartPointer<vtkPolyData> LabelBoundary(
 } // namespace
 
 bool DeliverRegionPreview(const ImageView& image, TriangleMesh& start,
-  const MultilevelParameters& parameters, vtkPolyData* output, std::string& error)
+  const MultilevelParameters& parameters, vtkPolyData* output, std::string& error,
+  std::vector<std::string>& warnings)
 {
   MultilevelSolver solver;
   solver.SetParameters(parameters);
@@ -75,7 +78,14 @@ bool DeliverRegionPreview(const ImageView& image, TriangleMesh& start,
   {
     return false;
   }
+  warnings = solver.GetWarnings();
   const std::vector<ObjectRegion>& regions = solver.GetObjectRegions();
+  if (std::none_of(regions.begin(), regions.end(), [](const ObjectRegion& r) { return r.On; }))
+  {
+    warnings.push_back("the region force is off (RegionWeight 0, a start spanning the image or "
+                       "an open start without an IntensityRange, or no range found): nothing to "
+                       "preview");
+  }
   std::vector<long long> counts;
   const std::vector<unsigned short> labels = RegionPreview(image, start, regions, counts);
   vtkNew<vtkAppendPolyData> append;

@@ -7,6 +7,7 @@
 #define dsVTKRegionPreview_h
 
 #include <string>
+#include <vector>
 
 class vtkPolyData;
 
@@ -25,9 +26,11 @@ struct RegionPreviewMode
 /// boundary surface (the voxels' 0.5 iso-surface, each object's with its ObjectId when the
 /// start has several) and field data IntensityRange (the first object's range),
 /// ObjectIntensityRanges (several objects) and PreviewVoxels (per object). An empty surface
-/// with the field data when the region force is off or reaches nothing. False with `error`.
+/// with the field data when the region force is off or reaches nothing (`warnings` says why,
+/// with the range estimate's own warnings). False with `error`.
 bool DeliverRegionPreview(const ImageView& image, TriangleMesh& start,
-  const MultilevelParameters& parameters, vtkPolyData* output, std::string& error);
+  const MultilevelParameters& parameters, vtkPolyData* output, std::string& error,
+  std::vector<std::string>& warnings);
 } // namespace dsurf
 
 #endif

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dsVTKWarmStart.h"
 
+#include "dsVTKObjects.h"
+
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
@@ -21,10 +23,12 @@ void WarmStart::Keep(vtkImageData* image, vtkPolyData* surface, vtkPolyData* out
   {
     return;
   }
-  // Points and triangles only (with AnimateSweeps the output becomes a time step).
+  // Points and triangles only (with AnimateSweeps the output becomes a time step), and each
+  // triangle's ObjectId when there are several objects (docs/METHOD.md §9.9).
   vtkNew<vtkPolyData> shape;
   shape->SetPoints(output->GetPoints());
   shape->SetPolys(output->GetPolys());
+  CopyPolygonObjectIds(output, shape);
   this->LastResult = vtkSmartPointer<vtkPolyData>::New();
   this->LastResult->DeepCopy(shape);
   this->LastImage = image;

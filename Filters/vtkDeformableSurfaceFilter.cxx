@@ -935,10 +935,15 @@ int vtkDeformableSurfaceFilter::RequestData(
     // The region before the solve (dsVTKRegionPreview.h): no sweeps, no warm start.
     dsurf::TriangleMesh mesh;
     std::string error;
+    std::vector<std::string> warnings;
     if (this->StartMesh(surface, mesh) &&
-      !dsurf::DeliverRegionPreview(volume.Image, mesh, *this->Parameters, output, error))
+      !dsurf::DeliverRegionPreview(volume.Image, mesh, *this->Parameters, output, error, warnings))
     {
       vtkErrorMacro("Region preview: " << error << ".");
+    }
+    for (const std::string& w : warnings)
+    {
+      vtkWarningMacro("Region preview: " << w << ".");
     }
     return 1;
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkDelaunaySeedSurface.h"
 
+#include "dsObjects.h"
 #include "dsSeedSurface.h"
 #include "dsTrilinear.h"
 #include "dsVTKImage.h"
@@ -718,6 +719,13 @@ void vtkDelaunaySeedSurface::SeedObjects(vtkPolyData* finite, const std::vector<
       return;
     }
     groups[static_cast<long long>(value)].push_back(p);
+  }
+  if (static_cast<int>(groups.size()) > dsurf::MaxObjects)
+  {
+    vtkErrorMacro("The points carry " << groups.size() << " ObjectId values; at most "
+                                      << dsurf::MaxObjects
+                                      << " objects are seeded (and solved) at once: no surface.");
+    return;
   }
   vtkNew<vtkAppendPolyData> surfaces;
   vtkNew<vtkAppendFilter> tetrahedra;

@@ -60,7 +60,14 @@ std::vector<std::pair<int, int>> NearPairs(
     size +=
       std::max({ boxes[t][3] - boxes[t][0], boxes[t][4] - boxes[t][1], boxes[t][5] - boxes[t][2] });
   }
-  const double cell = n > 0 ? std::max(size / n, 1e-12) : 1.0;
+  // Cells of the mean box, but no box over 16 cells wide: a few coarse triangles among many fine
+  // ones would otherwise fill thousands of cells each.
+  double largest = 0;
+  for (const Box& b : boxes)
+  {
+    largest = std::max({ largest, b[3] - b[0], b[4] - b[1], b[5] - b[2] });
+  }
+  const double cell = n > 0 ? std::max({ size / n, largest / 16, 1e-12 }) : 1.0;
   auto index = [cell](double x) { return static_cast<long long>(std::floor(x / cell)); };
   auto key = [](long long i, long long j, long long k)
   { return (i & 0x1FFFFF) | ((j & 0x1FFFFF) << 21) | ((k & 0x1FFFFF) << 42); };

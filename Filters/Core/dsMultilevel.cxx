@@ -328,12 +328,6 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     // either way) is taken: stopping at the first below it would quadruple the start's
     // triangles for a sigma_0 a little smaller.
     const double target = std::max(InitialEdgeSigmaRatio * sigma, 2.0 * voxel);
-    // Elongated triangles first (a long box's faces: 12 x 84 voxels, 3 x 21 after the splits
-    // below): at their creases the umbrella points along the crease, §5's rule turns the
-    // region force into a slide along it, and the faces overtake the crease until they fold
-    // (docs/METHOD.md §7). Their edges longer than sqrt 2 x the target and twice the shortest
-    // edge of a triangle they border are halved; a start of about isotropic triangles is left
-    // as it is.
     // Several objects are subdivided one by one, each to its own edges: a seed of picks around
     // a large part has edges tens of voxels long, a click's sphere edges of a voxel, and the
     // mean of both would leave the large one as it is.
@@ -723,16 +717,21 @@ bool MultilevelSolver::SetUpLevel(
     // not reached (a horn the fading force could not enter against the internal force of its
     // narrow tip); everywhere else the two-sided force of a click's competition range holds the
     // surface where the range ends (docs/METHOD.md §9.3).
-    const double decay = state.FrontLevel ? 1.0 : RegionFade(sigma, state.FirstSigma);
+    // Several objects fade each by its own sigma_0 (a click beside a large object keeps its
+    // force as long as it would alone).
+    const bool own = this->StartSigmas.size() == this->ObjectRegions.size();
+    const double decay = state.FrontLevel || own ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
     std::vector<Solver::RegionModel> models;
-    for (const ObjectRegion& o : this->ObjectRegions)
+    for (std::size_t o = 0; o < this->ObjectRegions.size(); ++o)
     {
+      const ObjectRegion& r = this->ObjectRegions[o];
       Solver::RegionModel m;
-      m.On = o.On;
-      m.Low = o.Low;
-      m.High = o.High;
-      m.OutwardOnly = o.OutwardOnly;
+      m.On = r.On;
+      m.Low = r.Low;
+      m.High = r.High;
+      m.OutwardOnly = r.OutwardOnly;
+      m.Scale = own && !state.FrontLevel ? RegionFade(sigma, this->StartSigmas[o]) : 1.0;
       models.push_back(m);
     }
     state.LevelSolver.SetRegionForce(
@@ -1146,7 +1145,7 @@ bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::stri
   this->ClearResults();
   std::string msg;
   RunState state;
-  if (!this->Start(image, mesh, state, &msg) || !this->CheckStartsApart(mesh) ||
+  if (!this->Start(image, mesh, state, &msg) || !this->CheckStartsApart(mesh, &msg) ||
     !this->RunLevels(image, mesh, state, &msg))
   {
     if (error)
@@ -1171,14 +1170,15 @@ bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::stri
   return true;
 }
 
-bool MultilevelSolver::CheckStartsApart(const TriangleMesh& mesh)
+bool MultilevelSolver::CheckStartsApart(const TriangleMesh& mesh, std::string* error)
 {
-  // The contact keeps objects apart, it cannot pull crossing starts apart (dsContact.h).
+  // The contact keeps objects apart; it cannot pull crossing starts apart (dsContact.h).
   const int crossing = mesh.NumberOfObjects() > 1 ? CountCrossingPairs(mesh) : 0;
   if (crossing > 0)
   {
-    this->Warnings.push_back("the start surfaces of different objects already cross (" +
-      std::to_string(crossing) + " pairs of triangles): they stay crossed there");
+    *error = "the start surfaces of different objects cross (" + std::to_string(crossing) +
+      " pairs of triangles): move their seeds apart or make them smaller";
+    return false;
   }
   return true;
 }

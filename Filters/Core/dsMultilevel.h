@@ -383,7 +383,7 @@ public:
   /// The region model of each object (mesh.Objects; one when the start has none).
   const std::vector<ObjectRegion>& GetObjectRegions() const { return this->ObjectRegions; }
   /// Triangle pairs of different objects that intersect on the delivered surface (0 with one
-  /// object; dsContact.h keeps it 0 unless the starts already crossed).
+  /// object; dsContact.h keeps it 0, and starts that cross are refused).
   int GetCrossingPairs() const { return this->Crossings; }
 
   /// The marking rule of step 3, exposed for tests: one mark per triangle.
@@ -490,8 +490,8 @@ private:
   /// Several objects: the step limits for the next sweep (StepLimits), the last sweep's longest
   /// step `lastStep` (0 at a level's first).
   void LimitSteps(const TriangleMesh& mesh, double lastStep);
-  /// A warning when the start surfaces of different objects already cross; always true.
-  bool CheckStartsApart(const TriangleMesh& mesh);
+  /// False (with a message) when the start surfaces of different objects cross.
+  bool CheckStartsApart(const TriangleMesh& mesh, std::string* error);
   double Voxel = 0; ///< the image's mean spacing (the contact's clearance and budget)
 };
 } // namespace dsurf

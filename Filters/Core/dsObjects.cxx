@@ -39,6 +39,15 @@ bool AssignObjects(TriangleMesh& mesh, const std::vector<long long>& triangleLab
   ids = triangleLabels;
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  if (static_cast<int>(ids.size()) > MaxObjects)
+  {
+    if (error)
+    {
+      *error = "the start has " + std::to_string(ids.size()) + " ObjectId values; at most " +
+        std::to_string(MaxObjects) + " objects are solved in one run";
+    }
+    return false;
+  }
   mesh.Objects.assign(mesh.Points.size(), -1);
   for (std::size_t t = 0; t < mesh.Triangles.size(); ++t)
   {

@@ -456,7 +456,7 @@ Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) 
         this->RegionModels[this->LocalObjects.empty() ? 0 : this->LocalObjects[v]];
       double speed = model.On ? RegionSpeed(intensity, model.Low, model.High) : 0.0;
       speed = model.OutwardOnly ? std::max(speed, 0.0) : speed;
-      force = force + (this->RegionScale * speed / nn) * normal;
+      force = force + (this->RegionScale * model.Scale * speed / nn) * normal;
     }
   }
   return force;

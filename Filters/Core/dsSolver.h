@@ -122,6 +122,7 @@ public:
     double Low = 0, High = 0;
     bool OutwardOnly = false;
     bool On = true;
+    double Scale = 1.0; ///< times the force's scale: the object's own fade
   };
   void SetRegionForce(const ImageView& image, std::vector<RegionModel> models, double scale)
   {
