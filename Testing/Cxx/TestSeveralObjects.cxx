@@ -4,12 +4,7 @@
 // - Assembly (SeveralObjectPhantoms.h: two blocks of one material joined by a darker glue line
 //   one voxel thick), a click in each: each surface within half a voxel (mean, both ways) of its
 //   own block, no intersecting pair between them, no voxel inside both.
-// - Spine (ObjectPhantoms.h), a click in each of three adjacent vertebrae: no intersecting pair,
-//   no voxel inside two, each vertebra within half a voxel (mean, both ways).
-// - Engine (SeveralObjectPhantoms.h: a block with two bores, a piston in each with one voxel of
-//   air around it): the block from 40 picks with the tetrahedra in the bores removed (genus 2),
-//   a click in each piston: each within half a voxel (mean, both ways), none crossing another,
-//   no voxel inside two.
+// - The spine and the engine: TestSeveralObjectsMeet.
 // - One object with an ObjectId gives the same surface as without one, and the output carries
 //   ObjectId per point and per cell and the per-object field data.
 // - A warm start (ContinueFromLastResult) keeps the objects; starts that cross are an error.
@@ -17,11 +12,10 @@
 // - Delaunay Seed Surface seeds each ObjectId group on its own and numbers TetraIds on.
 #include "DSTestHelpers.h"
 #include "OneClick.h"
-#include "SeveralObjects.h"
+#include "SeveralObjectsCheck.h"
 #include "TestDelaunaySeedUtils.h"
 
 #include "vtkCommand.h"
-#include "vtkExtractEdges.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <iostream>
@@ -30,46 +24,6 @@ using namespace dsobjects;
 
 namespace
 {
-vtkIdType CountEdges(vtkPolyData* surface)
-{
-  vtkNew<vtkExtractEdges> edges;
-  edges->SetInputData(surface);
-  edges->Update();
-  return edges->GetOutput()->GetNumberOfLines();
-}
-
-/// Scores every object of `result` against its label; checks what the user checks.
-void CheckObjects(const SeveralPhantom& s, const SeveralResult& result, const std::vector<int>& ids,
-  const std::vector<double>& meanGoals, const std::string& name)
-{
-  vtkPolyData* out = result.Surface;
-  std::cout << name << ": " << out->GetNumberOfPoints() << " vertices, " << result.Seconds << " s, "
-            << FieldValue(out, "CrossingPairs") << " crossing pairs, "
-            << FieldValue(out, "SelfIntersections") << " intersecting pairs" << std::endl;
-  DS_CHECK(FieldValue(out, "CrossingPairs") == 0, name + ": no pair of objects crosses");
-  DS_CHECK(FieldValue(out, "SelfIntersections") == 0, name + ": no surface intersects itself");
-  DS_CHECK(out->GetPointData()->GetArray("ObjectId") && out->GetCellData()->GetArray("ObjectId"),
-    name + ": ObjectId per point and per cell");
-  std::vector<std::vector<unsigned char>> interiors(ids.size());
-  for (size_t i = 0; i < ids.size(); ++i)
-  {
-    vtkSmartPointer<vtkPolyData> part = ObjectPart(out, ids[i]);
-    const ObjectScore sc = ScoreObject(part, s.Phantom, s.Labels[i], interiors[i]);
-    const double voxel = s.Phantom.Image->GetSpacing()[0];
-    std::cout << "  object " << ids[i] << ": " << sc.Vertices << " vertices; surface -> label "
-              << sc.SurfaceMean / voxel << " (95 % " << sc.SurfaceP95 / voxel
-              << "), label -> surface " << sc.ReferenceMean / voxel << " (95 % "
-              << sc.ReferenceP95 / voxel << ") voxels; Dice " << sc.Dice << ", volume ratio "
-              << sc.VolumeRatio << std::endl;
-    DS_CHECK_LE(
-      sc.SurfaceMean / voxel, meanGoals[i], name + ": surface -> its label, mean (voxels)");
-    DS_CHECK_LE(
-      sc.ReferenceMean / voxel, meanGoals[i], name + ": its label -> surface, mean (voxels)");
-  }
-  const long long overlap = OverlapVoxels(interiors);
-  std::cout << "  voxels inside two objects: " << overlap << std::endl;
-  DS_CHECK(overlap == 0, name + ": no voxel inside two objects");
-}
 
 void Assembly()
 {
@@ -132,39 +86,6 @@ void WarmStartAndCrossingStarts()
   crossing->Update();
   DS_CHECK(messages->Errors == 1 && crossing->GetOutput()->GetNumberOfPoints() == 0,
     "crossing starts: an error and an empty output");
-}
-
-void Spine()
-{
-  const SeveralPhantom s = SpineThreeClicks();
-  const std::vector<int> ids = { 2, 3, 4 };
-  const SeveralResult r = RunSeveral(s.Phantom.Image, SeedObjects(LabelledPoints(s.Clicks, ids)));
-  CheckObjects(s, r, ids, { 0.5, 0.5, 0.5 }, "spine, three clicks");
-}
-
-void Engine()
-{
-  // The block from picks, the tetrahedra a user sees inside the bores removed (their centroids
-  // in the bores' dark air): a seed of genus 2; a click in each piston.
-  const SeveralPhantom s = EnginePhantom();
-  std::vector<Point3> points = EngineBlockPicks();
-  std::vector<int> ids(points.size(), 1);
-  points.push_back(s.Clicks[1]);
-  points.push_back(s.Clicks[2]);
-  ids.push_back(2);
-  ids.push_back(3);
-  vtkSmartPointer<vtkPolyData> labelled = LabelledPoints(points, ids);
-  const std::vector<vtkIdType> inBores = TetrahedraInBores(labelled);
-  vtkSmartPointer<vtkPolyData> seed = SeedObjects(labelled, inBores);
-  const SeveralResult r = RunSeveral(s.Phantom.Image, seed);
-  vtkSmartPointer<vtkPolyData> block = ObjectPart(r.Surface, 1);
-  const long long euler =
-    block->GetNumberOfPoints() - CountEdges(block) + block->GetNumberOfCells();
-  std::cout << "engine: block seed from " << points.size() - 2 << " picks, " << inBores.size()
-            << " tetrahedra removed in the bores; the block's Euler characteristic " << euler
-            << std::endl;
-  DS_CHECK(euler == -2, "engine: the block has genus 2");
-  CheckObjects(s, r, { 1, 2, 3 }, { 0.5, 0.5, 0.5 }, "engine");
 }
 
 void OneObjectUnchanged()
@@ -232,8 +153,6 @@ int TestSeveralObjects(int, char*[])
   Assembly();
   GivenRanges();
   WarmStartAndCrossingStarts();
-  Spine();
-  Engine();
   return dstest::Result("TestSeveralObjects");
 }
 
