@@ -7,11 +7,14 @@
 //   assembly  SeveralObjectPhantoms.h: two blocks joined by a darker glue line, a click in each
 //   engine    SeveralObjectPhantoms.h: the block from 40 picks with the tetrahedra in its bores
 //             removed (genus 2), a click in each piston
+//   one       ObjectPhantoms.h's horned phantom, one click with an ObjectId and without, three
+//             runs of each interleaved: the time of one object (the goal: within 20 %)
 //   nuclei    Colin27 (mricron-data ch2.nii.gz), the four clicks of
 //             Examples/colin27_nuclei_clicks.csv (caudates and putamina); AAL (aal.nii.gz)
 //             labels 71-74 without their voxels darker than 60 in ch2 (CSF)
 //
 //   BenchSeveralObjects [CASE ...]    (CASE: a part of a case's name; none: every case)
+#include "../Cxx/ObjectPhantoms.h"
 #include "../Cxx/SeveralObjects.h"
 
 #include "vtkDSNIFTIImageReader.h"
@@ -169,6 +172,27 @@ bool Nuclei(Case& c)
   return true;
 }
 
+/// One object with an ObjectId against none: the same solve, timed (fastest of three each).
+void OneObject()
+{
+  const ObjectPhantom p = HornedPhantom();
+  vtkSmartPointer<vtkPolyData> with = SeedObjects(LabelledPoints({ p.Click }, { 7 }));
+  vtkSmartPointer<vtkPolyData> without = SeedObjects(LabelledPoints({ p.Click }, { 7 }));
+  without->GetCellData()->RemoveArray("ObjectId");
+  double best[2] = { 1e300, 1e300 };
+  long long vertices[2] = { 0, 0 };
+  for (int run = 0; run < 3; ++run)
+    for (int k = 0; k < 2; ++k)
+    {
+      const SeveralResult r = RunSeveral(p.Image, k == 0 ? with : without);
+      best[k] = std::min(best[k], r.Seconds);
+      vertices[k] = r.Surface->GetNumberOfPoints();
+    }
+  std::printf("| one object (horned, one click) | ObjectId 7 / none | 7 | %.3f / %.3f (%.2fx) | "
+              "%lld / %lld | | | | | |\n",
+    best[0], best[1], best[0] / best[1], vertices[0], vertices[1]);
+}
+
 bool Wanted(const std::vector<std::string>& filters, const std::string& name)
 {
   if (filters.empty())
@@ -194,6 +218,8 @@ int main(int argc, char* argv[])
     Run(Assembly());
   if (Wanted(filters, "engine"))
     Run(Engine());
+  if (Wanted(filters, "one"))
+    OneObject();
   Case nuclei;
   if (Wanted(filters, "nuclei"))
   {
