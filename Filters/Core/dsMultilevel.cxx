@@ -419,6 +419,7 @@ bool MultilevelSolver::SolveLevel(
         std::min(
           P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
   solver.SetStepLimits(contact ? &this->StepLimits : nullptr);
+  this->Contact.Reset(); // the mesh may have changed since the last level (refinement, smoothing)
   std::vector<SweepStatistics> batchStats;
   const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
   for (int s = 0; s < cap && !stop && !rec.Converged;)
