@@ -257,6 +257,7 @@ ScaleSpaceParameters InitialSigmaProbeParameters(const ImageGeometry& geometry, 
   probeParameters.Sigma = geometry.MeanSpacing();
   probeParameters.EdgeNormalization = EdgeNormalization::Local;
   probeParameters.NumberOfThreads = numberOfThreads;
+  probeParameters.ComputeForce = false; // the rays sample P only
   return probeParameters;
 }
 

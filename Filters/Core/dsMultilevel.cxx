@@ -398,6 +398,56 @@ void MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
   this->Contact.Limits(mesh, ContactClearanceVoxels * this->Voxel, budget, this->StepLimits);
 }
 
+namespace
+{
+/// Tells a level whose vertices step back and forth in place (StallWindowSweeps, StallNetShare):
+/// the mean net displacement since the window began against the mean corrections summed over
+/// it. Checked between batches, where the mesh holds the solver's positions; the same on every
+/// process of a distributed solve (each holds the whole mesh and the reduced statistics).
+class StallWatch
+{
+public:
+  StallWatch(const TriangleMesh& mesh, double sigma)
+    : Anchor(mesh.Points)
+    , Sigma(sigma)
+  {
+  }
+  void Add(const SweepStatistics& st)
+  {
+    ++this->Sweeps;
+    this->Travel += st.MeanCorrection;
+    this->Moved = st.MovedVertices;
+  }
+  /// After a batch that ended at the level's sweep `s`: true when a window ended there (s a
+  /// multiple of StallWindowSweeps) with the vertices back near where it began; else a window
+  /// that ended starts again from here.
+  bool Rests(const TriangleMesh& mesh, int s)
+  {
+    if (s % StallWindowSweeps != 0 || this->Sweeps == 0)
+    {
+      return false;
+    }
+    double net = 0;
+    for (std::size_t v = 0; v < mesh.Points.size() && v < this->Anchor.size(); ++v)
+    {
+      net += Norm(mesh.Points[v] - this->Anchor[v]);
+    }
+    net /= std::max(1, this->Moved);
+    const bool rests = net < StallNetShare * this->Travel && net < StallSigmaShare * this->Sigma;
+    this->Anchor = mesh.Points;
+    this->Sweeps = 0;
+    this->Travel = 0;
+    return rests;
+  }
+
+private:
+  std::vector<Vec3> Anchor;
+  double Sigma;
+  int Sweeps = 0, Moved = 0;
+  double Travel = 0;
+};
+} // namespace
+
 bool MultilevelSolver::SolveLevel(
   Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
 {
@@ -422,6 +472,7 @@ bool MultilevelSolver::SolveLevel(
   this->Contact.Reset(); // the mesh may have changed since the last level (refinement, smoothing)
   std::vector<SweepStatistics> batchStats;
   const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
+  StallWatch stall(mesh, rec.Sigma);
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
     // MaxSweeps: the run stops exactly there (the batch is cut short to reach it).
@@ -445,7 +496,10 @@ bool MultilevelSolver::SolveLevel(
     }
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
-    solver.Sweeps(std::min({ batchSize, cap - s, budget }),
+    // A batch ends at each stall window's end, so that the window's check (StallWatch) sees the
+    // same sweeps whatever the batches (bricks end them early; a distributed solve has none).
+    solver.Sweeps(
+      std::min({ batchSize, cap - s, budget, StallWindowSweeps - s % StallWindowSweeps }),
       [&](const SweepStatistics& st)
       {
         batchStats.push_back(st);
@@ -485,6 +539,13 @@ bool MultilevelSolver::SolveLevel(
         stop = true;
         break;
       }
+      stall.Add(st);
+    }
+    // A front level has its own rest (its fastest vertex) and cap.
+    if (!stop && !rec.Converged && rec.FrontRest <= 0 && rec.Level == 0 && stall.Rests(mesh, s))
+    {
+      rec.Converged = true;
+      rec.Stalled = true;
     }
     // Every process of a distributed solve reaches GoOn's reduction here, with or without a
     // progress callback of its own (a process without one votes to go on).

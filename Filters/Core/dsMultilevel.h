@@ -194,6 +194,15 @@ constexpr int MaxFrontLevels = 32;
 /// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
 /// keep one vertex stepping back and forth for ever.
 constexpr int FrontLevelSweeps = 200;
+/// The first level rests when its vertices step back and forth in place (docs/METHOD.md §9.7):
+/// every StallWindowSweeps sweeps, the vertices' mean net displacement over the window is below
+/// StallNetShare of their mean corrections summed over it and below StallSigmaShare of sigma.
+/// A surface that travels or settles keeps most of what it moves; one held where a force
+/// changes sign at noise (the region force at its range's end) cancels most of it, and the slow
+/// drift left is far inside the next level's basin (about its sigma).
+constexpr int StallWindowSweeps = 32;
+constexpr double StallNetShare = 0.3;
+constexpr double StallSigmaShare = 0.1;
 /// Front levels follow a front of at most this share of the surface's vertices.
 constexpr double FrontShare = 0.1;
 /// Front levels split the triangles around the front down to this many voxels: a horn two
@@ -268,7 +277,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int Level = 0;
   double Sigma = 0;
   int Sweeps = 0;
-  bool Converged = false; ///< mean |c| fell below the tolerance before the cap
+  bool Converged = false; ///< mean |c| fell below the tolerance before the cap, or it stalled
+  bool Stalled = false;   ///< its vertices stepped back and forth in place (StallWindowSweeps)
   int Vertices = 0;
   int Triangles = 0;
   double MeanEdgeLength = 0;

@@ -107,8 +107,6 @@ bool PieceProbe(const ImagePiece& piece, const VoxelBox& reached, const VoxelBox
     FinishProbeReductions(
       reduce, reductions, firstMaximum, std::numeric_limits<double>::infinity());
   }
-  probe.Force.clear(); // only the potential is sampled
-  probe.Force.shrink_to_fit();
   return ok;
 }
 } // namespace

@@ -602,6 +602,13 @@ void SigmaVoxels(double sigma, const ImageGeometry& geometry, double sv[3])
   }
 }
 
+/// The local edge normalisation asked for P alone (ScaleSpaceParameters::ComputeForce).
+bool PotentialOnly(const ScaleSpaceParameters& parameters)
+{
+  return !parameters.ComputeForce && parameters.NormalizePotential &&
+    parameters.EdgeNormalization == EdgeNormalization::Local;
+}
+
 /// P and -grad P with the local edge normalisation (EdgeNormalization::Local), in the caller's
 /// SMP scope: P = -(Edge g / (G_2sigma * g + floor) + ...) and -grad P by central differences
 /// of P (the chain rule of PotentialAndForceAt would need the local mean's gradient too).
@@ -616,6 +623,10 @@ void LocallyNormalisedField(const ImageView& image, const ScaleSpaceParameters& 
   const EdgeStatistics stats = EdgeStatisticsOf(smooth, dims, toWorld, potential, parameters);
   float* scratch = force + dims[0] * static_cast<std::ptrdiff_t>(dims[1]) * dims[2];
   CombinePotential(potential, smooth, scratch, dims, sigmaVoxels, stats, parameters);
+  if (!parameters.ComputeForce)
+  {
+    return;
+  }
 
   // Force = -grad P; the smoothed image is no longer needed, so the buffer is free.
   ForEachVoxelSlice(dims,
@@ -689,8 +700,9 @@ bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParamete
   // Finite inputs can still overflow single precision: a weight near VTK_DOUBLE_MAX, or a
   // sigma so large that the recursive filter's coefficients are not finite.
   const std::size_t n = static_cast<std::size_t>(geometry.NumberOfVoxels());
+  const std::size_t forceValues = PotentialOnly(parameters) ? 0 : 3 * n;
   if (!std::all_of(potential, potential + n, [](float v) { return std::isfinite(v); }) ||
-    !std::all_of(force, force + 3 * n, [](float v) { return std::isfinite(v); }))
+    !std::all_of(force, force + forceValues, [](float v) { return std::isfinite(v); }))
   {
     if (error)
     {
@@ -792,12 +804,19 @@ bool ComputeScaleSpaceForce(const ImageView& image, const ScaleSpaceParameters& 
   }
   const std::size_t n = static_cast<std::size_t>(image.Geometry.NumberOfVoxels());
   out.Potential.resize(n);
-  out.Force.resize(3 * n);
+  // P alone: the force buffer is the local normalisation's scratch (G_sigma * f and G_2sigma * g).
+  const bool potentialOnly = PotentialOnly(parameters);
+  out.Force.resize((potentialOnly ? 2 : 3) * n);
   if (!ComputeScaleSpaceForceInto(image, parameters, out.Potential.data(), out.Force.data(), error))
   {
     out.Potential.clear();
     out.Force.clear();
     return false;
+  }
+  if (potentialOnly)
+  {
+    out.Force.clear();
+    out.Force.shrink_to_fit();
   }
   return true;
 }

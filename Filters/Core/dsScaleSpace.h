@@ -72,6 +72,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   /// voxels (`volume`, the image's values as floats), sigmaVoxels per axis, the recursive
   /// filter's state passed between the pieces. Empty: SmoothGaussianSeparable.
   std::function<void(float* volume, const double sigmaVoxels[3])> Smooth;
+  /// With the local edge normalisation, false computes P alone (ComputeScaleSpaceForce leaves
+  /// Force empty and works in 12 bytes a voxel instead of 16): the sigma_0 probe samples only P
+  /// (dsInitialSigma.h). Ignored with the global normalisation.
+  bool ComputeForce = true;
 };
 
 class FieldBricks;

@@ -5,7 +5,8 @@
 // Times are wall-clock with the CPU time of the process beside them (Stopwatch).
 // - our filter: vtkDeformableSurfaceFilter, every parameter default, started from the box
 //   enclosing the volume (vtkCubeSource, 12 triangles, half a voxel inside the border: the
-//   paper's cube test); the time is its Update();
+//   paper's cube test), or from a sphere near the object or one click (RunOursNear,
+//   RunOursClick); the time is its Update();
 // - vtkFlyingEdges3D at the value halfway between background and object; the time is its
 //   Update().
 #ifndef BenchMethods_h
@@ -17,14 +18,19 @@
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkDeformableSurfaceFilter.h"
+#include "vtkDelaunaySeedSurface.h"
 #include "vtkFieldData.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSphereSource.h"
 
 #include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 namespace dsbench
@@ -80,17 +86,17 @@ inline int FieldInt(vtkPolyData* surface, const char* name)
   return a && a->GetNumberOfTuples() > 0 ? static_cast<int>(a->GetTuple1(0)) : -1;
 }
 
-/// Our filter with every default but NumberOfThreads (0 = all cores).
-inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
+/// Our filter from `start` with every default but NumberOfThreads (0 = all cores) and what
+/// `configure` sets; the time is the filter's Update() alone.
+inline std::string RunOursFrom(vtkImageData* image, const Phantom& ph, int threads,
+  vtkPolyData* start, const std::function<void(vtkDeformableSurfaceFilter*)>& configure = nullptr)
 {
-  const double n = ph.N;
-  vtkNew<vtkCubeSource> box;
-  box->SetBounds(0.5, n - 1.5, 0.5, n - 1.5, 0.5, n - 1.5);
-  box->Update();
   vtkNew<vtkDeformableSurfaceFilter> filter;
   filter->SetInputData(0, image);
-  filter->SetInitialSurfaceData(box->GetOutput());
+  filter->SetInitialSurfaceData(start);
   filter->SetNumberOfThreads(threads);
+  if (configure)
+    configure(filter);
   const Stopwatch clock;
   filter->Update();
   const std::string time = clock.Cell();
@@ -101,6 +107,46 @@ inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
   std::snprintf(
     notes, sizeof notes, "%d levels, %d sweeps", FieldInt(out, "Levels"), FieldInt(out, "Sweeps"));
   return TimeAndMeasures(time, out, ph, notes);
+}
+
+/// Our filter from the box enclosing the volume (half a voxel inside the border).
+inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
+{
+  const double n = ph.N;
+  vtkNew<vtkCubeSource> box;
+  box->SetBounds(0.5, n - 1.5, 0.5, n - 1.5, 0.5, n - 1.5);
+  box->Update();
+  return RunOursFrom(image, ph, threads, box->GetOutput());
+}
+
+/// Our filter from a sphere near the object: ParaView's Sphere (24 x 24) of radius 0.3 n at
+/// the volume's centre, around the ball of radius n/4 (issue 28's near start).
+inline std::string RunOursNear(vtkImageData* image, const Phantom& ph, int threads)
+{
+  const double c = 0.5 * (ph.N - 1);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(c, c, c);
+  sphere->SetRadius(0.3 * ph.N);
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(24);
+  sphere->Update();
+  return RunOursFrom(image, ph, threads, sphere->GetOutput());
+}
+
+/// Our filter from one click at the volume's centre (inside the ball): vtkDelaunaySeedSurface
+/// of that point, every default, then RegionWeight 1 (issue 28's one-click start).
+inline std::string RunOursClick(vtkImageData* image, const Phantom& ph, int threads)
+{
+  const double c = 0.5 * (ph.N - 1);
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(c, c, c);
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  vtkNew<vtkDelaunaySeedSurface> seed;
+  seed->SetInputData(cloud);
+  seed->Update();
+  return RunOursFrom(image, ph, threads, seed->GetOutput(),
+    [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(1.0); });
 }
 
 /// vtkFlyingEdges3D at the phantom's mid value, all cores (vtkSMPTools).

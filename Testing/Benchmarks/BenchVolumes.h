@@ -5,6 +5,8 @@
 // (background 0, object 1) or as a CT-like uint16 volume (background 1000, object 2000); either
 // with optional Gaussian noise. The noise is a hash of the voxel index (no generator state),
 // so the volume is the same for any thread count and run; filled in parallel (1024^3 in seconds).
+// The near-start scene of issue 28 (NearScene) is a CT-like ball (value 1100) beside a darker
+// block (700, half side n/10 at (c + 0.36 n, c + 0.36 n, c)) on background 100, noise s.d. 60.
 #ifndef BenchVolumes_h
 #define BenchVolumes_h
 
@@ -38,16 +40,22 @@ struct Phantom
   double Size = 32; ///< sphere radius or cube half side, voxels
   double Noise = 0; ///< noise standard deviation as a fraction of the contrast
   bool CT = false;  ///< uint16 1000/2000 instead of float 0/1
+  /// CT only: the background and the object's value above it, and a second, darker object (a
+  /// block of half side BlockSize at (c + 0.36 n, c + 0.36 n, c), BlockContrast above the
+  /// background; none when 0); the noise's seed.
+  double CTBackground = 1000, CTContrast = 1000;
+  double BlockSize = 0, BlockContrast = 0;
+  std::uint64_t Seed = 12345;
   double Voxels() const { return double(N) * N * N; }
-  double Background() const { return CT ? 1000.0 : 0.0; }
-  double Contrast() const { return CT ? 1000.0 : 1.0; }
+  double Background() const { return CT ? CTBackground : 0.0; }
+  double Contrast() const { return CT ? CTContrast : 1.0; }
   /// The iso-value halfway between background and object (vtkFlyingEdges3D's level).
   double MidValue() const { return Background() + 0.5 * Contrast(); }
   double InputBytes() const { return Voxels() * (CT ? 2.0 : 4.0); }
 };
 
-/// A standard normal variate from the voxel index: splitmix64 then Box-Muller.
-inline double HashNormal(std::uint64_t index)
+/// A standard normal variate from the voxel index and a seed: splitmix64 then Box-Muller.
+inline double HashNormal(std::uint64_t index, std::uint64_t seed = 12345)
 {
   auto mix = [](std::uint64_t z)
   {
@@ -56,7 +64,7 @@ inline double HashNormal(std::uint64_t index)
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
   };
-  const std::uint64_t a = mix(index * 2 + 12345), b = mix(index * 2 + 1 + 12345);
+  const std::uint64_t a = mix(index * 2 + seed), b = mix(index * 2 + 1 + seed);
   const double u1 = (double(a >> 11) + 0.5) / 9007199254740992.0; // (0, 1)
   const double u2 = double(b >> 11) / 9007199254740992.0;
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
@@ -68,6 +76,34 @@ inline double InsideFraction(const Phantom& ph, double x, double y, double z)
   if (ph.Form == Shape::Cube) // faces halfway between voxels: exactly 0 or 1
     return std::abs(x) < ph.Size && std::abs(y) < ph.Size && std::abs(z) < ph.Size ? 1.0 : 0.0;
   return dsphantom::SphereInsideFraction(x, y, z, ph.Size);
+}
+
+/// The phantom's value at offset (x, y, z) from the centre, before noise.
+inline double CleanValue(const Phantom& ph, double x, double y, double z)
+{
+  double v = ph.Background() + ph.Contrast() * InsideFraction(ph, x, y, z);
+  const double off = 0.36 * ph.N, b = ph.BlockSize;
+  if (b > 0 && std::abs(x - off) < b && std::abs(y - off) < b && std::abs(z) < b)
+    v += ph.BlockContrast;
+  return v;
+}
+
+/// Issue 28's near-start scene at n^3 (see the file's comment).
+inline Phantom NearScene(int n)
+{
+  Phantom ph;
+  ph.N = n;
+  ph.Form = Shape::Sphere;
+  ph.Size = n / 4.0;
+  ph.CT = true;
+  ph.CTBackground = 100;
+  ph.CTContrast = 1000;
+  ph.BlockSize = n / 10.0;
+  ph.BlockContrast = 600;
+  ph.Noise = 60.0 / ph.CTContrast;
+  ph.Seed = 5;
+  ph.Name = "ball+block " + std::to_string(n) + "^3";
+  return ph;
 }
 
 template <typename T>
@@ -84,9 +120,9 @@ void FillPhantom(const Phantom& ph, T* out)
         for (int i = 0; i < n; ++i)
         {
           const std::uint64_t index = static_cast<std::uint64_t>(row) * n + i;
-          double v = ph.Background() + ph.Contrast() * InsideFraction(ph, i - c, j - c, k - c);
+          double v = CleanValue(ph, i - c, j - c, k - c);
           if (ph.Noise > 0)
-            v += ph.Noise * ph.Contrast() * HashNormal(index);
+            v += ph.Noise * ph.Contrast() * HashNormal(index, ph.Seed);
           if (ph.CT)
             v = std::round(std::min(65535.0, std::max(0.0, v)));
           out[index] = static_cast<T>(v);
