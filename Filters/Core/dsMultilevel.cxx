@@ -295,12 +295,10 @@ void AppendObject(TriangleMesh& all, const TriangleMesh& part, int object)
 }
 } // namespace
 
-bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
+bool MultilevelSolver::PrepareRegions(const ImageView& image, TriangleMesh& mesh,
   RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
 {
-  const ImageGeometry& geometry = image.Geometry;
   const MultilevelParameters& P = this->Parameters;
-  const double voxel = geometry.MeanSpacing();
   std::string msg;
   if (P.RegionWeight > 0)
   {
@@ -319,6 +317,20 @@ bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
     }
   }
   region = P.RegionWeight > 0 && this->RegionRange(image, mesh, sigma);
+  return true;
+}
+
+bool MultilevelSolver::PrepareStart(const ImageView& image, TriangleMesh& mesh,
+  RedGreenRefiner& refiner, double sigma, bool& region, std::string* error)
+{
+  const ImageGeometry& geometry = image.Geometry;
+  const MultilevelParameters& P = this->Parameters;
+  const double voxel = geometry.MeanSpacing();
+  std::string msg;
+  if (!this->PrepareRegions(image, mesh, refiner, sigma, region, error))
+  {
+    return false;
+  }
   if (P.SubdivideInitialSurface)
   {
     // Uniform 1 -> 4 subdivision at the midpoints keeps the start shape; every vertex is N,
@@ -832,12 +844,13 @@ void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
 {
   // Folds the forces left (two parts of the surface pushed together) are smoothed open
   // (dsUntangle.h). Its umbrella steps know nothing of other objects: where smoothing one
-  // object's folds would pass through another, the folds stay (docs/METHOD.md §9.9).
+  // object's folds would pass through another, the folds stay (docs/METHOD.md §9.9). Objects
+  // never cross before it (the starts are checked, the sweeps keep the clearance, refinement is
+  // guarded): any crossing pair is the smoothing's.
   const bool several = mesh.NumberOfObjects() > 1;
   const std::vector<Vec3> before = several ? mesh.Points : std::vector<Vec3>();
-  const int crossingBefore = several ? CountCrossingPairs(mesh) : 0;
   rec.Folds = Untangle(mesh);
-  if (several && CountCrossingPairs(mesh) > crossingBefore)
+  if (several && CountCrossingPairs(mesh) > 0)
   {
     mesh.Points = before;
     rec.Folds.After = CountSelfIntersections(mesh);
@@ -938,11 +951,11 @@ bool MultilevelSolver::Refine(TriangleMesh& mesh, RunState& state, const std::ve
 {
   // Several objects: a green pair refined red gets triangles that cut across its crease, off
   // the surface by the crease's bend, which within the clearance could make two objects cross;
-  // such a refinement is undone (docs/METHOD.md §9.9).
+  // such a refinement is undone (docs/METHOD.md §9.9). Objects never cross before it (see
+  // SmoothFolds): any crossing pair is the refinement's.
   const bool several = mesh.NumberOfObjects() > 1;
   const TriangleMesh before = several ? mesh : TriangleMesh();
   const RedGreenRefiner refinerBefore = several ? state.Refiner : RedGreenRefiner();
-  const int crossingBefore = several ? CountCrossingPairs(mesh) : 0;
   LevelRecord& rec = this->Levels.back();
   rec.Refinement = state.Refiner.Refine(mesh, marks, prolongation);
   if (!rec.Refinement.Ok)
@@ -951,7 +964,7 @@ bool MultilevelSolver::Refine(TriangleMesh& mesh, RunState& state, const std::ve
     return false;
   }
   mesh.ExtendObjects();
-  if (several && CountCrossingPairs(mesh) > crossingBefore)
+  if (several && CountCrossingPairs(mesh) > 0)
   {
     mesh = before;
     state.Refiner = refinerBefore;
@@ -1184,22 +1197,15 @@ bool MultilevelSolver::EstimateRegions(
   std::string msg;
   RedGreenRefiner refiner;
   double sigma = 0;
+  bool region = false;
   const bool ok = image.Data && !mesh.Triangles.empty() && refiner.Initialize(mesh, &msg) &&
-    this->ObjectSigmas(image, mesh, sigma, &msg);
-  if (!ok)
+    this->ObjectSigmas(image, mesh, sigma, &msg) &&
+    this->PrepareRegions(image, mesh, refiner, sigma, region, &msg);
+  if (!ok && error)
   {
-    if (error)
-    {
-      *error = msg.empty() ? std::string("no volume or no initial surface") : msg;
-    }
-    return false;
+    *error = msg.empty() ? std::string("no volume or no initial surface") : msg;
   }
-  if (this->Parameters.RegionWeight > 0)
-  {
-    mesh.OrientPiecesOutward();
-    this->RegionRange(image, mesh, sigma);
-  }
-  return true;
+  return ok;
 }
 
 bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::string* error)

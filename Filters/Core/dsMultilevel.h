@@ -476,6 +476,10 @@ private:
   /// sigma_0 by the rule of Sigma / SigmaFraction / the start.
   bool FirstSigma(
     const ImageView& image, const TriangleMesh& mesh, double& sigma, std::string* error);
+  /// Closed pieces turned outward and the region force's range (with RegionWeight > 0; region =
+  /// whether it is on): the part of PrepareStart that EstimateRegions shares.
+  bool PrepareRegions(const ImageView& image, TriangleMesh& mesh, RedGreenRefiner& refiner,
+    double sigma, bool& region, std::string* error);
   /// Before level 0: closed pieces turned outward and the region force's range (with
   /// RegionWeight > 0; region = whether it is on), then the start subdivided to ~4 sigma_0.
   bool PrepareStart(const ImageView& image, TriangleMesh& mesh, RedGreenRefiner& refiner,
