@@ -21,6 +21,7 @@
 #include "../Cxx/ObjectPhantoms.h"
 #include "../Cxx/ObjectScore.h"
 #include "../Cxx/OneClick.h"
+#include "BenchCases.h"
 
 #include "vtkDSNIFTIImageReader.h"
 #include "vtkXMLPolyDataWriter.h"
@@ -167,16 +168,6 @@ void Horned()
     p.Ours.ReferenceMean <= 0.5 && p.Ours.ReferenceP95 <= 1.5 && p.Ours.SelfIntersections == 0);
 }
 
-vtkSmartPointer<vtkImageData> ReadNifti(const std::string& path)
-{
-  vtkNew<vtkDSNIFTIImageReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(reader->GetOutput());
-  return image;
-}
-
 std::vector<std::array<double, 3>> ReadClicks(const std::string& path)
 {
   std::vector<std::array<double, 3>> clicks;
@@ -194,31 +185,6 @@ std::vector<std::array<double, 3>> ReadClicks(const std::string& path)
   return clicks;
 }
 
-bool SameGrid(vtkImageData* a, vtkImageData* b)
-{
-  int da[3], db[3];
-  a->GetDimensions(da);
-  b->GetDimensions(db);
-  double oa[3], ob[3], sa[3], sb[3];
-  a->GetOrigin(oa);
-  b->GetOrigin(ob);
-  a->GetSpacing(sa);
-  b->GetSpacing(sb);
-  for (int k = 0; k < 3; ++k)
-    if (da[k] != db[k] || std::abs(oa[k] - ob[k]) > 1e-6 || std::abs(sa[k] - sb[k]) > 1e-6)
-      return false;
-  return AxisAligned(a) && AxisAligned(b);
-}
-
-bool Wanted(const std::vector<std::string>& filters, const std::string& name)
-{
-  if (filters.empty())
-    return true;
-  for (const std::string& f : filters)
-    if (name.find(f) != std::string::npos)
-      return true;
-  return false;
-}
 /// Colin27's caudate heads: AAL 71 (left, x < 0 in the template's RAS) and 72 without CSF.
 void Caudates(const std::vector<std::string>& filters)
 {

@@ -16,8 +16,8 @@
 //   BenchSeveralObjects [CASE ...]    (CASE: a part of a case's name; none: every case)
 #include "../Cxx/ObjectPhantoms.h"
 #include "../Cxx/SeveralObjects.h"
+#include "BenchCases.h"
 
-#include "vtkDSNIFTIImageReader.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cstdio>
@@ -95,21 +95,12 @@ void Run(const Case& c)
     FieldValue(one.Surface, "SelfIntersections"));
 }
 
-Case Spine()
+/// A case of one click per object (the phantom's clicks, its labels as ObjectIds).
+Case Clicks(const std::string& name, const SeveralPhantom& phantom)
 {
   Case c;
-  c.Name = "spine";
-  c.Phantom = SpineThreeClicks();
-  c.Points = c.Phantom.Clicks;
-  c.Ids = c.Phantom.Labels;
-  return c;
-}
-
-Case Assembly()
-{
-  Case c;
-  c.Name = "assembly";
-  c.Phantom = AssemblyPhantom();
+  c.Name = name;
+  c.Phantom = phantom;
   c.Points = c.Phantom.Clicks;
   c.Ids = c.Phantom.Labels;
   return c;
@@ -131,16 +122,6 @@ Case Engine()
   return c;
 }
 
-vtkSmartPointer<vtkImageData> ReadNifti(const std::string& path)
-{
-  vtkNew<vtkDSNIFTIImageReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(reader->GetOutput());
-  return image;
-}
-
 bool Nuclei(Case& c)
 {
   const std::string templates = "/usr/share/mricron/templates/";
@@ -149,7 +130,7 @@ bool Nuclei(Case& c)
   c.Phantom.Phantom.Image = ReadNifti(templates + "ch2.nii.gz");
   c.Phantom.Phantom.Label = ReadNifti(templates + "aal.nii.gz");
   if (c.Phantom.Phantom.Image->GetNumberOfPoints() == 0 ||
-    c.Phantom.Phantom.Label->GetNumberOfPoints() != c.Phantom.Phantom.Image->GetNumberOfPoints())
+    !SameGrid(c.Phantom.Phantom.Image, c.Phantom.Phantom.Label))
     return false;
   std::ifstream in(DS_EXAMPLES_DIR "/colin27_nuclei_clicks.csv");
   std::string line;
@@ -193,15 +174,6 @@ void OneObject()
     best[0], best[1], best[0] / best[1], vertices[0], vertices[1]);
 }
 
-bool Wanted(const std::vector<std::string>& filters, const std::string& name)
-{
-  if (filters.empty())
-    return true;
-  for (const std::string& f : filters)
-    if (name.find(f) != std::string::npos)
-      return true;
-  return false;
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -213,9 +185,9 @@ int main(int argc, char* argv[])
   std::printf("| case | run | ObjectId | s | vertices | surface -> ref | ref -> surface | Dice | "
               "volume ratio | crossing pairs |\n|---|---|---|---|---|---|---|---|---|---|\n");
   if (Wanted(filters, "spine"))
-    Run(Spine());
+    Run(Clicks("spine", SpineThreeClicks()));
   if (Wanted(filters, "assembly"))
-    Run(Assembly());
+    Run(Clicks("assembly", AssemblyPhantom()));
   if (Wanted(filters, "engine"))
     Run(Engine());
   if (Wanted(filters, "one"))
