@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace dsurf;
@@ -165,6 +166,38 @@ int TestRegionRange(int, char*[])
               << open.Range[0] << ", " << open.Range[1] << "]" << std::endl;
     DS_CHECK(open.Classes == 1 && !open.Contrast && open.Range[1] < 250.0,
       "click inside the cube's class alone: the median -+ 3 s range, grow only");
+  }
+
+  // A narrow tissue beside the click's class is a competitor, not their partial volume, even
+  // with a rare brighter class beyond it (docs/METHOD.md §9.3): Colin27's caudate (grey matter,
+  // s.d. 14) beside white matter (s.d. 4) with a little bright tissue further out. Slabs along x
+  // with Gaussian noise (a fixed seed): 40 +- 10 (CSF), 90 +- 14 (the click's), 113 +- 4, and
+  // 157 +- 7 in a small block; the click in the grey slab. Taken for a blend, the range ran past
+  // the white matter to the bright class (139 on Colin27).
+  {
+    std::vector<float> tissues(image.size());
+    std::mt19937 random(24);
+    std::normal_distribution<float> noise(0.f, 1.f);
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+          float v = i < 7 ? 40.f + 10.f * noise(random) : 90.f + 14.f * noise(random);
+          if (i >= 30)
+            v = 113.f + 4.f * noise(random);
+          if (i >= 32 && j < 10 && k < 10)
+            v = 157.f + 7.f * noise(random);
+          tissues[(static_cast<size_t>(k) * n + j) * n + i] = v;
+        }
+    RangeEstimate t;
+    DS_CHECK(
+      EstimateIntensityRange(ImageView::Of(tissues.data(), g), click, 1.0, t, &error, 40.0), error);
+    std::cout << "click beside a narrow tissue: " << t.Classes << " classes, range [" << t.Range[0]
+              << ", " << t.Range[1] << "]" << std::endl;
+    DS_CHECK(t.Contrast && t.Range[0] > 40.0 && t.Range[0] < 90.0,
+      "narrow tissue: the low end between the dark class and the click's");
+    DS_CHECK(t.Range[1] > 90.0 && t.Range[1] < 113.0,
+      "narrow tissue: the high end below the narrow tissue, which competes");
   }
 
   // The mixture itself: two Gaussians (means 40 and 160, s.d. 10 and 25, weights 0.3 and 0.7)
