@@ -4,8 +4,9 @@ CMakeLists.txt).
 
 In the client (gui_X.py): top_view() points the render view straight down at the z plane of
 `focal` with a parallel projection and returns the world point under each fraction of the view
-the XML moves the mouse to; write_setup() hands what the check needs over in
-DS_TEST_OUTPUT/gui_X.json (or the script's error).
+the XML moves the mouse to; write_phantom() writes a phantom image for the client to open;
+write_setup() hands what the check needs over in DS_TEST_OUTPUT/gui_X.json (or the script's
+error).
 
 In pvpython (X_gui_check.py): Check collects the verdicts; load_state() reads the JSON, loads the
 state the client saved and returns the JSON's content."""
@@ -32,6 +33,27 @@ def top_view(view, focal, scale, fractions):
     mm_per_pixel = 2.0 * scale / height
     return [[focal[0] + (fx - 0.5) * width * mm_per_pixel,
              focal[1] + (0.5 - fy) * height * mm_per_pixel, focal[2]] for fx, fy in fractions]
+
+
+def write_phantom(value, origin, path):
+    """Writes the numpy array `value` (indexed z, y, x; 1 mm voxels from `origin`) as the point
+    array "density" of an XML image at `path`."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+
+    image = vtkImageData()
+    image.SetDimensions(*value.shape[::-1])
+    image.SetOrigin(*origin)
+    array = numpy_to_vtk(value.ravel().astype(np.float32), deep=1)
+    array.SetName("density")
+    image.GetPointData().SetScalars(array)
+    writer = vtkXMLImageDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(image)
+    writer.SetDataModeToBinary()
+    writer.Write()
 
 
 def write_setup(name, build):

@@ -38,9 +38,6 @@ def write_phantom(centres, path):
     """Balls of RADIUS around `centres` (value 100 inside, 0 outside, a one-voxel linear ramp
     so the 50 level lies at RADIUS), 1 mm voxels."""
     import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
     c = np.array(centres)
     lo = np.floor(c.min(axis=0) - RADIUS - 6.0)
@@ -52,17 +49,7 @@ def write_phantom(centres, path):
     for centre in c:
         d = np.sqrt((x - centre[0]) ** 2 + (y - centre[1]) ** 2 + (z - centre[2]) ** 2)
         value = np.maximum(value, 100.0 * np.clip(RADIUS + 0.5 - d, 0.0, 1.0))
-    image = vtkImageData()
-    image.SetDimensions(*dims)
-    image.SetOrigin(*lo)
-    array = numpy_to_vtk(value.ravel().astype(np.float32), deep=1)
-    array.SetName("density")
-    image.GetPointData().SetScalars(array)
-    writer = vtkXMLImageDataWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(image)
-    writer.SetDataModeToBinary()
-    writer.Write()
+    ds_gui.write_phantom(value, lo, path)
 
 
 def scene():
