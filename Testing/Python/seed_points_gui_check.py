@@ -9,7 +9,10 @@ pvpython after the client saved DS_TEST_OUTPUT/gui_seed_points.pvsm.
 - Delaunay Seed Surface (three points: a seed sphere each) and Deformable Surface (RegionWeight 1,
   IntensityRange 50 150) grow them into three closed surfaces, each on its ball: the centre of its
   bounding box within 0.5 mm of the ball's centre, the radius of a ball of its volume within
-  0.5 mm of the ball's radius."""
+  0.5 mm of the ball's radius;
+- the client's view (its camera, the slice) with the traces of the grown surfaces on the slice,
+  drawn at 480x360 pixels, matches Testing/Baseline/gui_seed_points.png (ds_gui.compare_view): a
+  surface grown elsewhere or to another size fails it."""
 import math
 import os
 import sys
@@ -76,4 +79,19 @@ for centre, equivalent in found:
     check(math.dist(centre, aim) <= 0.5 and abs(equivalent - radius) <= 0.5,
           "surface around (%.1f, %.1f, %.1f): centre %.3f mm off, radius by volume %.3f mm (ball %.1f)"
           % (tuple(aim) + (math.dist(centre, aim), equivalent, radius)))
+
+view = simple.GetRenderViews()[0]
+for source in simple.GetSources().values():
+    simple.Hide(source, view)
+simple.Show(simple.FindSource("Slice"), view)
+trace = simple.Slice(Input=surface)
+trace.SliceType = "Plane"
+trace.SliceType.Origin, trace.SliceType.Normal = expected[0], [0.0, 0.0, 1.0]
+line = simple.Show(trace, view)
+line.ColorArrayName = ["POINTS", ""]
+line.AmbientColor = line.DiffuseColor = [0.2, 0.85, 1.0]
+line.Ambient, line.Diffuse = 1.0, 0.0
+line.LineWidth = 3.0
+line.Position = [0.0, 0.0, 1.0]  # towards the camera, above the slice
+check(*ds_gui.compare_view(view, "gui_seed_points.png", [480, 360]))
 check.exit()
