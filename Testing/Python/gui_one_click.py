@@ -7,12 +7,11 @@ the clicked point (CSV Reader -> Table To Points), Delaunay Seed Surface (a seed
 Deformable Surface (RegionWeight 1, IntensityRange 62 130), the surface's trace on the slice.
 Checks: the proxies exist in the GUI's session and the surface is one closed piece around the
 click of the expected size; the render view matches Testing/Baseline/gui_one_click.png
-(vtkImageDifference, AllowShift, per-pixel threshold 20, thresholded error <= 10, as
-pvbatch_delaunay_seed_image.py explains). The GUI exits with 0 whatever the script does, so the
+(ds_gui.compare_view: vtkImageDifference, AllowShift, per-pixel threshold 20, thresholded
+error <= 10, as pvbatch_delaunay_seed_image.py explains). The GUI exits with 0 whatever the script does, so the
 verdict goes to DS_TEST_OUTPUT/gui_one_click.result ("PASSED" or "FAILED: ..."), which the ctest
 command reads. A missing baseline is written and the test fails: look at it, then git add it."""
 import os
-import shutil
 import traceback
 
 out_dir = os.environ.get("DS_TEST_OUTPUT", "/tmp")
@@ -22,15 +21,12 @@ result_file = os.path.join(out_dir, "gui_one_click.result")
 def main():
     from paraview import servermanager
     from paraview.simple import (CSVReader, GetActiveViewOrCreate, Glyph, GetColorTransferFunction, LoadPlugin,
-                                 OpenDataFile, Render, SaveScreenshot, SetActiveSource, Show, Slice,
+                                 OpenDataFile, Render, SetActiveSource, Show, Slice,
                                  TableToPoints)
-    from vtkmodules.vtkImagingCore import vtkImageDifference
-    from vtkmodules.vtkIOImage import vtkPNGReader
 
     # The GUI runs the script without __file__: the source tree comes from DS_BASELINE_DIR.
     baseline_dir = os.environ["DS_BASELINE_DIR"]
     examples = os.path.join(baseline_dir, "..", "..", "Examples")
-    baseline = os.path.join(baseline_dir, "gui_one_click.png")
     # The client loaded the plugin at startup from PV_PLUGIN_PATH, as a user's ParaView does;
     # its proxies are then in paraview.simple. (LoadPlugin only if it did not.)
     from paraview import simple
@@ -97,6 +93,7 @@ def main():
     # The invariants every surface keeps (ds_invariants.py, beside this script).
     import sys
     sys.path.insert(0, os.path.join(baseline_dir, "..", "Python"))
+    import ds_gui
     import ds_invariants
     try:
         ds_invariants.check_surface(servermanager.Fetch(seed), data, "one click grown")
@@ -114,27 +111,9 @@ def main():
     if selfx is None or selfx.GetTuple1(0) != 0:
         problems.append("self-intersections")
 
-    image = os.path.join(out_dir, "gui_one_click.png")
-    SaveScreenshot(image, view, ImageResolution=[500, 500], TransparentBackground=0)
-    if not os.path.exists(baseline):
-        shutil.copyfile(image, baseline)
-        problems.append("no baseline: wrote %s; look at it and git add it" % baseline)
-    else:
-        readers = []
-        for path in (image, baseline):
-            reader = vtkPNGReader()
-            reader.SetFileName(path)
-            reader.Update()
-            readers.append(reader)
-        diff = vtkImageDifference()
-        diff.SetInputConnection(readers[0].GetOutputPort())
-        diff.SetImageConnection(readers[1].GetOutputPort())
-        diff.SetThreshold(20)
-        diff.SetAllowShift(True)
-        diff.SetAveraging(False)
-        diff.Update()
-        if diff.GetThresholdedError() > 10.0:
-            problems.append("the view differs from %s (thresholded error %.2f)" % (baseline, diff.GetThresholdedError()))
+    matches, found = ds_gui.compare_view(view, "gui_one_click.png", [500, 500])
+    if not matches:
+        problems.append(found)
     if not loaded_at_startup:
         problems.append("the client did not load the plugin from PV_PLUGIN_PATH at startup")
     if problems:

@@ -11,7 +11,8 @@ centres, the view looking down on it (parallel projection), and a Seed Points so
 its panel (the DeformableSurfaceGUI plugin's table) is shown. The client then plays
 gui_seed_points.xml: the mouse over the view at three fractions of its size, P at each (the third
 with the panel's "object" spin box at 1), a fourth pick removed again with Delete in the table,
-the first row selected and its point handle dragged to the right, Apply, File > Save State.
+the first row selected and its point handle dragged to the right, Apply, File > Save State; then
+a fifth pick, Apply, Edit > Undo, Save State, Edit > Redo, Save State.
 
 The aim: each fraction of the view is turned into the world point the camera shows there, and a
 ball is centred on it; the aims go to DS_TEST_OUTPUT/gui_seed_points.json for the check, which
@@ -32,15 +33,13 @@ SCALE = 32.0  # the camera's parallel scale: half the view's height, mm
 RADIUS = 8.0  # the balls' radius, mm
 SLICE_Z = 12.0
 DRAG = (0.3, 0.33)  # the handle of the first point, dragged from x = 0.3 to 0.33 of the view
+UNDO_FRACTION = (0.5, 0.2)  # the pick that is applied, undone and redone
 
 
 def write_phantom(centres, path):
     """Balls of RADIUS around `centres` (value 100 inside, 0 outside, a one-voxel linear ramp
     so the 50 level lies at RADIUS), 1 mm voxels."""
     import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
     c = np.array(centres)
     lo = np.floor(c.min(axis=0) - RADIUS - 6.0)
@@ -52,24 +51,14 @@ def write_phantom(centres, path):
     for centre in c:
         d = np.sqrt((x - centre[0]) ** 2 + (y - centre[1]) ** 2 + (z - centre[2]) ** 2)
         value = np.maximum(value, 100.0 * np.clip(RADIUS + 0.5 - d, 0.0, 1.0))
-    image = vtkImageData()
-    image.SetDimensions(*dims)
-    image.SetOrigin(*lo)
-    array = numpy_to_vtk(value.ravel().astype(np.float32), deep=1)
-    array.SetName("density")
-    image.GetPointData().SetScalars(array)
-    writer = vtkXMLImageDataWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(image)
-    writer.SetDataModeToBinary()
-    writer.Write()
+    ds_gui.write_phantom(value, lo, path)
 
 
 def scene():
     from paraview import simple
     view = simple.GetActiveViewOrCreate("RenderView")
     focal = [0.0, 0.0, SLICE_Z]
-    aims = ds_gui.top_view(view, focal, SCALE, FRACTIONS)
+    *aims, undo_aim = ds_gui.top_view(view, focal, SCALE, FRACTIONS + [UNDO_FRACTION])
     phantom_path = os.path.join(ds_gui.OUT_DIR, "seed_points_phantom.vti")
     write_phantom(aims, phantom_path)
     phantom = simple.XMLImageDataReader(registrationName="phantom", FileName=[phantom_path])
@@ -82,7 +71,7 @@ def scene():
     seeds = simple.SeedPoints(registrationName="SeedPoints")
     simple.SetActiveSource(seeds)
     return {"aims": aims, "objects": OBJECTS, "radius": RADIUS, "view": list(view.ViewSize),
-            "mm_per_pixel": 2.0 * SCALE / view.ViewSize[1], "drag": DRAG}
+            "mm_per_pixel": 2.0 * SCALE / view.ViewSize[1], "drag": DRAG, "undo_aim": undo_aim}
 
 
 ds_gui.write_setup("gui_seed_points", scene)

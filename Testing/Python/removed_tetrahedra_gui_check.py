@@ -5,18 +5,25 @@ part): run with pvpython after the client saved DS_TEST_OUTPUT/gui_removed_tetra
 The aims lie in two different tetrahedra A and B (found here by locating the aimed points in the
 Tetrahedra output); P over A, B, A must leave Removed Tetrahedra = [B]: B removed, A kept again.
 The filter, run on the saved state, marks B removed by ID (Removed = 1) and A kept, and its
-surface stays a closed, manifold, outward-oriented surface (ds_invariants). The second state,
+surface stays a closed, manifold, outward-oriented surface (ds_invariants). Solved on a ball
+that the points enclose, the seed without B shrinks onto it (the radius of a ball of its volume
+within half a voxel), and the client's view of the slice, coloured by Removed, with the trace of
+the solved surface matches Testing/Baseline/gui_removed_tetrahedra.png (ds_gui.compare_view): a
+different tetrahedron removed or a surface off the ball fails it. The second state,
 saved after a thirteenth seed point was picked and applied, has an empty Removed Tetrahedra: the
 TetraIds were renumbered, so the panel cleared the list."""
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from paraview import servermanager, simple  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkCellLocator  # noqa: E402
+from vtkmodules.vtkFiltersCore import vtkMassProperties  # noqa: E402
 
 import ds_gui  # noqa: E402
 import ds_invariants  # noqa: E402
+import numpy as np  # noqa: E402
 
 check = ds_gui.Check()
 setup = ds_gui.load_state("gui_removed_tetrahedra", check)
@@ -39,6 +46,39 @@ try:
     check(True, "the seed without B is closed and manifold (%d triangles)" % surface.GetNumberOfPolys())
 except AssertionError as error:
     check(False, str(error))
+
+# The solve: the seed without B shrinks onto a ball of radius BALL (value 100 inside, 0 outside,
+# a one-voxel ramp) that the twelve points enclose; the view of the slice, coloured by Removed,
+# with the trace of the grown surface must match the baseline.
+BALL = 16.0
+axis = np.arange(-30.0, 31.0)
+z, y, x = np.meshgrid(axis, axis, axis, indexing="ij")
+ball = 100.0 * np.clip(BALL + 0.5 - np.sqrt(x * x + y * y + z * z), 0.0, 1.0)
+phantom_path = os.path.join(ds_gui.OUT_DIR, "removed_tetrahedra_phantom.vti")
+ds_gui.write_phantom(ball, (-30.0, -30.0, -30.0), phantom_path)
+phantom = simple.XMLImageDataReader(FileName=[phantom_path])
+solved = simple.DeformableSurface(Input=phantom, InitialSurface=seed)
+solved.Scalars = ["POINTS", "density"]
+grown = servermanager.Fetch(solved, arg1=0)
+mass = vtkMassProperties()
+mass.SetInputData(grown)
+mass.Update()
+radius = (3.0 * mass.GetVolume() / (4.0 * math.pi)) ** (1.0 / 3.0)
+check(abs(radius - BALL) <= 0.5, "the seed without B solved onto the ball: radius by volume %.3f mm (ball %.1f)"
+      % (radius, BALL))
+view = simple.GetRenderViews()[0]
+cut = simple.FindSource("TetrahedraSlice")
+simple.ColorBy(simple.GetDisplayProperties(cut, view), ("CELLS", "Removed"))
+trace = simple.Slice(Input=solved)
+trace.SliceType = "Plane"
+trace.SliceType.Origin, trace.SliceType.Normal = [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]
+line = simple.Show(trace, view)
+line.ColorArrayName = ["POINTS", ""]
+line.AmbientColor = line.DiffuseColor = [0.2, 0.85, 1.0]
+line.Ambient, line.Diffuse = 1.0, 0.0
+line.LineWidth = 3.0
+line.Position = [0.0, 0.0, 5.0]  # towards the camera, clear above the slice and its edges
+check(*ds_gui.compare_view(view, "gui_removed_tetrahedra.png", [480, 360]))
 
 simple.ResetSession()
 simple.LoadState(os.path.join(ds_gui.OUT_DIR, "gui_removed_tetrahedra_renumbered.pvsm"))

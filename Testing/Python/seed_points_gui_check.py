@@ -9,7 +9,12 @@ pvpython after the client saved DS_TEST_OUTPUT/gui_seed_points.pvsm.
 - Delaunay Seed Surface (three points: a seed sphere each) and Deformable Surface (RegionWeight 1,
   IntensityRange 50 150) grow them into three closed surfaces, each on its ball: the centre of its
   bounding box within 0.5 mm of the ball's centre, the radius of a ball of its volume within
-  0.5 mm of the ball's radius."""
+  0.5 mm of the ball's radius;
+- the client's view (its camera, the slice) with the traces of the grown surfaces on the slice,
+  drawn at 480x360 pixels, matches Testing/Baseline/gui_seed_points.png (ds_gui.compare_view): a
+  surface grown elsewhere or to another size fails it;
+- a fifth pick, applied, then Edit > Undo: the state holds the three points again; Edit > Redo:
+  the fifth is back, within half a voxel of its aim, for the object of the spin box."""
 import math
 import os
 import sys
@@ -76,4 +81,37 @@ for centre, equivalent in found:
     check(math.dist(centre, aim) <= 0.5 and abs(equivalent - radius) <= 0.5,
           "surface around (%.1f, %.1f, %.1f): centre %.3f mm off, radius by volume %.3f mm (ball %.1f)"
           % (tuple(aim) + (math.dist(centre, aim), equivalent, radius)))
+
+view = simple.GetRenderViews()[0]
+for source in simple.GetSources().values():
+    simple.Hide(source, view)
+simple.Show(simple.FindSource("Slice"), view)
+trace = simple.Slice(Input=surface)
+trace.SliceType = "Plane"
+trace.SliceType.Origin, trace.SliceType.Normal = expected[0], [0.0, 0.0, 1.0]
+line = simple.Show(trace, view)
+line.ColorArrayName = ["POINTS", ""]
+line.AmbientColor = line.DiffuseColor = [0.2, 0.85, 1.0]
+line.Ambient, line.Diffuse = 1.0, 0.0
+line.LineWidth = 3.0
+line.Position = [0.0, 0.0, 1.0]  # towards the camera, above the slice
+check(*ds_gui.compare_view(view, "gui_seed_points.png", [480, 360]))
+
+
+def saved_points(name):
+    simple.ResetSession()
+    simple.LoadState(os.path.join(ds_gui.OUT_DIR, name + ".pvsm"))
+    seeds = simple.FindSource("SeedPoints")
+    return (list(seeds.Points), list(seeds.ObjectIds)) if seeds else ([], [])
+
+
+undone, undone_ids = saved_points("gui_seed_points_undone")
+check(undone == points and undone_ids == setup["objects"],
+      "a fifth pick applied and undone: the three points are left (%d coordinates, ObjectIds %s)"
+      % (len(undone), undone_ids))
+redone, redone_ids = saved_points("gui_seed_points_redone")
+fifth = redone[9:12]
+check(redone[:9] == points and len(fifth) == 3 and math.dist(fifth, setup["undo_aim"]) <= 0.5
+      and redone_ids == setup["objects"] + [setup["objects"][-1]],
+      "redone: the fifth point is back (%s, aimed at %s; ObjectIds %s)" % (fifth, setup["undo_aim"], redone_ids))
 check.exit()
