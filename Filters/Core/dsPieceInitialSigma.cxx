@@ -3,6 +3,7 @@
 
 #include "dsFieldGrid.h"
 #include "dsGaussianSmoother.h"
+#include "dsMemory.h"
 #include "dsVoxelSet.h"
 
 #include <algorithm>
@@ -209,6 +210,17 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
       "the probe of sigma_0 (" +
       std::to_string(InitialSigmaProbeGhostVoxels(piece.Whole, 0)) + " voxels needed)";
   const VoxelSet wanted = RayVoxels(piece, mesh, paperSigma, problem.empty() ? region : VoxelBox());
+  if (problem.empty() && region.NumberOfVoxels() > 0)
+  {
+    ImageGeometry probed = piece.Whole;
+    for (int a = 0; a < 3; ++a)
+    {
+      probed.Dimensions[a] = region.End[a] - region.Begin[a];
+    }
+    problem = MemoryShortfall(
+      LocalPotentialBytes(probed, InitialSigmaProbeParameters(piece.Whole, 1), wanted),
+      "The probe of sigma_0 (docs/METHOD.md §9.1)");
+  }
   std::vector<float> probe;
   const bool ok =
     PieceProbe(piece, reached, region, wanted, numberOfThreads, reduce, probe, problem);

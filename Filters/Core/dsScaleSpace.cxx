@@ -864,6 +864,26 @@ void SlabRatioCandidates(
 }
 } // namespace
 
+namespace
+{
+/// Slices of a slab's core: coreSlices, by default four times the reach (the whole image when
+/// the reach is the whole axis).
+int SlabCore(int reach, int slices, int coreSlices)
+{
+  return reach < 0 ? slices : std::max(1, coreSlices > 0 ? coreSlices : 4 * reach);
+}
+} // namespace
+
+double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParameters& parameters,
+  const VoxelSet& wanted, int coreSlices)
+{
+  const int nz = geometry.Dimensions[2];
+  const int reach = LocalFieldReach(parameters.Sigma / geometry.Spacing[2]);
+  const int slab = std::min(nz, SlabCore(reach, nz, coreSlices) + 2 * std::max(0, reach));
+  const double slice = static_cast<double>(geometry.Dimensions[0]) * geometry.Dimensions[1];
+  return 3 * sizeof(float) * (slab * slice + static_cast<double>(wanted.Size())) + wanted.Bytes();
+}
+
 bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parameters,
   const VoxelSet& wanted, std::vector<float>& potential, std::string* error, int coreSlices)
 {
@@ -888,7 +908,7 @@ bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parame
   const double wide[3] = { 2 * sv[0], 2 * sv[1], 2 * sv[2] };
   const GradientToWorld toWorld(geometry);
   const int reach = LocalFieldReach(sv[2]);
-  const int core = reach < 0 ? nz : std::max(1, coreSlices > 0 ? coreSlices : 4 * reach);
+  const int core = SlabCore(reach, nz, coreSlices);
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(nx) * ny;
 
   LocalEdgeScan scan;

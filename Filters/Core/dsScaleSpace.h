@@ -180,6 +180,12 @@ DEFORMABLESURFACEFILTERS_EXPORT bool LocalPotentialAt(const ImageView& image,
   const ScaleSpaceParameters& parameters, const VoxelSet& wanted, std::vector<float>& potential,
   std::string* error, int coreSlices = 0);
 
+/// Bytes LocalPotentialAt holds at most for `wanted` voxels of an image of `geometry` with
+/// these parameters and coreSlices (the memory estimate of the sigma_0 probe, dsMemory.h): its
+/// three floats a voxel of one slab, three a wanted voxel and the set itself.
+DEFORMABLESURFACEFILTERS_EXPORT double LocalPotentialBytes(const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, const VoxelSet& wanted, int coreSlices = 0);
+
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothGaussian(float* volume, const ImageGeometry& geometry,

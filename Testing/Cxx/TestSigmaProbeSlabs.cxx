@@ -3,8 +3,8 @@
 // dsScaleSpace.h; docs/METHOD.md §9.7) equals the whole field's P there bit for bit (tolerance
 // 0): on a noisy uint16 image with two edges of different contrast, for one slab and for slabs
 // of 1, 5 and 17 slices, with both maxima over the whole image and over a box of it, on one and
-// on two threads, through the reductions' callback too; and it holds less than the whole field
-// (its wanted voxels and one slab).
+// on two threads, through the reductions' callback too; and its memory estimate counts one slab
+// and the wanted voxels, less than the whole field.
 #include "DSTestHelpers.h"
 
 #include "dsScaleSpace.h"
@@ -137,6 +137,12 @@ int TestSigmaProbeSlabs(int, char*[])
       }
     }
   }
+  const double bytes = LocalPotentialBytes(g, p, wanted, 5);
+  const double slab = 12.0 * (5 + 2 * 13) * g.Dimensions[0] * g.Dimensions[1];
+  DS_CHECK(
+    bytes == slab + 12.0 * wanted.Size() + wanted.Bytes() && bytes < 12.0 * g.NumberOfVoxels(),
+    "the estimate counts one slab of 5 + 2 x 13 slices and the wanted voxels, less than the whole "
+    "field's 12 bytes a voxel");
   VoxelSet few(g.NumberOfVoxels());
   few.Insert(5);
   few.Finish();
