@@ -684,6 +684,30 @@ inline int RatioBin(float wide)
   return static_cast<int>(bits >> RatioBinShift);
 }
 
+/// Keeps of `candidates` (g, G_2sigma * g) only those no other beats on both terms (a larger
+/// or equal g with a smaller or equal G_2sigma * g): they alone may hold the largest ratio, and
+/// with bins of 1/16 of an octave a slab leaves ~10^5 of its voxels, this ~10^2.
+void KeepUnbeaten(std::vector<std::pair<float, float>>& candidates)
+{
+  std::sort(candidates.begin(), candidates.end(),
+    [](const std::pair<float, float>& a, const std::pair<float, float>& b)
+    {
+      const float da = Denominator(a.second), db = Denominator(b.second);
+      return da < db || (da == db && a.first > b.first);
+    });
+  std::size_t kept = 0;
+  float best = -1.0f;
+  for (const auto& c : candidates)
+  {
+    if (c.first > best)
+    {
+      candidates[kept++] = c;
+      best = c.first;
+    }
+  }
+  candidates.resize(kept);
+}
+
 /// What LocalPotentialAt keeps of the slabs.
 struct LocalEdgeScan
 {
@@ -881,7 +905,9 @@ double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParame
   const int reach = LocalFieldReach(parameters.Sigma / geometry.Spacing[2]);
   const int slab = std::min(nz, SlabCore(reach, nz, coreSlices) + 2 * std::max(0, reach));
   const double slice = static_cast<double>(geometry.Dimensions[0]) * geometry.Dimensions[1];
-  return 3 * sizeof(float) * (slab * slice + static_cast<double>(wanted.Size())) + wanted.Bytes();
+  // A slab's candidates for the largest ratio (two floats each) are at most its voxels.
+  return 5 * sizeof(float) * slab * slice + 3 * sizeof(float) * static_cast<double>(wanted.Size()) +
+    wanted.Bytes();
 }
 
 bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parameters,
@@ -947,6 +973,7 @@ bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parame
         const int used[3] = { dims[0], dims[1], k1 - k0 };
         SmoothGaussianSeparable(g.data() + k0 * sz, w.data() + k0 * sz, used, wide);
         SlabRatioCandidates(g.data(), w.data(), dims, where, scan);
+        KeepUnbeaten(scan.Candidates);
         const std::ptrdiff_t first = slab.Begin[2] * sz;
         wanted.ForEachIn(z0 * sz, z1 * sz,
           [&](long long v, long long rank)

@@ -182,7 +182,8 @@ DEFORMABLESURFACEFILTERS_EXPORT bool LocalPotentialAt(const ImageView& image,
 
 /// Bytes LocalPotentialAt holds at most for `wanted` voxels of an image of `geometry` with
 /// these parameters and coreSlices (the memory estimate of the sigma_0 probe, dsMemory.h): its
-/// three floats a voxel of one slab, three a wanted voxel and the set itself.
+/// three floats a voxel of one slab and at most two more for the slab's candidates for the
+/// largest ratio, three floats a wanted voxel and the set itself.
 DEFORMABLESURFACEFILTERS_EXPORT double LocalPotentialBytes(const ImageGeometry& geometry,
   const ScaleSpaceParameters& parameters, const VoxelSet& wanted, int coreSlices = 0);
 
