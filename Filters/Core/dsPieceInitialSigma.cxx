@@ -219,7 +219,7 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     }
     problem = MemoryShortfall(
       LocalPotentialBytes(probed, InitialSigmaProbeParameters(piece.Whole, 1), wanted),
-      "The probe of sigma_0 (docs/METHOD.md §9.1)");
+      "holding a slab and the voxels its rays read (docs/METHOD.md §9.7)");
   }
   std::vector<float> probe;
   const bool ok =
