@@ -227,6 +227,9 @@ void IIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* 
   }
 }
 
+// pad: n + 2 (Radius + 1) doubles, then n more for the sums. Each output is the sum
+// Taps[0] c[0] + Taps[1] (c[-1] + c[1]) + ... in that order, built tap by tap over the whole
+// line so that the loops vectorise (the same arithmetic as one voxel at a time).
 void FIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* pad)
 {
   const int R = s.Radius;
@@ -234,15 +237,24 @@ void FIRLine(const float* in, float* out, int n, const AxisSmoother& s, double* 
   {
     pad[i + R] = in[std::min(std::max(i, 0), n - 1)];
   }
+  const double* __restrict c = pad + R;
+  double* __restrict v = pad + n + 2 * (R + 1);
+  const double t0 = s.Taps[0];
   for (int i = 0; i < n; ++i)
   {
-    const double* c = pad + i + R;
-    double v = s.Taps[0] * c[0];
-    for (int k = 1; k <= R; ++k)
+    v[i] = t0 * c[i];
+  }
+  for (int k = 1; k <= R; ++k)
+  {
+    const double t = s.Taps[k];
+    for (int i = 0; i < n; ++i)
     {
-      v += s.Taps[k] * (c[-k] + c[k]);
+      v[i] += t * (c[i - k] + c[i + k]);
     }
-    out[i] = static_cast<float>(v);
+  }
+  for (int i = 0; i < n; ++i)
+  {
+    out[i] = static_cast<float>(v[i]);
   }
 }
 
@@ -360,7 +372,7 @@ void SmoothX(const float* src, float* dst, const int dims[3], const AxisSmoother
   vtkSMPTools::For(0, nLines,
     [&](long long begin, long long end)
     {
-      std::vector<double> scratch(nx + 2 * (s.Radius + 1));
+      std::vector<double> scratch(2 * nx + 2 * (s.Radius + 1)); // FIRLine's
       for (long long l = begin; l < end; ++l)
       {
         const float* in = src + l * nx;

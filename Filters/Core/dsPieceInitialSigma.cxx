@@ -3,6 +3,8 @@
 
 #include "dsFieldGrid.h"
 #include "dsGaussianSmoother.h"
+#include "dsMemory.h"
+#include "dsVoxelSet.h"
 
 #include <algorithm>
 #include <cmath>
@@ -67,13 +69,62 @@ void FinishProbeReductions(
   }
 }
 
-/// The probe's potential over `region` of the piece, normalised as the whole reach's (both
-/// maxima over the `reached` voxels of every process). A process that fails makes the
-/// reductions it has not made with an infinite maximum, which the others' fields then carry;
-/// one the rays do not reach computes nothing and makes them with 0 (FinishProbeReductions).
-/// The caller agrees on the outcome.
+/// Linear ids in `region` of a box's voxels, x fastest (the probe's values).
+struct RegionIds
+{
+  std::ptrdiff_t Increments[3];
+  explicit RegionIds(const VoxelBox& region)
+  {
+    const std::ptrdiff_t nx = region.End[0] - region.Begin[0];
+    this->Increments[0] = 1;
+    this->Increments[1] = nx;
+    this->Increments[2] = nx * (region.End[1] - region.Begin[1]);
+  }
+};
+
+/// The voxels of `region` whose probe values a ray may read: the corners of the owned cells of
+/// every point of every ray, each walked its whole reach both ways (the walk of
+/// ChooseInitialSigmaWith on strengths that never make an edge; a real walk reads a prefix of
+/// each of its two directions). Empty when the region is.
+VoxelSet RayVoxels(
+  const ImagePiece& piece, const TriangleMesh& mesh, double paperSigma, const VoxelBox& region)
+{
+  VoxelSet wanted(region.NumberOfVoxels());
+  if (region.NumberOfVoxels() > 0)
+  {
+    const RegionIds ids(region);
+    const EdgeStrengthSampler mark =
+      [&](const std::vector<Vec3>& points, std::vector<double>& strengths)
+    {
+      for (const Vec3& x : points)
+      {
+        TrilinearCell c;
+        if (piece.LocateOwnedCell(x.data(), region.Begin, ids.Increments, c))
+        {
+          for (int corner = 0; corner < 8; ++corner)
+          {
+            wanted.Insert(c.Corner(corner));
+          }
+        }
+      }
+      strengths.assign(points.size(), 0.0);
+    };
+    InitialSigmaChoice unused;
+    ChooseInitialSigmaWith(piece.Whole, mesh, paperSigma, mark, StepsPerRound, unused);
+  }
+  wanted.Finish();
+  return wanted;
+}
+
+/// The probe's potential at the `wanted` voxels of `region` of the piece (LocalPotentialAt:
+/// the field slab by slab, never whole), normalised as the whole reach's (both maxima over the
+/// `reached` voxels of every process). A process that fails makes the reductions it has not
+/// made with an infinite maximum, which the others' fields then carry; one the rays do not
+/// reach computes nothing and makes them with 0 (FinishProbeReductions). The caller agrees on
+/// the outcome.
 bool PieceProbe(const ImagePiece& piece, const VoxelBox& reached, const VoxelBox& region,
-  int numberOfThreads, const PieceReductions& reduce, ForceField& probe, std::string& problem)
+  const VoxelSet& wanted, int numberOfThreads, const PieceReductions& reduce,
+  std::vector<float>& probe, std::string& problem)
 {
   if (problem.empty() && region.NumberOfVoxels() == 0)
   {
@@ -100,14 +151,28 @@ bool PieceProbe(const ImagePiece& piece, const VoxelBox& reached, const VoxelBox
     inHeld.Begin[a] -= piece.Held.Begin[a];
     inHeld.End[a] -= piece.Held.Begin[a];
   }
-  const bool ok =
-    problem.empty() && ComputeScaleSpaceForce(piece.Image.Box(inHeld), parameters, probe, &problem);
+  const bool ok = problem.empty() &&
+    LocalPotentialAt(piece.Image.Box(inHeld), parameters, wanted, probe, &problem);
   if (!ok)
   {
     FinishProbeReductions(
       reduce, reductions, firstMaximum, std::numeric_limits<double>::infinity());
   }
   return ok;
+}
+
+/// The trilinear sample of the probe in `cell` (ids of the region), read from the wanted
+/// voxels' values in SampleCell's order, so it equals the whole field's sample bit for bit.
+double SampleProbe(
+  const std::vector<float>& probe, const VoxelSet& wanted, const TrilinearCell& cell)
+{
+  double v = 0.0;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const long long id = cell.Corner(corner);
+    v += cell.Weight(corner) * (wanted.Contains(id) ? probe[wanted.Rank(id)] : 0.0f);
+  }
+  return v;
 }
 } // namespace
 
@@ -144,8 +209,21 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     : "the piece holds too few ghost layers for "
       "the probe of sigma_0 (" +
       std::to_string(InitialSigmaProbeGhostVoxels(piece.Whole, 0)) + " voxels needed)";
-  ForceField probe;
-  const bool ok = PieceProbe(piece, reached, region, numberOfThreads, reduce, probe, problem);
+  const VoxelSet wanted = RayVoxels(piece, mesh, paperSigma, problem.empty() ? region : VoxelBox());
+  if (problem.empty() && region.NumberOfVoxels() > 0)
+  {
+    ImageGeometry probed = piece.Whole;
+    for (int a = 0; a < 3; ++a)
+    {
+      probed.Dimensions[a] = region.End[a] - region.Begin[a];
+    }
+    problem = MemoryShortfall(
+      LocalPotentialBytes(probed, InitialSigmaProbeParameters(piece.Whole, 1), wanted),
+      "holding a slab and the voxels its rays read (docs/METHOD.md §9.7)");
+  }
+  std::vector<float> probe;
+  const bool ok =
+    PieceProbe(piece, reached, region, wanted, numberOfThreads, reduce, probe, problem);
   if (reduce.Max(ok ? 0.0 : 1.0) > 0.0)
   {
     if (error)
@@ -155,9 +233,7 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     }
     return false;
   }
-  const std::ptrdiff_t nx = region.End[0] - region.Begin[0];
-  const std::ptrdiff_t increments[3] = { 1, nx, nx * (region.End[1] - region.Begin[1]) };
-  const ImageView potential = ImageView::Of(probe.Potential.data(), probe.Geometry);
+  const RegionIds ids(region);
   // Each strength from the process owning its cell, 0 from the others: the sum is the serial
   // sample exactly. Whether a point lies in the image the whole image's geometry says alike.
   const EdgeStrengthSampler sample =
@@ -167,11 +243,12 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     for (std::size_t i = 0; i < points.size(); ++i)
     {
       TrilinearCell c;
-      // Every ray's samples lie within its reach, so an owned cell they fall in was reached.
-      if (!probe.Potential.empty() &&
-        piece.LocateOwnedCell(points[i].data(), region.Begin, increments, c))
+      // Every ray's samples lie within its reach, so an owned cell they fall in was reached,
+      // and its corners were wanted (RayVoxels).
+      if (wanted.Size() > 0 &&
+        piece.LocateOwnedCell(points[i].data(), region.Begin, ids.Increments, c))
       {
-        strengths[i] = -SampleCell(potential, c);
+        strengths[i] = -SampleProbe(probe, wanted, c);
       }
     }
     reduce.Sum(strengths);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // sigma_0 from the start (docs/METHOD.md §9.1) on a distributed image (§9.8): the probe field
 // (sigma one voxel, locally normalised) computed on each process's piece within the rays' reach
-// of the start (InitialSigmaProbeReach; nothing on a piece beyond it), equal to the serial one on
+// of the start (InitialSigmaProbeReach; nothing on a piece beyond it), slab by slab and kept only
+// at the voxels the rays can read (LocalPotentialAt, dsScaleSpace.h), equal to the serial one on
 // the reached voxels the piece owns, and the rays' strengths sampled by the owners of their
 // cells and summed, so every process chooses the serial sigma_0 exactly. Plain C++: the
 // processes' reductions come in as callbacks (dsPieceField.h).
@@ -25,8 +26,8 @@ DEFORMABLESURFACEFILTERS_EXPORT int InitialSigmaProbeGhostVoxels(const ImageGeom
 /// ChooseInitialSigma of the whole image whose piece this process holds: the same choice on
 /// every process. Collective (every process calls it with the same mesh and parameters); false
 /// with a message on every process when a piece the rays reach holds too few ghost layers (one
-/// beyond the reach needs none) or its probe field cannot be computed, none left waiting in a
-/// reduction.
+/// beyond the reach needs none), its probe does not fit in the memory available, or its probe
+/// field cannot be computed, none left waiting in a reduction.
 DEFORMABLESURFACEFILTERS_EXPORT bool ChoosePieceInitialSigma(const ImagePiece& piece,
   const TriangleMesh& mesh, double paperSigma, int numberOfThreads, const PieceReductions& reduce,
   InitialSigmaChoice& choice, std::string* error);

@@ -6,6 +6,7 @@
 #include "dsGaussianSmoother.h"
 #include "dsThreads.h"
 #include "dsTrilinear.h"
+#include "dsVoxelSet.h"
 
 #include "vtkSMPTools.h"
 
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 namespace dsurf
@@ -643,6 +645,384 @@ void LocallyNormalisedField(const ImageView& image, const ScaleSpaceParameters& 
     });
 }
 } // namespace
+
+namespace
+{
+/// The sampled Gaussian's radius at sigmaVoxels (dsGaussianSmoother.h).
+int SampledRadius(double sigmaVoxels)
+{
+  return std::max(1, static_cast<int>(std::ceil(4.0 * sigmaVoxels)));
+}
+
+/// Voxels along an axis of sigmaVoxels that the locally normalised P at a voxel reads: the
+/// first Gaussian's radius, one for the differences, the second Gaussian's radius; -1 when
+/// either Gaussian is recursive (it reads the whole axis).
+int LocalFieldReach(double sigmaVoxels)
+{
+  if (!(2.0 * sigmaVoxels < GaussianRecursiveFromSigmaVoxels))
+  {
+    return -1;
+  }
+  return SampledRadius(sigmaVoxels) + 1 + SampledRadius(2.0 * sigmaVoxels);
+}
+
+/// Bins of G_2sigma * g by the leading bits of its float (monotonic for values >= 0): a voxel
+/// whose g no voxel of a lower bin reaches may hold the largest ratio (LocalPotentialAt).
+constexpr int RatioBinShift = 19;
+constexpr int RatioBins = 1 << (32 - RatioBinShift);
+
+inline float Denominator(float wide)
+{
+  return std::max(0.0f, wide);
+}
+
+inline int RatioBin(float wide)
+{
+  std::uint32_t bits;
+  const float d = Denominator(wide);
+  std::memcpy(&bits, &d, sizeof bits);
+  return static_cast<int>(bits >> RatioBinShift);
+}
+
+/// Keeps of `candidates` (g, G_2sigma * g) only those no other beats on both terms (a larger
+/// or equal g with a smaller or equal G_2sigma * g): they alone may hold the largest ratio, and
+/// with bins of 1/16 of an octave a slab leaves ~10^5 of its voxels, this ~10^2.
+void KeepUnbeaten(std::vector<std::pair<float, float>>& candidates)
+{
+  std::sort(candidates.begin(), candidates.end(),
+    [](const std::pair<float, float>& a, const std::pair<float, float>& b)
+    {
+      const float da = Denominator(a.second), db = Denominator(b.second);
+      return da < db || (da == db && a.first > b.first);
+    });
+  std::size_t kept = 0;
+  float best = -1.0f;
+  for (const auto& c : candidates)
+  {
+    if (c.first > best)
+    {
+      candidates[kept++] = c;
+      best = c.first;
+    }
+  }
+  candidates.resize(kept);
+}
+
+/// What LocalPotentialAt keeps of the slabs.
+struct LocalEdgeScan
+{
+  double GradientSquareMax = 0.0; ///< over the maximum box, as BoxGradientMaximum
+  double SmoothMin = std::numeric_limits<double>::max();
+  double SmoothMax = std::numeric_limits<double>::lowest();
+  bool Finite = true; ///< every g and s of the cores (else the whole field's P is not finite)
+  std::vector<float> BinMax = std::vector<float>(RatioBins, -1.0f); ///< largest g per bin so far
+  std::vector<std::pair<float, float>>
+    Candidates;                       ///< (g, G_2sigma * g) that may hold the ratio's maximum
+  std::vector<float> G, Wide, Smooth; ///< at the wanted voxels, by rank
+};
+
+/// A slab's core (slices [Core0, Core1)) and the maximum box, in the slab's indices.
+struct SlabBox
+{
+  int Core0, Core1;
+  int Box0[3], Box1[3];
+  bool InBox(int i, int j, int k) const
+  {
+    return k >= std::max(this->Core0, this->Box0[2]) && k < std::min(this->Core1, this->Box1[2]) &&
+      j >= this->Box0[1] && j < this->Box1[1] && i >= this->Box0[0] && i < this->Box1[0];
+  }
+};
+
+/// g^2 (double) of the voxels 1 .. nx - 2 of a row whose voxels all have both neighbours along
+/// y and z: WorldGradientAt's arithmetic (central differences, then to world), written so that
+/// the loop vectorises.
+void InnerRowSquares(const float* __restrict row, std::ptrdiff_t sy, std::ptrdiff_t sz, int nx,
+  const GradientToWorld& toWorld, double* __restrict squares)
+{
+  const double* J = toWorld.J;
+  const double j0 = J[0], j1 = J[1], j2 = J[2], j3 = J[3], j4 = J[4], j5 = J[5], j6 = J[6],
+               j7 = J[7], j8 = J[8];
+  for (int i = 1; i < nx - 1; ++i)
+  {
+    const double a = 0.5 * (static_cast<double>(row[i + 1]) - row[i - 1]);
+    const double b = 0.5 * (static_cast<double>(row[i + sy]) - row[i - sy]);
+    const double c = 0.5 * (static_cast<double>(row[i + sz]) - row[i - sz]);
+    const double w0 = j0 * a + j1 * b + j2 * c;
+    const double w1 = j3 * a + j4 * b + j5 * c;
+    const double w2 = j6 * a + j7 * b + j8 * c;
+    squares[i] = w0 * w0 + w1 * w1 + w2 * w2;
+  }
+}
+
+/// g = |grad s| on the slab's slices [k0, k1) (as EdgeMagnitude) and, in the same pass, the
+/// largest g^2 over the box (rooted once, as BoxGradientMaximum), the range of s over the core
+/// and whether the core's s and g are finite, folded into `scan`.
+void SlabEdges(const float* s, const int dims[3], const GradientToWorld& toWorld,
+  const SlabBox& slab, int k0, int k1, float* g, LocalEdgeScan& scan)
+{
+  const int nx = dims[0], ny = dims[1];
+  const std::ptrdiff_t step[3] = { 1, nx, static_cast<std::ptrdiff_t>(nx) * ny };
+  std::vector<double> gm2(dims[2], 0.0), lo(dims[2], scan.SmoothMin), hi(dims[2], scan.SmoothMax);
+  std::vector<char> finite(dims[2], 1);
+  vtkSMPTools::For(k0, k1,
+    [&](int kb, int ke)
+    {
+      for (int k = kb; k < ke; ++k)
+      {
+        const bool core = k >= slab.Core0 && k < slab.Core1;
+        double m = 0.0, l = lo[k], h = hi[k];
+        bool f = true;
+        std::vector<double> squares(nx);
+        for (int j = 0; j < ny; ++j)
+        {
+          const std::ptrdiff_t row = k * step[2] + j * step[1];
+          const bool rowInBox = slab.InBox(slab.Box0[0], j, k);
+          const bool inner = nx > 2 && j > 0 && j < ny - 1 && k > 0 && k < dims[2] - 1;
+          for (int i = 0; i < nx; i += inner && i == 0 ? nx - 1 : 1)
+          {
+            const int p[3] = { i, j, k };
+            double gw[3];
+            WorldGradientAt(s + row + i, p, dims, step, toWorld, gw);
+            squares[i] = gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
+          }
+          if (inner)
+          {
+            InnerRowSquares(s + row, step[1], step[2], nx, toWorld, squares.data());
+          }
+          for (int i = 0; i < nx; ++i)
+          {
+            g[row + i] = static_cast<float>(std::sqrt(squares[i]));
+          }
+          for (int i = rowInBox ? slab.Box0[0] : 0; rowInBox && i < slab.Box1[0]; ++i)
+          {
+            m = std::max(m, squares[i]);
+          }
+          for (std::ptrdiff_t v = row; core && v < row + nx; ++v)
+          {
+            f = f && std::isfinite(g[v]) && std::isfinite(s[v]);
+            l = std::min(l, static_cast<double>(s[v]));
+            h = std::max(h, static_cast<double>(s[v]));
+          }
+        }
+        gm2[k] = m;
+        finite[k] = f;
+        lo[k] = l;
+        hi[k] = h;
+      }
+    });
+  for (int k = slab.Core0; k < slab.Core1; ++k)
+  {
+    scan.GradientSquareMax = std::max(scan.GradientSquareMax, gm2[k]);
+    scan.SmoothMin = std::min(scan.SmoothMin, lo[k]);
+    scan.SmoothMax = std::max(scan.SmoothMax, hi[k]);
+    scan.Finite = scan.Finite && finite[k];
+  }
+}
+
+/// Keeps the box's voxels of the slab's core that may hold the largest ratio g / (G_2sigma * g +
+/// floor), whatever the floor (LocalPotentialAt), in `scan`.
+void SlabRatioCandidates(
+  const float* g, const float* wide, const int dims[3], const SlabBox& slab, LocalEdgeScan& scan)
+{
+  const int nx = dims[0];
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(nx) * dims[1];
+  const int k0 = std::max(slab.Core0, slab.Box0[2]), k1 = std::min(slab.Core1, slab.Box1[2]);
+  const auto forBoxRows = [&](int k, auto&& row)
+  {
+    for (int j = slab.Box0[1]; j < slab.Box1[1]; ++j)
+    {
+      row(k * sz + j * nx + slab.Box0[0], k * sz + j * nx + slab.Box1[0]);
+    }
+  };
+  // Each bin's largest g, slice by slice.
+  std::vector<std::vector<float>> binMax(std::max(0, k1 - k0));
+  vtkSMPTools::For(k0, std::max(k0, k1),
+    [&](int kb, int ke)
+    {
+      for (int k = kb; k < ke; ++k)
+      {
+        std::vector<float>& bins = binMax[k - k0];
+        bins.assign(RatioBins, -1.0f);
+        forBoxRows(k,
+          [&](std::ptrdiff_t b, std::ptrdiff_t e)
+          {
+            for (std::ptrdiff_t v = b; v < e; ++v)
+            {
+              float& m = bins[RatioBin(wide[v])];
+              m = std::max(m, g[v]);
+            }
+          });
+      }
+    });
+  // below[b]: the largest g of a voxel in a lower bin, this slab's or an earlier one's. A voxel
+  // whose g does not exceed it cannot hold a larger ratio than that voxel (whatever the floor:
+  // the ratio grows with g and falls with the denominator), so it is not kept.
+  std::vector<float> below(RatioBins);
+  float run = -1.0f;
+  for (int b = 0; b < RatioBins; ++b)
+  {
+    below[b] = run;
+    float m = scan.BinMax[b];
+    for (const std::vector<float>& bins : binMax)
+    {
+      m = std::max(m, bins[b]);
+    }
+    scan.BinMax[b] = m;
+    run = std::max(run, m);
+  }
+  for (int k = k0; k < k1; ++k)
+  {
+    forBoxRows(k,
+      [&](std::ptrdiff_t b, std::ptrdiff_t e)
+      {
+        for (std::ptrdiff_t v = b; v < e; ++v)
+        {
+          // g = 0 gives the ratio 0, the maximum's start.
+          if (g[v] > std::max(0.0f, below[RatioBin(wide[v])]))
+          {
+            scan.Candidates.emplace_back(g[v], wide[v]);
+          }
+        }
+      });
+  }
+}
+} // namespace
+
+namespace
+{
+/// Slices of a slab's core: coreSlices, by default four times the reach (the whole image when
+/// the reach is the whole axis).
+int SlabCore(int reach, int slices, int coreSlices)
+{
+  return reach < 0 ? slices : std::max(1, coreSlices > 0 ? coreSlices : 4 * reach);
+}
+} // namespace
+
+double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParameters& parameters,
+  const VoxelSet& wanted, int coreSlices)
+{
+  const int nz = geometry.Dimensions[2];
+  const int reach = LocalFieldReach(parameters.Sigma / geometry.Spacing[2]);
+  const int slab = std::min(nz, SlabCore(reach, nz, coreSlices) + 2 * std::max(0, reach));
+  const double slice = static_cast<double>(geometry.Dimensions[0]) * geometry.Dimensions[1];
+  // A slab's candidates for the largest ratio (two floats each) are at most its voxels.
+  return 5 * sizeof(float) * slab * slice + 3 * sizeof(float) * static_cast<double>(wanted.Size()) +
+    wanted.Bytes();
+}
+
+bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parameters,
+  const VoxelSet& wanted, std::vector<float>& potential, std::string* error, int coreSlices)
+{
+  float probe = 0.0f;
+  std::string problem = CheckForceInputs(image, parameters, &probe, &probe);
+  if (problem.empty() && (!PotentialOnly(parameters) || parameters.Smooth))
+  {
+    problem = "only the locally normalised potential, smoothed here, is computed at chosen voxels";
+  }
+  if (!problem.empty())
+  {
+    if (error)
+    {
+      *error = problem;
+    }
+    return false;
+  }
+  const ImageGeometry& geometry = image.Geometry;
+  const int nx = geometry.Dimensions[0], ny = geometry.Dimensions[1], nz = geometry.Dimensions[2];
+  double sv[3];
+  SigmaVoxels(parameters.Sigma, geometry, sv);
+  const double wide[3] = { 2 * sv[0], 2 * sv[1], 2 * sv[2] };
+  const GradientToWorld toWorld(geometry);
+  const int reach = LocalFieldReach(sv[2]);
+  const int core = SlabCore(reach, nz, coreSlices);
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(nx) * ny;
+
+  LocalEdgeScan scan;
+  scan.G.resize(wanted.Size());
+  scan.Wide.resize(wanted.Size());
+  scan.Smooth.resize(wanted.Size());
+  WithThreads(parameters.NumberOfThreads,
+    [&]()
+    {
+      std::vector<float> s, g, w;
+      for (int z0 = 0; z0 < nz; z0 += core)
+      {
+        const int z1 = std::min(nz, z0 + core);
+        VoxelBox slab = VoxelBox::Whole(geometry);
+        slab.Begin[2] = reach < 0 ? 0 : std::max(0, z0 - reach);
+        slab.End[2] = reach < 0 ? nz : std::min(nz, z1 + reach);
+        const ImageView part = image.Box(slab);
+        const int* dims = part.Geometry.Dimensions;
+        const std::size_t n = static_cast<std::size_t>(part.Geometry.NumberOfVoxels());
+        s.resize(n);
+        g.resize(n);
+        w.resize(n);
+        SmoothImage(part, sv, s.data());
+        SlabBox where{ z0 - slab.Begin[2], z1 - slab.Begin[2], {}, {} };
+        for (int a = 0; a < 3; ++a)
+        {
+          where.Box0[a] = parameters.MaximumBegin[a] - (a == 2 ? slab.Begin[2] : 0);
+          where.Box1[a] = parameters.MaximumEnd[a] - (a == 2 ? slab.Begin[2] : 0);
+        }
+        // g where G_2sigma * g on the core reads it, and that Gaussian on those slices alone
+        // (its values beyond the core are not used).
+        const int k0 = reach < 0 ? 0 : std::max(0, where.Core0 - SampledRadius(wide[2]));
+        const int k1 =
+          reach < 0 ? dims[2] : std::min(dims[2], where.Core1 + SampledRadius(wide[2]));
+        SlabEdges(s.data(), dims, toWorld, where, k0, k1, g.data(), scan);
+        const int used[3] = { dims[0], dims[1], k1 - k0 };
+        SmoothGaussianSeparable(g.data() + k0 * sz, w.data() + k0 * sz, used, wide);
+        SlabRatioCandidates(g.data(), w.data(), dims, where, scan);
+        KeepUnbeaten(scan.Candidates);
+        const std::ptrdiff_t first = slab.Begin[2] * sz;
+        wanted.ForEachIn(z0 * sz, z1 * sz,
+          [&](long long v, long long rank)
+          {
+            scan.G[rank] = g[v - first];
+            scan.Wide[rank] = w[v - first];
+            scan.Smooth[rank] = s[v - first];
+          });
+      }
+    });
+
+  // The two maxima as NormalizeEdgesLocally and EdgeStatisticsOf take them over the box.
+  EdgeStatistics stats;
+  stats.SmoothMin = scan.SmoothMin;
+  stats.SmoothMax = scan.SmoothMax;
+  const double gMax = std::sqrt(scan.GradientSquareMax);
+  stats.GradientMax = parameters.GradientMaximum ? parameters.GradientMaximum(gMax) : gMax;
+  const double floor = parameters.LocalEdgeFloor * stats.GradientMax;
+  const auto ratio = [floor](float gv, float wv)
+  { return gv / (std::max(0.0, static_cast<double>(wv)) + floor); };
+  double gNorm = stats.GradientMax;
+  if (stats.GradientMax > 0.0)
+  {
+    double m = 0.0;
+    for (const auto& c : scan.Candidates)
+    {
+      m = std::max(m, ratio(c.first, c.second));
+    }
+    gNorm = parameters.GradientMaximum ? parameters.GradientMaximum(m) : m;
+  }
+  const PotentialGains gains = GainsOf(stats, gNorm, parameters);
+  potential.resize(wanted.Size());
+  for (std::size_t r = 0; r < potential.size(); ++r)
+  {
+    const float e =
+      stats.GradientMax > 0.0 ? static_cast<float>(ratio(scan.G[r], scan.Wide[r])) : scan.G[r];
+    potential[r] = PotentialOf(e, scan.Smooth[r], gains);
+  }
+  if (!scan.Finite ||
+    !std::all_of(potential.begin(), potential.end(), [](float v) { return std::isfinite(v); }))
+  {
+    if (error)
+    {
+      *error = "the probe's potential is not finite";
+    }
+    return false;
+  }
+  return true;
+}
 
 //------------------------------------------------------------------------------
 bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, int numberOfThreads,

@@ -79,6 +79,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
 };
 
 class FieldBricks;
+class VoxelSet;
 
 /// P and -grad P on the voxel grid.
 struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
@@ -162,6 +163,29 @@ DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
 DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
   const ImageGeometry& geometry, const VoxelBox& box, const VoxelBox& part,
   const PotentialGains& gains, float* potential, float* force);
+
+/// P of ComputeScaleSpaceForce with the local edge normalisation (EdgeNormalization::Local)
+/// at the voxels of `wanted` only (ids of the voxels of `image`, x fastest; the set finished):
+/// potential[wanted.Rank(v)] is bit for bit the whole field's P at v, both maxima of the
+/// normalisation taken over the voxels [MaximumBegin, MaximumEnd) and passed through
+/// GradientMaximum when it is set (Smooth must be empty). The field is computed in slabs of
+/// `coreSlices` slices along z (0: four times the pipeline's reach along z) with that reach on
+/// either side, and only the maxima and the wanted voxels' values are kept: 12 bytes a voxel of
+/// one slab and 12 a wanted voxel, instead of 12 bytes a voxel of the image. The largest
+/// locally normalised g is found without a second pass: a voxel's ratio g / (G_2sigma * g +
+/// floor) cannot exceed that of a voxel with a larger g and a smaller G_2sigma * g, so only the
+/// voxels no earlier voxel beats on both are kept until the floor is known. False with a
+/// message as ComputeScaleSpaceForce.
+DEFORMABLESURFACEFILTERS_EXPORT bool LocalPotentialAt(const ImageView& image,
+  const ScaleSpaceParameters& parameters, const VoxelSet& wanted, std::vector<float>& potential,
+  std::string* error, int coreSlices = 0);
+
+/// Bytes LocalPotentialAt holds at most for `wanted` voxels of an image of `geometry` with
+/// these parameters and coreSlices (the memory estimate of the sigma_0 probe, dsMemory.h): its
+/// three floats a voxel of one slab and at most two more for the slab's candidates for the
+/// largest ratio, three floats a wanted voxel and the set itself.
+DEFORMABLESURFACEFILTERS_EXPORT double LocalPotentialBytes(const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, const VoxelSet& wanted, int coreSlices = 0);
 
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.
