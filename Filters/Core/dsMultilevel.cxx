@@ -395,7 +395,13 @@ bool MultilevelSolver::GoOn(bool here) const
   return this->Distributed ? this->Reduce.Max(here ? 0.0 : 1.0) == 0.0 : here;
 }
 
-void MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
+namespace
+{
+/// The longest batch of sweeps between two makings of the contact bounds (LimitSteps).
+constexpr int ContactBatchSweeps = 4;
+}
+
+int MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
 {
   // The budget follows the steps: eight times the last sweep's longest (a list made for long
   // steps would be made again every sweep), from a quarter voxel (a surface at rest: a short
@@ -407,7 +413,14 @@ void MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
   {
     budget *= 2;
   }
-  this->Contact.Limits(mesh, ContactClearanceVoxels * this->Voxel, budget, this->StepLimits);
+  this->Contact.Limits(
+    mesh, ContactClearanceVoxels * this->Voxel, budget, this->SelfContact, this->Bounds);
+  // As many sweeps as travel half the budget at the last pace (the list is made again after
+  // them): a vertex held back by the budget rather than by another part would pass for one at
+  // rest, and a level whose fast vertices wait ends short of its object.
+  return lastStep > 0
+    ? std::max(1, std::min(ContactBatchSweeps, static_cast<int>(0.5 * budget / lastStep)))
+    : 1;
 }
 
 namespace
@@ -473,14 +486,14 @@ bool MultilevelSolver::SolveLevel(
   // batches, and the sweep records are handed on after each batch.
   // Batches shrink on big meshes so that progress moves and an abort is answered within
   // about the time of 16 sweeps of 50 000 vertices (one sweep from 800 000 vertices on).
-  // Several objects: one sweep per batch, each with its step limits (dsContact.h).
-  const bool contact = mesh.NumberOfObjects() > 1;
-  const int batchSize = contact
-    ? 1
-    : std::max(1,
-        std::min(
-          P.SweepBatch, static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints()))));
-  solver.SetStepLimits(contact ? &this->StepLimits : nullptr);
+  // Several objects, or one kept off itself: the contact bounds are made before each batch, and
+  // a batch is at most ContactBatchSweeps (dsContact.h: the list is made again once a vertex has
+  // travelled half its budget, four of the steps the budget was made for).
+  const bool contact = mesh.NumberOfObjects() > 1 || this->SelfContact;
+  const int batchSize = std::max(1,
+    std::min({ P.SweepBatch, contact ? ContactBatchSweeps : P.SweepBatch,
+      static_cast<int>(16LL * 50000 / std::max(1, mesh.NumberOfPoints())) }));
+  solver.SetContactBounds(contact ? &this->Bounds : nullptr);
   this->Contact.Reset(); // the mesh may have changed since the last level (refinement, smoothing)
   std::vector<SweepStatistics> batchStats;
   const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
@@ -501,17 +514,19 @@ bool MultilevelSolver::SolveLevel(
     {
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
     }
+    int sweepsNow = batchSize;
     if (contact)
     {
-      this->LimitSteps(
-        mesh, this->Sweeps.empty() || s == 0 ? 0.0 : this->Sweeps.back().MaxCorrection);
+      sweepsNow = std::min(batchSize,
+        this->LimitSteps(
+          mesh, this->Sweeps.empty() || s == 0 ? 0.0 : this->Sweeps.back().MaxCorrection));
     }
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
     // A batch ends at each stall window's end, so that the window's check (StallWatch) sees the
     // same sweeps whatever the batches (bricks end them early; a distributed solve has none).
     solver.Sweeps(
-      std::min({ batchSize, cap - s, budget, StallWindowSweeps - s % StallWindowSweeps }),
+      std::min({ sweepsNow, cap - s, budget, StallWindowSweeps - s % StallWindowSweeps }),
       [&](const SweepStatistics& st)
       {
         batchStats.push_back(st);
@@ -574,7 +589,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
     }
   }
-  solver.SetStepLimits(nullptr);
+  solver.SetContactBounds(nullptr);
   rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
@@ -608,6 +623,9 @@ struct MultilevelSolver::RunState
   /// levels go on where it does (a front level).
   std::vector<char> Front;
   bool FrontLevel = false; ///< this level follows the front at sigma's floor
+  /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
+  /// apart (SolveLevelKeptApart).
+  bool KeepApart = false;
 };
 
 bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error)
@@ -667,7 +685,7 @@ void MultilevelSolver::ClearResults()
   this->UsedRange[0] = this->UsedRange[1] = 0;
   this->ObjectRegions.clear();
   this->Contact.Reset();
-  this->StepLimits.clear();
+  this->Bounds = ContactBounds();
   this->Crossings = 0;
   this->ProgressReached = 0.0;
 }
@@ -1016,11 +1034,14 @@ bool MultilevelSolver::RefineLevel(
   {
     return true;
   }
-  // Several objects refine at edge midpoints: the surface keeps its shape (but where a green pair
-  // turns red, which Refine checks), so a refinement does not bring two objects nearer than their
-  // sweeps did (a butterfly point can bulge out by a share of the edge, through a neighbour
-  // resting the clearance away; dsContact.h).
-  const Prolongation prolongation = P.ButterflyProlongation && mesh.NumberOfObjects() == 1
+  // Several objects, and one kept off itself (the region force on: SelfContact), refine at edge
+  // midpoints: the surface keeps its shape (but where a green pair turns red, which Refine checks
+  // for several objects), so a refinement does not bring two sheets nearer than their sweeps did
+  // (a butterfly point can bulge out by a share of the edge, through a sheet resting the
+  // clearance away; dsContact.h). With butterfly points a Colin27 click kept 104 intersecting
+  // pairs where midpoints left none.
+  const Prolongation prolongation =
+    P.ButterflyProlongation && mesh.NumberOfObjects() == 1 && !state.KeepApart
     ? Prolongation::Butterfly
     : Prolongation::Linear;
   if (!this->Refine(mesh, state, marks, prolongation, refined, error))
@@ -1041,6 +1062,53 @@ bool MultilevelSolver::RefineLevel(
     return false;
   }
   return true;
+}
+
+bool MultilevelSolver::SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, LevelRecord& rec)
+{
+  // A balloon grows the surface around the dark gaps of its object until their two sides meet,
+  // and nothing else keeps them from passing through each other (docs/METHOD.md §9.3). Keeping
+  // every level's parts apart costs a pair list kept up to date every few sweeps (dsContact.h),
+  // about as much as the sweeps, and most surfaces never come near themselves: so a level
+  // is solved as the paper does, and solved again from where it started, its parts kept apart,
+  // when its sweeps left more crossing pairs than it began with. From there every level keeps
+  // them apart. Not the front levels, which push a few thin parts at the floor's sigma (the
+  // walls of a horn face each other all along it, and horns did not fold), nor several objects,
+  // whose folds within one object are smoothed as before (solved again, the engine phantom's
+  // pistons of TestSeveralObjectsMeet ended 0.51 voxel from their boundaries, 0.42 without).
+  // Every process holds the whole mesh, so every process decides alike.
+  const bool watch =
+    state.Region && !state.FrontLevel && !state.KeepApart && mesh.NumberOfObjects() == 1;
+  this->SelfContact = state.Region && !state.FrontLevel && state.KeepApart;
+  if (!watch)
+  {
+    return this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
+  }
+  const std::vector<Vec3> start = mesh.Points;
+  const int crossingBefore = CountSelfIntersections(mesh);
+  const bool stop = this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
+  const int crossingAfter = CountSelfIntersections(mesh);
+  if (stop || crossingAfter <= crossingBefore)
+  {
+    return stop;
+  }
+  // A few pairs on a mesh that resolves its sigma are what the smoothing after the level opens
+  // (EndSweeps): solved again only if it would not.
+  if (rec.MeanEdgeLength <= rec.Sigma)
+  {
+    TriangleMesh trial = mesh;
+    if (Untangle(trial).After <= crossingBefore)
+    {
+      return stop;
+    }
+  }
+  mesh.Points = start;
+  rec.Converged = false;
+  rec.Stalled = false;
+  rec.KeptApart = true;
+  state.KeepApart = true;
+  this->SelfContact = true;
+  return this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
 }
 
 bool MultilevelSolver::RunLevels(
@@ -1071,8 +1139,7 @@ bool MultilevelSolver::RunLevels(
       return false;
     }
     rec.FrontRest = state.FrontLevel ? FrontRestVoxels * state.Voxel : 0.0;
-    const bool stop =
-      this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
+    const bool stop = this->SolveLevelKeptApart(mesh, state, rec);
     // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).

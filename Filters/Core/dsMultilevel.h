@@ -279,6 +279,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int Sweeps = 0;
   bool Converged = false; ///< mean |c| fell below the tolerance before the cap, or it stalled
   bool Stalled = false;   ///< its vertices stepped back and forth in place (StallWindowSweeps)
+  /// Its sweeps made the surface cross itself, so it was solved again with the surface kept off
+  /// itself (SolveLevelKeptApart), as every level after it
+  bool KeptApart = false;
   int Vertices = 0;
   int Triangles = 0;
   double MeanEdgeLength = 0;
@@ -420,7 +423,8 @@ private:
   std::vector<ObjectRegion> ObjectRegions; ///< per object (one unless the start has several)
   /// Several objects: no step brings two objects' triangles within the clearance (dsContact.h).
   ContactLimiter Contact;
-  std::vector<double> StepLimits; ///< the limiter's, for the solver
+  bool SelfContact = false; ///< the parts of one object are kept apart too
+  ContactBounds Bounds;     ///< the limiter's, for the solver
   int Crossings = 0;
   double ProgressReached = 0.0; ///< the largest progress reported so far in this run
   bool Distributed = false;     ///< SetDistribution was called
@@ -436,6 +440,9 @@ private:
   bool Start(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
   /// Levels 0..MaxLevels: set up, SolveLevel, EndSweeps, RefineLevel, the next sigma.
   bool RunLevels(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
+  /// SolveLevel, solved again with the surface kept off itself (SelfContact) when its sweeps
+  /// made it cross itself; returns SolveLevel's stop.
+  bool SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The level's force field (rebuilt when sigma changed), edge and region force scales, and
   /// rec's sigma, sizes and mean edge length.
   bool SetUpLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec,
@@ -501,9 +508,10 @@ private:
     const std::string& which, const double given[2], ObjectRegion& model);
   /// The range given for object `object` of `mesh` (ObjectIntensityRanges, else IntensityRange).
   void GivenRange(const TriangleMesh& mesh, int object, double range[2]) const;
-  /// Several objects: the step limits for the next sweep (StepLimits), the last sweep's longest
-  /// step `lastStep` (0 at a level's first).
-  void LimitSteps(const TriangleMesh& mesh, double lastStep);
+  /// Several objects, or one kept off itself: the contact bounds for the next sweeps (Bounds),
+  /// from the last sweep's longest step `lastStep` (0 at a level's first); returns how many
+  /// sweeps they are for.
+  int LimitSteps(const TriangleMesh& mesh, double lastStep);
   /// False (with a message) when the start surfaces of different objects cross.
   bool CheckStartsApart(const TriangleMesh& mesh, std::string* error);
   double Voxel = 0; ///< the image's mean spacing (the contact's clearance and budget)

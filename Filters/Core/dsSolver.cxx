@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dsSolver.h"
 
+#include "dsContact.h"
+
 #include "dsRegion.h"
 #include "dsSelfIntersectionRule.h"
 #include "dsStepScheduler.h"
@@ -535,12 +537,11 @@ void Solver::CorrectVertex(int k, bool external, const Vec3& force, int outside,
 
   const double gamma = this->Parameters.Gamma;
   Vec3 c = gamma * (internal + applied);
-  if (!this->LocalStepLimits.empty())
+  if (this->Bounds && !this->Bounds->Empty())
   {
-    // Several objects: no step brings a triangle nearer another object's than the clearance
+    // Several objects, or one kept off itself: shortened to stay within the contact bounds
     // (dsContact.h).
-    const double length = Norm(c), limit = this->LocalStepLimits[v];
-    c = length > limit ? (limit / length) * c : c;
+    c = ContactStepScale(*this->Bounds, this->Original[v], this->LocalPoints[v], c) * c;
   }
   Vec3& point = this->LocalPoints[v];
   point = point + c;
@@ -705,7 +706,7 @@ void Solver::RefreshLocal(int first, int last)
   // The caller may have moved points since the last call (labels are read by SetMesh()), and
   // changed the step limits or the objects.
   const TriangleMesh& m = *this->Mesh;
-  const bool objects = !this->LocalObjects.empty(), limits = !this->LocalStepLimits.empty();
+  const bool objects = !this->LocalObjects.empty();
   for (int l = first; l < last; ++l)
   {
     const int v = this->Original[l];
@@ -714,10 +715,6 @@ void Solver::RefreshLocal(int first, int last)
     {
       this->LocalObjects[l] =
         std::min(m.Objects[v], static_cast<int>(this->RegionModels.size()) - 1);
-    }
-    if (limits)
-    {
-      this->LocalStepLimits[l] = (*this->StepLimits)[v];
     }
   }
 }
@@ -765,8 +762,6 @@ int Solver::Sweeps(int maxSweeps, const std::function<bool(const SweepStatistics
   const bool objects =
     this->RegionImage.Data && this->RegionModels.size() > 1 && this->Mesh->Objects.size() == n;
   this->LocalObjects.assign(objects ? n : 0, 0);
-  const bool limits = this->StepLimits && this->StepLimits->size() == n;
-  this->LocalStepLimits.assign(limits ? n : 0, 0.0);
   const int numThreads = ResolveThreads(this->Parameters.NumberOfThreads);
   if (numThreads <= 1 || this->Colors.Offsets.back() < 256)
   {

@@ -32,6 +32,7 @@
 
 namespace dsurf
 {
+struct ContactBounds; // dsContact.h
 
 struct DEFORMABLESURFACEFILTERS_EXPORT SolverParameters
 {
@@ -132,9 +133,9 @@ public:
     this->RegionScale = scale;
   }
 
-  /// The longest step of each vertex in the next sweeps (mesh order; ContactLimiter,
-  /// dsContact.h), or nullptr for none. Not copied: it must outlive the sweeps.
-  void SetStepLimits(const std::vector<double>* limits) { this->StepLimits = limits; }
+  /// Where each vertex may go in the next sweeps (mesh order; ContactLimiter, dsContact.h), or
+  /// nullptr for anywhere. Not copied: it must outlive the sweeps.
+  void SetContactBounds(const ContactBounds* bounds) { this->Bounds = bounds; }
 
   /// The hook between sampling and applying the external forces of each colour (see
   /// ForceExchange); empty (the default) = none. With a hook a colour is swept in three
@@ -253,8 +254,7 @@ private:
   double RegionScale = 0;
   /// Per local vertex, its object's index into RegionModels (refreshed by every call).
   std::vector<int> LocalObjects;
-  const std::vector<double>* StepLimits = nullptr;
-  std::vector<double> LocalStepLimits; ///< StepLimits in the local layout, empty when none
+  const ContactBounds* Bounds = nullptr;
   /// Area-weighted (unnormalised) normal of local vertex v, from its triangle fan.
   Vec3 FanNormal(int v) const;
   bool UniformWeights = true; ///< every label N: the weight lookup can be skipped

@@ -71,14 +71,14 @@ Vec3 ClosestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
   return a + v * ab + w * ac;
 }
 
-double SegmentDistance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1)
+Vec3 SegmentSeparation(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1)
 {
   const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = Dot(d1, d1), e = Dot(d2, d2), f = Dot(d2, r);
   double s = 0, t = 0;
   if (a <= 0 && e <= 0)
   {
-    return Norm(r);
+    return q0 - p0;
   }
   if (a <= 0)
   {
@@ -109,27 +109,48 @@ double SegmentDistance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec
       }
     }
   }
-  return Norm((p0 + s * d1) - (q0 + t * d2));
+  return (q0 + t * d2) - (p0 + s * d1);
+}
+
+double SegmentDistance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1)
+{
+  return Norm(SegmentSeparation(p0, p1, q0, q1));
+}
+
+Vec3 TriangleSeparation(
+  const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2)
+{
+  if (TrianglesIntersect(a0, a1, a2, b0, b1, b2))
+  {
+    return Vec3{ 0, 0, 0 };
+  }
+  const Vec3 a[3] = { a0, a1, a2 }, b[3] = { b0, b1, b2 };
+  Vec3 best{ 0, 0, 0 };
+  double nearest = std::numeric_limits<double>::infinity();
+  auto keep = [&](const Vec3& v)
+  {
+    const double d = Norm(v);
+    if (d < nearest)
+    {
+      nearest = d;
+      best = v;
+    }
+  };
+  for (int k = 0; k < 3; ++k)
+  {
+    keep(ClosestPointOnTriangle(a[k], b0, b1, b2) - a[k]);
+    keep(b[k] - ClosestPointOnTriangle(b[k], a0, a1, a2));
+    for (int j = 0; j < 3; ++j)
+    {
+      keep(SegmentSeparation(a[k], a[(k + 1) % 3], b[j], b[(j + 1) % 3]));
+    }
+  }
+  return best;
 }
 
 double TriangleDistance(
   const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2)
 {
-  if (TrianglesIntersect(a0, a1, a2, b0, b1, b2))
-  {
-    return 0.0;
-  }
-  const Vec3 a[3] = { a0, a1, a2 }, b[3] = { b0, b1, b2 };
-  double best = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k)
-  {
-    best = std::min(best, Norm(a[k] - ClosestPointOnTriangle(a[k], b0, b1, b2)));
-    best = std::min(best, Norm(b[k] - ClosestPointOnTriangle(b[k], a0, a1, a2)));
-    for (int j = 0; j < 3; ++j)
-    {
-      best = std::min(best, SegmentDistance(a[k], a[(k + 1) % 3], b[j], b[(j + 1) % 3]));
-    }
-  }
-  return best;
+  return Norm(TriangleSeparation(a0, a1, a2, b0, b1, b2));
 }
 } // namespace dsurf

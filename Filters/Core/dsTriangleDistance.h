@@ -23,6 +23,16 @@ DEFORMABLESURFACEFILTERS_EXPORT Vec3 ClosestPointOnTriangle(
 DEFORMABLESURFACEFILTERS_EXPORT double SegmentDistance(
   const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
 
+/// The vector from the point of segment [p0, p1] nearest segment [q0, q1] to that of [q0, q1].
+DEFORMABLESURFACEFILTERS_EXPORT Vec3 SegmentSeparation(
+  const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1);
+
+/// The vector between the nearest points of the closed triangles (a0, a1, a2) and (b0, b1, b2),
+/// from the first's to the second's; 0 when they intersect. The plane through either point
+/// normal to it separates the two (both are convex): dsContact.h limits steps along it.
+DEFORMABLESURFACEFILTERS_EXPORT Vec3 TriangleSeparation(
+  const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2);
+
 /// The distance between the closed triangles (a0, a1, a2) and (b0, b1, b2); 0 when they
 /// intersect.
 DEFORMABLESURFACEFILTERS_EXPORT double TriangleDistance(
