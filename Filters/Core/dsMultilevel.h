@@ -443,6 +443,8 @@ private:
   /// SolveLevel, solved again with the surface kept off itself (SelfContact) when its sweeps
   /// made it cross itself; returns SolveLevel's stop.
   bool SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, LevelRecord& rec);
+  /// After a level kept apart: its remaining folds smoothed open (SmoothFolds) on any mesh.
+  void SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec);
   /// The level's force field (rebuilt when sigma changed), edge and region force scales, and
   /// rec's sigma, sizes and mean edge length.
   bool SetUpLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec,
