@@ -9,6 +9,8 @@
 // - a start inside one region (no contrast with its outside) gives median -+ 3 s;
 // - an inward-oriented start gives the same range once its pieces are turned outward;
 // - spheres around a blurred ball in an empty image put the low end at the ball's half level.
+// - a click inside one noisy class (its tails beyond the histogram's quantiles) finds one class
+//   and keeps the whole class in its range (IsOneClass).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
