@@ -32,6 +32,15 @@ struct DEFORMABLESURFACEFILTERS_EXPORT Mixture
 /// same mixture on every process. Empty for no counts, maxClasses < 1 or a bad bin width.
 DEFORMABLESURFACEFILTERS_EXPORT Mixture FitHistogramMixture(
   const std::vector<double>& counts, double low, double width, int maxClasses);
+
+/// Whether BIC picks one class among 1 to maxClasses (FitHistogramMixture) when the first and
+/// the last bin also hold every value below and above the span (a histogram between two
+/// quantiles, the tails piled into its ends): each class's likelihood there is its tail's mass,
+/// and those values enter EM at the tail's mean (grouped and truncated data: McLachlan and
+/// Jones, Biometrics 44, 1988). Taken at their centres instead, the two piles are spikes that
+/// even one Gaussian class cannot fit: one noisy class came out as four.
+DEFORMABLESURFACEFILTERS_EXPORT bool IsOneClass(
+  const std::vector<double>& counts, double low, double width, int maxClasses);
 } // namespace dsurf
 
 #endif

@@ -501,9 +501,12 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
     counts[static_cast<int>(std::min(Bins - 1.0, std::max(0.0, (v - low) / width)))] += 1.0;
   }
   reduce.Sum(counts);
+  // One class when BIC says so with the tails beyond the quantiles in the end bins modelled
+  // (IsOneClass): the mixture below takes them for spikes and split a noisy ball's one class
+  // into four, two of them halves of the click's own class (one a "competitor" at its median).
   const Mixture m = FitHistogramMixture(counts, low, width, 4);
-  estimate.Classes = m.Size();
-  if (m.Size() < 2)
+  estimate.Classes = IsOneClass(counts, low, width, 4) ? 1 : m.Size();
+  if (estimate.Classes < 2)
   {
     return;
   }

@@ -9,6 +9,8 @@
 // - a start inside one region (no contrast with its outside) gives median -+ 3 s;
 // - an inward-oriented start gives the same range once its pieces are turned outward;
 // - spheres around a blurred ball in an empty image put the low end at the ball's half level.
+// - a click inside one noisy class (its tails beyond the histogram's quantiles) finds one class
+//   and keeps the whole class in its range (IsOneClass).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -18,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -200,6 +203,31 @@ int TestRegionRange(int, char*[])
       "narrow tissue: the high end below the narrow tissue, which competes");
   }
 
+  // A click inside one noisy region, all its neighbourhood one class (a click at the centre of
+  // a CT-like ball much larger than its reach: uint16 values 1100 +- 60): one class, so the
+  // range is the median -+ 3 s and holds the whole class. The histogram spans the values'
+  // 0.5-99.5 % quantiles, the tails piled into its end bins; a mixture fitted as if the span
+  // were all (densities at the bin centres) split the one class into four, and the click took
+  // the half of its own class beyond its median for a competitor: the range began at ~1100,
+  // and the 1024^3 click of BenchScale did not grow.
+  {
+    std::vector<std::uint16_t> ct(image.size());
+    std::mt19937 random(4);
+    std::normal_distribution<float> noise(0.f, 1.f);
+    for (auto& v : ct)
+      v = static_cast<std::uint16_t>(std::lround(1100.f + 60.f * noise(random)));
+    TriangleMesh centre = dstest::MakeCubeSurface(2, 3.0, { 19.5, 19.5, 19.5 });
+    DS_CHECK(centre.BuildTopology(&error), error);
+    RangeEstimate one;
+    DS_CHECK(
+      EstimateIntensityRange(ImageView::Of(ct.data(), g), centre, 1.0, one, &error, 16.0), error);
+    std::cout << "click inside one noisy class: " << one.Classes << " classes, range ["
+              << one.Range[0] << ", " << one.Range[1] << "]" << std::endl;
+    DS_CHECK(one.Classes == 1 && !one.Contrast, "one noisy class around the click: one class");
+    DS_CHECK(one.Range[0] < 1100.0 - 2.0 * 60.0 && one.Range[1] > 1100.0 + 2.0 * 60.0,
+      "one noisy class: the range holds the class's values within 2 s.d. of its mean");
+  }
+
   // The mixture itself: two Gaussians (means 40 and 160, s.d. 10 and 25, weights 0.3 and 0.7)
   // as a 256-bin histogram; BIC keeps two classes, EM finds them.
   {
@@ -225,6 +253,24 @@ int TestRegionRange(int, char*[])
         std::abs(m.Weight[0] - 0.3) < 0.01,
       "mixture: the classes' weights, means and spreads");
     DS_CHECK(m.Likeliest(40) == 0 && m.Likeliest(160) == 1, "mixture: each level in its class");
+    DS_CHECK(!IsOneClass(counts, low, width, 4), "two Gaussians: not one class");
+  }
+
+  // One Gaussian (mean 1100, s.d. 60) as CompetitorsAround bins it: 256 bins between its
+  // 0.5 and 99.5 % quantiles (-+2.576 s.d.), the 0.5 % beyond each end in the end bins.
+  {
+    const double low = 1100 - 2.576 * 60, width = 2 * 2.576 * 60 / 256;
+    const auto below = [](double x)
+    { return 0.5 * std::erfc(-(x - 1100) / (60 * std::sqrt(2.0))); };
+    std::vector<double> counts(256);
+    for (int b = 0; b < 256; ++b)
+    {
+      const double a = b == 0 ? -1e300 : low + b * width;
+      const double c = b == 255 ? 1e300 : low + (b + 1) * width;
+      counts[b] = std::round(1e6 * (below(c) - below(a)));
+    }
+    DS_CHECK(IsOneClass(counts, low, width, 4),
+      "one Gaussian cut at its 0.5 and 99.5 % quantiles, the tails in the end bins: one class");
   }
 
   // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
