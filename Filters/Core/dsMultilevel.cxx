@@ -1082,6 +1082,7 @@ bool MultilevelSolver::SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, 
   this->SelfContact = state.Region && !state.FrontLevel && state.KeepApart;
   if (!watch)
   {
+    rec.KeptApart = this->SelfContact;
     const bool stop =
       this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
     if (this->SelfContact)

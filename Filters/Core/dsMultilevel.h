@@ -279,8 +279,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int Sweeps = 0;
   bool Converged = false; ///< mean |c| fell below the tolerance before the cap, or it stalled
   bool Stalled = false;   ///< its vertices stepped back and forth in place (StallWindowSweeps)
-  /// Its sweeps made the surface cross itself, so it was solved again with the surface kept off
-  /// itself (SolveLevelKeptApart), as every level after it
+  /// Solved with the surface kept off itself (SolveLevelKeptApart): its sweeps, or an earlier
+  /// level's, made the surface cross itself.
   bool KeptApart = false;
   int Vertices = 0;
   int Triangles = 0;

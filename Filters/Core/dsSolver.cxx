@@ -2,7 +2,6 @@
 #include "dsSolver.h"
 
 #include "dsContact.h"
-
 #include "dsRegion.h"
 #include "dsSelfIntersectionRule.h"
 #include "dsStepScheduler.h"
@@ -704,7 +703,7 @@ void Solver::BuildRingCoefficients()
 void Solver::RefreshLocal(int first, int last)
 {
   // The caller may have moved points since the last call (labels are read by SetMesh()), and
-  // changed the step limits or the objects.
+  // changed the objects.
   const TriangleMesh& m = *this->Mesh;
   const bool objects = !this->LocalObjects.empty();
   for (int l = first; l < last; ++l)
