@@ -619,8 +619,8 @@ struct MultilevelSolver::RunState
   bool ClosedStart = false;
   bool BudgetWarned = false; ///< the MaxVertices warning is given once
   int SweepCounter = 0;
-  /// Per vertex: the region force still pushes it out (FrontVertices); after sigma's floor the
-  /// levels go on where it does (a front level).
+  /// Per vertex: a corner of a triangle the object lies beyond (FrontTriangles); after sigma's
+  /// floor the levels go on there (a front level).
   std::vector<char> Front;
   bool FrontLevel = false; ///< this level follows the front at sigma's floor
   /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
@@ -950,15 +950,21 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh,
       }
     }
   }
-  // The front (docs/METHOD.md §9.3): a triangle with a corner the region force still pushes
-  // out is split down to half a voxel (FrontEdgeVoxels), whatever its internal force, so the
-  // front fits into a horn or a tube as narrow as the image shows.
-  for (size_t t = 0; t < marks.size() && !front.empty(); ++t)
+  // The front (docs/METHOD.md §9.3): after sigma's floor only the front is refined, every
+  // triangle with a corner on a triangle the object still lies beyond down to half a voxel
+  // (FrontEdgeVoxels), whatever its internal force, so the front fits into a horn or a tube as
+  // narrow as the image shows. The rest of the surface was done at the floor: the estimator
+  // marks its corners and edges at every level (the engine's pistons, split there level after
+  // level, grew to 13 000 triangles each).
+  if (!front.empty())
   {
-    const auto& tri = mesh.Triangles[t];
-    if (!marks[t] && (front[tri[0]] || front[tri[1]] || front[tri[2]]))
+    for (size_t t = 0; t < marks.size(); ++t)
     {
-      marks[t] = LongestEdge(mesh, t) > FrontEdgeVoxels * voxel ? 1 : 0;
+      const auto& tri = mesh.Triangles[t];
+      marks[t] = (front[tri[0]] || front[tri[1]] || front[tri[2]]) &&
+          LongestEdge(mesh, t) > FrontEdgeVoxels * voxel
+        ? 1
+        : 0;
     }
   }
   return marks;
@@ -1184,14 +1190,9 @@ bool MultilevelSolver::RunLevels(
       std::any_of(this->ObjectRegions.begin(), this->ObjectRegions.end(),
         [](const ObjectRegion& o) { return o.On && o.FollowsFront; }))
     {
-      state.Front = this->FrontVertices(image, mesh);
-      const auto onFront = std::count(state.Front.begin(), state.Front.end(), 1);
       // A front of more than FrontShare of the surface is no thin part left behind: the
       // surface has not settled on its object, and pushing on would only spread it.
-      if (onFront == 0 || onFront > FrontShare * mesh.NumberOfPoints())
-      {
-        state.Front.clear();
-      }
+      state.Front = this->FrontOf(mesh, this->FrontTriangles(image, mesh));
     }
     state.FrontLevel = !state.Front.empty();
     frontLevels += state.FrontLevel ? 1 : 0;
@@ -1231,31 +1232,115 @@ bool MultilevelSolver::RunLevels(
   return true;
 }
 
-std::vector<char> MultilevelSolver::FrontVertices(
+std::vector<char> MultilevelSolver::FrontTriangles(
   const ImageView& image, const TriangleMesh& mesh) const
 {
-  // Each vertex's speed, sampled by the process that owns its cell and summed (the others
-  // add 0), so every process marks the same vertices.
-  const int n = mesh.NumberOfPoints();
-  std::vector<double> speed(n, 0.0);
-  for (int v = 0; v < n; ++v)
+  // Points of a barycentric grid on each triangle, about a voxel apart, looked at FrontLookSteps
+  // depths up to FrontLookVoxels out along its normal: a coarse triangle bridges the mouth of a
+  // horn narrower than its edges, so no vertex need lie in the horn, but a point beyond the
+  // triangle does; a surface resting on its object's edge has the competitor, not the object,
+  // beyond it (a vertex's own value is noise around the range's end there); and the object must go
+  // on from the surface out, not lie behind a gap (the engine's pistons have their block beyond a
+  // voxel of air, which blurs to values in their range but for a dip a voxel wide). Each sample is
+  // taken by the process that owns its cell and the samples in the object summed (the others add
+  // 0), so every process marks the same triangles.
+  const int count = mesh.NumberOfTriangles();
+  const double voxel = image.Geometry.MeanSpacing();
+  std::vector<int> grid(count, 0);            // the grid's divisions per side (0: no samples)
+  std::vector<long long> first(count + 1, 0); // the triangle's first sample
+  auto regionOf = [&](int t) -> const ObjectRegion&
   {
-    bool inside = false;
-    const double value = this->Distributed ? this->Piece.SampleOwned(mesh.Points[v].data(), &inside)
-                                           : SampleVolume(image, mesh.Points[v].data(), &inside);
-    const ObjectRegion& o = this->ObjectRegions[mesh.Objects.empty()
+    const int v = mesh.Triangles[t][0];
+    return this->ObjectRegions[mesh.Objects.empty()
         ? 0
         : std::min<std::size_t>(mesh.Objects[v], this->ObjectRegions.size() - 1)];
-    speed[v] = inside && o.On && o.FollowsFront ? RegionSpeed(value, o.Low, o.High) : 0.0;
+  };
+  for (int t = 0; t < count; ++t)
+  {
+    const auto& c = mesh.Triangles[t];
+    const Vec3 &a = mesh.Points[c[0]], &b = mesh.Points[c[1]], &d = mesh.Points[c[2]];
+    const ObjectRegion& o = regionOf(t);
+    const Vec3 normal = Cross(b - a, d - a);
+    if (o.On && o.FollowsFront && Dot(normal, normal) > 0)
+    {
+      const double longest =
+        std::sqrt(std::max({ Dot(b - a, b - a), Dot(d - b, d - b), Dot(a - d, a - d) }));
+      grid[t] = std::max(1, std::min(FrontGridMax, static_cast<int>(std::ceil(longest / voxel))));
+    }
+    first[t + 1] = first[t] + FrontLookSteps * (grid[t] + 1LL) * (grid[t] + 2) / 2;
+  }
+  std::vector<double> inObject(static_cast<std::size_t>(first[count]), 0.0);
+  for (int t = 0; t < count; ++t)
+  {
+    const auto& c = mesh.Triangles[t];
+    const Vec3 &a = mesh.Points[c[0]], &b = mesh.Points[c[1]], &d = mesh.Points[c[2]];
+    const Vec3 normal = Cross(b - a, d - a);
+    const ObjectRegion& o = regionOf(t);
+    const int k = grid[t];
+    const Vec3 out =
+      k > 0 ? (FrontLookVoxels * voxel / std::sqrt(Dot(normal, normal))) * normal : Vec3{};
+    long long at = first[t];
+    for (int i = 0; i <= k && k > 0; ++i)
+    {
+      for (int j = 0; i + j <= k; ++j)
+      {
+        const double u = static_cast<double>(i) / k, w = static_cast<double>(j) / k;
+        const Vec3 x = (1.0 - u - w) * a + u * b + w * d;
+        for (int step = 0; step < FrontLookSteps; ++step)
+        {
+          const double depth = static_cast<double>(step) / (FrontLookSteps - 1);
+          const Vec3 y = x + depth * out;
+          bool inside = false;
+          const double value = this->Distributed ? this->Piece.SampleOwned(y.data(), &inside)
+                                                 : SampleVolume(image, y.data(), &inside);
+          inObject[at++] = inside && RegionSpeed(value, o.Low, o.High) >= FrontSpeed ? 1.0 : 0.0;
+        }
+      }
+    }
   }
   if (this->Distributed)
   {
-    this->Reduce.Sum(speed);
+    this->Reduce.Sum(inObject);
   }
-  std::vector<char> front(n, 0);
-  for (int v = 0; v < n; ++v)
+  std::vector<char> front(count, 0);
+  for (int t = 0; t < count; ++t)
   {
-    front[v] = speed[v] >= FrontSpeed ? 1 : 0;
+    for (long long at = first[t]; at < first[t + 1] && !front[t]; at += FrontLookSteps)
+    {
+      front[t] = std::all_of(inObject.begin() + at, inObject.begin() + at + FrontLookSteps,
+                   [](double n) { return n > 0; })
+        ? 1
+        : 0;
+    }
+  }
+  return front;
+}
+
+std::vector<char> MultilevelSolver::FrontOf(
+  const TriangleMesh& mesh, const std::vector<char>& triangles) const
+{
+  // Per object: its front triangles against all of its triangles.
+  const int objects = mesh.NumberOfObjects();
+  std::vector<long long> all(objects, 0), onFront(objects, 0);
+  auto objectOf = [&](int t)
+  { return mesh.Objects.empty() ? 0 : mesh.Objects[mesh.Triangles[t][0]]; };
+  for (int t = 0; t < mesh.NumberOfTriangles(); ++t)
+  {
+    ++all[objectOf(t)];
+    onFront[objectOf(t)] += triangles[t] ? 1 : 0;
+  }
+  std::vector<char> front;
+  for (int t = 0; t < mesh.NumberOfTriangles(); ++t)
+  {
+    const int o = objectOf(t);
+    if (triangles[t] && onFront[o] <= FrontShare * all[o])
+    {
+      front.resize(mesh.NumberOfPoints(), 0);
+      for (int v : mesh.Triangles[t])
+      {
+        front[v] = 1;
+      }
+    }
   }
   return front;
 }

@@ -50,7 +50,7 @@
 // joins the edge force; folds are smoothed open on the delivered surface and after levels
 // whose mesh resolves their sigma (dsUntangle.h); a start far finer than sigma_0 begins on a
 // coarse copy (CoarsenStart); a click whose range came from the classes around it takes front
-// levels at sigma's floor while the region force still pushes part of it out (FrontVertices).
+// levels at sigma's floor while the object lies beyond part of it (FrontTriangles).
 #ifndef dsMultilevel_h
 #define dsMultilevel_h
 
@@ -187,10 +187,19 @@ DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigm
 /// neighbourhood holds the object's class and the classes around it.
 constexpr double CompetitorReachSigmas = 4.0;
 
-/// A vertex whose region speed is at least this is on the front (MultilevelSolver::FrontVertices).
+/// A point whose region speed is at least this is in the object (MultilevelSolver::FrontTriangles).
 constexpr double FrontSpeed = 0.5;
-/// Front levels at most, beyond MaxLevels (a horn of 40 voxels took about 12).
-constexpr int MaxFrontLevels = 32;
+/// The front is looked for this many voxels beyond each triangle (FrontTriangles).
+constexpr double FrontLookVoxels = 1.0;
+/// Looking beyond a triangle samples this many depths from 0 to FrontLookVoxels: the object
+/// must go on from the surface out, and a gap of a voxel blurs to a dip about a voxel wide.
+constexpr int FrontLookSteps = 5;
+/// At most this many samples along a triangle's side when looking beyond it.
+constexpr int FrontGridMax = 16;
+/// Front levels at most, beyond MaxLevels: the horned phantom's horns of 25-35 voxels, three
+/// and four wide, take about 20; its horn two voxels wide, whose tip advances about 0.4 voxel a
+/// level, reached 20 of its 40 voxels with 32 and 26 with 64.
+constexpr int MaxFrontLevels = 64;
 /// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
 /// keep one vertex stepping back and forth for ever.
 constexpr int FrontLevelSweeps = 200;
@@ -203,7 +212,7 @@ constexpr int FrontLevelSweeps = 200;
 constexpr int StallWindowSweeps = 32;
 constexpr double StallNetShare = 0.3;
 constexpr double StallSigmaShare = 0.1;
-/// Front levels follow a front of at most this share of the surface's vertices.
+/// Front levels follow a front of at most this share of its object's triangles.
 constexpr double FrontShare = 0.1;
 /// Front levels split the triangles around the front down to this many voxels: a horn two
 /// voxels wide needs edges below a voxel around it (with a voxel, the committed horned
@@ -242,7 +251,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ObjectRegion
   double Low = 0, High = 0;
   bool OutwardOnly = false; ///< an estimate without contrast: grow only
   /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
-  /// levels follow the parts the region force still pushes out (FrontVertices).
+  /// levels follow the parts the object still lies beyond (FrontTriangles).
   bool FollowsFront = false;
 };
 
@@ -456,14 +465,19 @@ private:
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
   /// Step 3's marks without the triangles whose edges are all shorter than `unsplit`
   /// (UnsplitEdgeLength; adaptive refinement only).
-  /// With `front` (per vertex, FrontVertices), also every triangle with a front corner and an
-  /// edge longer than `voxel`.
+  /// With `front` (per vertex: a corner of a FrontTriangles triangle), also every triangle with a
+  /// front corner and an edge longer than FrontEdgeVoxels.
   std::vector<char> MarkForRefinement(const TriangleMesh& mesh, const LevelRecord& rec,
     double voxel, double unsplit, const std::vector<char>& front) const;
-  /// Per vertex: 1 where the region speed (dsRegion.h) at the vertex is at least FrontSpeed,
-  /// i.e. the image under it lies well inside the object's range and the region force pushes
-  /// it out: the surface has not reached the object's edge there. Collective when distributed.
-  std::vector<char> FrontVertices(const ImageView& image, const TriangleMesh& mesh) const;
+  /// Per triangle: 1 where, from some point of a grid on it about a voxel apart, the image
+  /// out along its normal to FrontLookVoxels lies well inside the object's range (region speed,
+  /// dsRegion.h, at least FrontSpeed at each of FrontLookSteps depths): the region force would
+  /// push the surface on, which has not reached the object's edge there. Collective when
+  /// distributed.
+  std::vector<char> FrontTriangles(const ImageView& image, const TriangleMesh& mesh) const;
+  /// Per vertex: 1 on a corner of a front triangle (`triangles`, FrontTriangles) of an object
+  /// whose front holds at most FrontShare of its triangles; empty when there is none.
+  std::vector<char> FrontOf(const TriangleMesh& mesh, const std::vector<char>& triangles) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(
