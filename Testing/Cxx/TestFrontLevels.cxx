@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Front levels (docs/METHOD.md §9.3, MultilevelSolver::FrontTriangles): one click with every
+// default at the centre of the horned phantom's body (ObjectPhantoms.h: a dark body with four
+// horns 4, 3, 2 and 3 voxels wide reaching 30, 25, 40 and 35 voxels beyond it) follows its horns:
+// - the horns three and four voxels wide to within a voxel of their ends (the surface's farthest
+//   vertex near each horn's axis, measured from the body's surface along it);
+// - the horn two voxels wide at least 24 of its 40 voxels (26 now; 20 when the front was read at
+//   the vertices, with 32 front levels: issue 24's goal, its end, is not met);
+// - reference boundary -> surface 95 % at most 1.5 voxel (issue 24's goal; 0.79 now, 3.32
+//   before) and mean at most 0.65 (0.58 now, 0.84 before; the goal 0.5 is not met);
+// - no self-intersections.
+#include "DSTestHelpers.h"
+#include "ObjectPhantoms.h"
+#include "ObjectScore.h"
+#include "OneClick.h"
+
+#include "vtkPoints.h"
+
+#include <algorithm>
+#include <iostream>
+#include <string>
+
+using namespace dsobjects;
+
+int TestFrontLevels(int, char*[])
+{
+  const ObjectPhantom phantom = HornedPhantom();
+  const ClickResult click = RunOneClick(phantom.Image, phantom.Click, ClickSettings());
+  const int object = phantom.ObjectLabel;
+  const std::vector<unsigned char> reference =
+    MaskOf(phantom.Label, [object](double l, vtkIdType) { return l == object; });
+  const ObjectScore s = Score(click.Surface, SurfaceInterior(click.Surface, phantom.Image),
+    reference, MaskBoundary(reference, phantom.Image), phantom.Image);
+  std::cout << "horned: " << s.Vertices << " vertices; reference -> surface mean "
+            << s.ReferenceMean << " (95 % " << s.ReferenceP95 << ") voxels, " << s.SelfIntersections
+            << " intersecting pairs" << std::endl;
+  DS_CHECK_LE(s.ReferenceP95, 1.5, "horned: reference -> surface 95 % (voxels)");
+  DS_CHECK_LE(s.ReferenceMean, 0.65, "horned: reference -> surface mean (voxels)");
+  DS_CHECK(s.SelfIntersections == 0, "horned: no self-intersections");
+
+  vtkPoints* points = click.Surface->GetPoints();
+  for (int h = 0; h < horned::Horns; ++h)
+  {
+    const horned::Horn& horn = horned::HornList[h];
+    double reach = -1e300; // the farthest vertex near the horn's axis, beyond the body's surface
+    for (vtkIdType v = 0; v < points->GetNumberOfPoints(); ++v)
+    {
+      double x[3];
+      points->GetPoint(v, x);
+      double along = 0;
+      if (horned::AxisDistance(h, { x[0], x[1], x[2] }, &along) < horn.Width + 1.0)
+      {
+        reach = std::max(reach, along - horned::SurfaceDistance(h));
+      }
+    }
+    std::cout << "horn " << h << " (" << horn.Width << " voxels wide, " << horn.Length
+              << " long): reached " << reach << std::endl;
+    const double wanted = horn.Width >= 3 ? horn.Length - 1.0 : 24.0;
+    DS_CHECK_GE(reach, wanted, "horn " + std::to_string(h) + ": reach beyond the body (voxels)");
+  }
+  return dstest::Result("TestFrontLevels");
+}
+
+int main(int argc, char* argv[])
+{
+  return TestFrontLevels(argc, argv);
+}
