@@ -406,6 +406,16 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   AddFieldValue<vtkStringArray>(fd, "StopReason", dsurf::StopReasonName(solver.GetStopReason()));
   AddFieldValue<vtkIntArray>(fd, "WarmStart", warm ? 1 : 0);
+  // What made a run longer than its schedule (docs/METHOD.md §9.3): levels past sigma's floor
+  // that followed a thin part, and levels solved with the surface kept off itself.
+  int front = 0, keptApart = 0;
+  for (const dsurf::LevelRecord& level : solver.GetLevels())
+  {
+    front += level.FrontRest > 0 ? 1 : 0;
+    keptApart += level.KeptApart ? 1 : 0;
+  }
+  AddFieldValue<vtkIntArray>(fd, "FrontLevels", front);
+  AddFieldValue<vtkIntArray>(fd, "KeptApartLevels", keptApart);
 }
 /// PrintSelf's line of one parameter.
 template <typename T>

@@ -49,7 +49,9 @@
  * InitialSubdivisions, FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found
  * with a bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
  * level), StopReason (why the levels ended: "sigma floor", "no detail", "MaxLevels", "MaxSweeps"
- * or "aborted"), WarmStart and, with the region force, IntensityRange (the range it used).
+ * or "aborted"), WarmStart, FrontLevels (levels past sigma's floor that followed a thin part of a
+ * click's object), KeptApartLevels (levels solved with the surface kept off itself, after one
+ * made it cross itself) and, with the region force, IntensityRange (the range it used).
  * Several objects (docs/METHOD.md §9.9): a start with a cell array ObjectId is one object per
  * value, solved together, each with its own sigma_0, start subdivision and region range, never
  * crossing another (each step limited to keep 0.1 voxel between objects); the output then has

@@ -1182,8 +1182,8 @@ bool MultilevelSolver::RunLevels(
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).
     const bool atFloor = P.HierarchicalSigma && !(state.Sigma > sigmaFloor * (1 + 1e-9));
-    // At the floor the levels go on while the region force still pushes part of the surface
-    // out (a thin part not yet followed to its end, docs/METHOD.md §9.3): front levels, beyond
+    // At the floor the levels go on while the object still lies beyond part of the surface (a
+    // thin part not yet followed to its end, docs/METHOD.md §9.3): front levels, beyond
     // MaxLevels, at most MaxFrontLevels.
     state.Front.clear();
     if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&

@@ -303,8 +303,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   /// sweeps' largest corrections reaches half their reach, so this stays 0 unless one sweep
   /// moves a vertex more than BrickReachSigmas / 2 sigma).
   long long FieldMisses = 0;
-  /// A front level (after sigma's floor, where the region force still pushes): it ends when
-  /// the largest correction of a sweep is below this (world units); 0 on the other levels.
+  /// A front level (after sigma's floor, where the object still lies beyond the surface): it ends
+  /// when the largest correction of a sweep is below this (world units); 0 on the other levels.
   double FrontRest = 0;
 };
 

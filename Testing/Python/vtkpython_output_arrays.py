@@ -20,7 +20,8 @@ import ds_invariants  # noqa: E402
 
 POINT_ARRAYS = {"Normals", "Displacement", "ExternalForce", "ErrorIndicator", "RefinementLevel", "VertexLabel"}
 FIELD_ARRAYS = {"Sweeps", "Levels", "InitialSubdivisions", "FinalMeanCorrection", "SelfIntersections",
-                "InitialSigma", "Sigma", "Converged", "StopReason", "WarmStart"}
+                "InitialSigma", "Sigma", "Converged", "StopReason", "WarmStart", "FrontLevels",
+                "KeptApartLevels"}
 REGION_FIELD = {"IntensityRange"}  # only with the region force
 TABLE_COLUMNS = {"Sweep", "Level", "Sigma", "Vertices", "Triangles", "MeanCorrection", "MaxCorrection"}
 
