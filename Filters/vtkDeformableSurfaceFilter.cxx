@@ -411,7 +411,7 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
   int front = 0, keptApart = 0;
   for (const dsurf::LevelRecord& level : solver.GetLevels())
   {
-    front += level.FrontRest > 0 ? 1 : 0;
+    front += level.Front ? 1 : 0;
     keptApart += level.KeptApart ? 1 : 0;
   }
   AddFieldValue<vtkIntArray>(fd, "FrontLevels", front);

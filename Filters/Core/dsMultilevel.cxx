@@ -623,6 +623,8 @@ struct MultilevelSolver::RunState
   /// floor the levels go on there (a front level).
   std::vector<char> Front;
   bool FrontLevel = false; ///< this level follows the front at sigma's floor
+  /// Per object, on a front level: whether its front is followed (FrontOf).
+  std::vector<char> FrontObjects;
   /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
   /// apart (SolveLevelKeptApart).
   bool KeepApart = false;
@@ -805,12 +807,11 @@ bool MultilevelSolver::SetUpLevel(
     // The balloon brings the surface to its object at the coarse scales; as sigma shrinks
     // the edge force takes over the detail, so the region force shrinks with sigma (at full
     // strength it presses the surface into every narrow dark gap of the object).
-    // A front level pushes at full strength: it follows the parts of the object the surface has
-    // not reached (a horn the fading force could not enter against the internal force of its
-    // narrow tip); everywhere else the two-sided force of a click's competition range holds the
-    // surface where the range ends (docs/METHOD.md §9.3).
-    // Several objects fade each by its own sigma_0 (a click beside a large object keeps its
-    // force as long as it would alone).
+    // A front level pushes the objects it follows at full strength: the parts of the object the
+    // surface has not reached (a horn the fading force could not enter against the internal force
+    // of its narrow tip); everywhere else the two-sided force of a click's competition range holds
+    // the surface where the range ends (docs/METHOD.md §9.3). Several objects fade each by its own
+    // sigma_0 (a click beside a large object keeps its force as long as it would alone).
     const bool own = this->StartSigmas.size() == this->ObjectRegions.size();
     const double decay = state.FrontLevel || own ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
@@ -823,7 +824,10 @@ bool MultilevelSolver::SetUpLevel(
       m.Low = r.Low;
       m.High = r.High;
       m.OutwardOnly = r.OutwardOnly;
-      m.Scale = own && !state.FrontLevel ? RegionFade(sigma, this->StartSigmas[o]) : 1.0;
+      // On a front level the objects whose front is not followed keep their fade.
+      const bool followed = o < state.FrontObjects.size() && state.FrontObjects[o];
+      const double fade = RegionFade(sigma, own ? this->StartSigmas[o] : state.FirstSigma);
+      m.Scale = state.FrontLevel ? (followed ? 1.0 : fade) : (own ? fade : 1.0);
       models.push_back(m);
     }
     state.LevelSolver.SetRegionForce(
@@ -929,6 +933,24 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh,
   const LevelRecord& rec, double voxel, double unsplit, const std::vector<char>& front) const
 {
   const MultilevelParameters& P = this->Parameters;
+  // The front (docs/METHOD.md §9.3): after sigma's floor only the front is refined (whatever
+  // UniformRefinement says), every triangle with a corner on a front triangle down to half a
+  // voxel (FrontEdgeVoxels), whatever its internal force, so the front fits into a horn or a
+  // tube as narrow as the image shows. The rest of the surface was done at the floor, and the
+  // estimator would mark its corners and edges again at every front level.
+  if (!front.empty())
+  {
+    std::vector<char> marks(mesh.NumberOfTriangles(), 0);
+    for (int t = 0; t < mesh.NumberOfTriangles(); ++t)
+    {
+      const auto& tri = mesh.Triangles[t];
+      marks[t] = (front[tri[0]] || front[tri[1]] || front[tri[2]]) &&
+          LongestEdge(mesh, t) > FrontEdgeVoxels * voxel
+        ? 1
+        : 0;
+    }
+    return marks;
+  }
   // UniformRefinement splits everything, as asked; adaptively, a triangle whose edges are all
   // shorter than `unsplit` (UnsplitEdgeLength) is not split.
   // Detail is present where a large internal force balances an equal external one
@@ -948,23 +970,6 @@ std::vector<char> MultilevelSolver::MarkForRefinement(const TriangleMesh& mesh,
       {
         marks[t] = 0;
       }
-    }
-  }
-  // The front (docs/METHOD.md §9.3): after sigma's floor only the front is refined, every
-  // triangle with a corner on a triangle the object still lies beyond down to half a voxel
-  // (FrontEdgeVoxels), whatever its internal force, so the front fits into a horn or a tube as
-  // narrow as the image shows. The rest of the surface was done at the floor: the estimator
-  // marks its corners and edges at every level (the engine's pistons, split there level after
-  // level, grew to 13 000 triangles each).
-  if (!front.empty())
-  {
-    for (size_t t = 0; t < marks.size(); ++t)
-    {
-      const auto& tri = mesh.Triangles[t];
-      marks[t] = (front[tri[0]] || front[tri[1]] || front[tri[2]]) &&
-          LongestEdge(mesh, t) > FrontEdgeVoxels * voxel
-        ? 1
-        : 0;
     }
   }
   return marks;
@@ -1176,6 +1181,7 @@ bool MultilevelSolver::RunLevels(
     {
       return false;
     }
+    rec.Front = state.FrontLevel;
     rec.FrontRest = state.FrontLevel ? FrontRestVoxels * state.Voxel : 0.0;
     const bool stop = this->SolveLevelKeptApart(mesh, state, rec);
     // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
@@ -1186,13 +1192,14 @@ bool MultilevelSolver::RunLevels(
     // thin part not yet followed to its end, docs/METHOD.md §9.3): front levels, beyond
     // MaxLevels, at most MaxFrontLevels.
     state.Front.clear();
+    state.FrontObjects.clear();
     if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&
       std::any_of(this->ObjectRegions.begin(), this->ObjectRegions.end(),
         [](const ObjectRegion& o) { return o.On && o.FollowsFront; }))
     {
-      // A front of more than FrontShare of the surface is no thin part left behind: the
-      // surface has not settled on its object, and pushing on would only spread it.
-      state.Front = this->FrontOf(mesh, this->FrontTriangles(image, mesh));
+      // A front of more than FrontShare of an object's triangles is no thin part left behind but
+      // an object that runs on beyond its surface: pushing on would only spread it (FrontOf).
+      state.Front = this->FrontOf(mesh, this->FrontTriangles(image, mesh), state.FrontObjects);
     }
     state.FrontLevel = !state.Front.empty();
     frontLevels += state.FrontLevel ? 1 : 0;
@@ -1265,9 +1272,11 @@ std::vector<char> MultilevelSolver::FrontTriangles(
     {
       const double longest =
         std::sqrt(std::max({ Dot(b - a, b - a), Dot(d - b, d - b), Dot(a - d, a - d) }));
-      grid[t] = std::max(1, std::min(FrontGridMax, static_cast<int>(std::ceil(longest / voxel))));
+      grid[t] =
+        static_cast<int>(std::ceil(std::min<double>(FrontGridMax, std::max(1.0, longest / voxel))));
     }
-    first[t + 1] = first[t] + FrontLookSteps * (grid[t] + 1LL) * (grid[t] + 2) / 2;
+    first[t + 1] =
+      first[t] + (grid[t] > 0 ? FrontLookSteps * (grid[t] + 1LL) * (grid[t] + 2) / 2 : 0);
   }
   std::vector<double> inObject(static_cast<std::size_t>(first[count]), 0.0);
   for (int t = 0; t < count; ++t)
@@ -1317,7 +1326,7 @@ std::vector<char> MultilevelSolver::FrontTriangles(
 }
 
 std::vector<char> MultilevelSolver::FrontOf(
-  const TriangleMesh& mesh, const std::vector<char>& triangles) const
+  const TriangleMesh& mesh, const std::vector<char>& triangles, std::vector<char>& followed) const
 {
   // Per object: its front triangles against all of its triangles.
   const int objects = mesh.NumberOfObjects();
@@ -1329,13 +1338,18 @@ std::vector<char> MultilevelSolver::FrontOf(
     ++all[objectOf(t)];
     onFront[objectOf(t)] += triangles[t] ? 1 : 0;
   }
-  std::vector<char> front;
-  for (int t = 0; t < mesh.NumberOfTriangles(); ++t)
+  followed.assign(objects, 0);
+  bool any = false;
+  for (int o = 0; o < objects; ++o)
   {
-    const int o = objectOf(t);
-    if (triangles[t] && onFront[o] <= FrontShare * all[o])
+    followed[o] = onFront[o] > 0 && onFront[o] <= FrontShare * all[o] ? 1 : 0;
+    any = any || followed[o];
+  }
+  std::vector<char> front(any ? mesh.NumberOfPoints() : 0, 0);
+  for (int t = 0; t < mesh.NumberOfTriangles() && any; ++t)
+  {
+    if (triangles[t] && followed[objectOf(t)])
     {
-      front.resize(mesh.NumberOfPoints(), 0);
       for (int v : mesh.Triangles[t])
       {
         front[v] = 1;

@@ -194,11 +194,13 @@ constexpr double FrontLookVoxels = 1.0;
 /// Looking beyond a triangle samples this many depths from 0 to FrontLookVoxels: the object
 /// must go on from the surface out, and a gap of a voxel blurs to a dip about a voxel wide.
 constexpr int FrontLookSteps = 5;
-/// At most this many samples along a triangle's side when looking beyond it.
+/// At most this many samples along a triangle's side when looking beyond it (a side longer than
+/// this many voxels is sampled more sparsely than a voxel).
 constexpr int FrontGridMax = 16;
 /// Front levels at most, beyond MaxLevels: the horned phantom's horns of 25-35 voxels, three
-/// and four wide, take about 20; its horn two voxels wide, whose tip advances about 0.4 voxel a
-/// level, reached 20 of its 40 voxels with 32 and 26 with 64.
+/// and four wide, take about 20; its horn two voxels wide, whose voxels lie near the range's end,
+/// reaches 20 of its 40 voxels in 32 levels and 26 in 64 (its tip slows to about 0.2 voxel a
+/// level), the run ending at this cap.
 constexpr int MaxFrontLevels = 64;
 /// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
 /// keep one vertex stepping back and forth for ever.
@@ -291,6 +293,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   /// Solved with the surface kept off itself (SolveLevelKeptApart): its sweeps, or an earlier
   /// level's, made the surface cross itself.
   bool KeptApart = false;
+  bool Front = false; ///< a front level (after sigma's floor, following a thin part)
   int Vertices = 0;
   int Triangles = 0;
   double MeanEdgeLength = 0;
@@ -465,8 +468,8 @@ private:
   void SmoothFolds(TriangleMesh& mesh, LevelRecord& rec);
   /// Step 3's marks without the triangles whose edges are all shorter than `unsplit`
   /// (UnsplitEdgeLength; adaptive refinement only).
-  /// With `front` (per vertex: a corner of a FrontTriangles triangle), also every triangle with a
-  /// front corner and an edge longer than FrontEdgeVoxels.
+  /// With `front` (per vertex: a corner of a FrontTriangles triangle; a front level) instead only
+  /// the triangles with a front corner and an edge longer than FrontEdgeVoxels.
   std::vector<char> MarkForRefinement(const TriangleMesh& mesh, const LevelRecord& rec,
     double voxel, double unsplit, const std::vector<char>& front) const;
   /// Per triangle: 1 where, from some point of a grid on it about a voxel apart, the image
@@ -477,7 +480,9 @@ private:
   std::vector<char> FrontTriangles(const ImageView& image, const TriangleMesh& mesh) const;
   /// Per vertex: 1 on a corner of a front triangle (`triangles`, FrontTriangles) of an object
   /// whose front holds at most FrontShare of its triangles; empty when there is none.
-  std::vector<char> FrontOf(const TriangleMesh& mesh, const std::vector<char>& triangles) const;
+  /// `followed` (per object): whether its front is followed.
+  std::vector<char> FrontOf(const TriangleMesh& mesh, const std::vector<char>& triangles,
+    std::vector<char>& followed) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(
