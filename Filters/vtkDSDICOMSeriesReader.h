@@ -9,7 +9,9 @@
  * Description equals SeriesDescription (when set), else the largest. Files that are not DICOM
  * are skipped. Built on GDCM's core libraries (gdcmMSFF): native, JPEG (baseline,
  * extended, lossless), JPEG-LS, JPEG 2000 and RLE pixel data are decoded; other transfer syntaxes
- * (MPEG, JPIP, ...) are refused with an error naming the syntax.
+ * (MPEG, JPIP, ...) are refused with an error naming the syntax. Compressed pixel data is decoded
+ * in a child process (on POSIX systems): the system's decoders can crash on damaged data
+ * (OpenJPEG did on a JPEG 2000 codestream with two bytes swapped), which then gives an error.
  *
  * Placement (DICOM PS3.3 C.7.6.2.1.1): slices are sorted by their Image Position (Patient)
  * projected on the slice normal (row x column cosines), never by file name or Instance Number.

@@ -7,7 +7,15 @@
 #include "vtkSetGet.h" // vtkTemplateMacro
 #include "vtkType.h"
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#define DS_DECODE_APART 1
+#endif
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -18,6 +26,47 @@ namespace dicom
 {
 namespace
 {
+/// Decodes compressed pixel data into `buffer` in a child process where the system allows it.
+/// The decoders GDCM calls are not safe on damaged data: OpenJPEG (its JPEG 2000 codec) freed a
+/// wild pointer in opj_destroy_codec on a codestream with two bytes of code-block data swapped
+/// (FuzzDICOMReader, Testing/Fuzz/corpus/DICOMReader/regression-jpeg2000-wild-free), and a
+/// damaged file must give an error, not end ParaView. The child decodes into a shared mapping and
+/// exits; one that fails or dies reads as damaged data. Where fork() is missing (or fails) the
+/// data is decoded here.
+bool DecodeApart(const gdcm::Image& image, std::vector<char>& buffer)
+{
+#ifdef DS_DECODE_APART
+  const size_t length = std::max<size_t>(buffer.size(), 1);
+  void* shared = mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  if (shared != MAP_FAILED)
+  {
+    const pid_t child = fork();
+    if (child == 0)
+    {
+      _exit(image.GetBuffer(static_cast<char*>(shared)) ? 0 : 1); // no exit handlers, no leaks
+    }
+    if (child > 0)
+    {
+      int status = 0;
+      pid_t waited = -1;
+      do
+      {
+        waited = waitpid(child, &status, 0);
+      } while (waited < 0 && errno == EINTR);
+      const bool ok = waited == child && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+      if (ok)
+      {
+        std::memcpy(buffer.data(), shared, buffer.size());
+      }
+      munmap(shared, length);
+      return ok;
+    }
+    munmap(shared, length);
+  }
+#endif
+  return image.GetBuffer(buffer.data());
+}
+
 bool Whole(double v)
 {
   return std::floor(v) == v;
@@ -144,7 +193,7 @@ bool ReadSlice(const SliceHeader& slice, int scalarType, void* out, std::string&
     return false;
   }
   std::vector<char> buffer(image.GetBufferLength());
-  if (!image.GetBuffer(buffer.data()))
+  if (!(native ? image.GetBuffer(buffer.data()) : DecodeApart(image, buffer)))
   {
     error = "cannot decode the pixel data of " + slice.File + " (" + slice.TransferSyntaxName +
       "): truncated or damaged";
