@@ -38,6 +38,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT InitialSigmaChoice
   double StartDistance = 0; ///< D, the 90th percentile distance to the nearest edge
   int Rays = 0;             ///< rays cast (0 when the start spans the volume)
   int RaysWithEdge = 0;     ///< rays that met an edge within reach
+  int ProbeBlock = 1;       ///< the probe's block size (> 1: the coarse probe's choice was kept)
 };
 
 /// True when the start's bounding box covers at least 90 % of the image's along every axis

@@ -148,79 +148,129 @@ void ForEachHeldVoxel(const ImagePiece& piece, const VoxelBox& voxels, Visit&& v
     });
 }
 
-/// Coarse scales: the block means of every piece, summed over the processes, give each the
-/// block means of the cut, and from them the serial coarse field.
-bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
-  const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
+/// Whether this process counts every voxel of `cut` (a whole image on one process).
+bool CountsAll(const ImagePiece& piece, const VoxelBox& cut)
+{
+  return Intersect(piece.CountedVoxels(), cut).NumberOfVoxels() == cut.NumberOfVoxels() &&
+    piece.Held.Contains(cut);
+}
+} // namespace
+
+bool PieceBlockMeans(const ImagePiece& piece, const VoxelBox& cut, int f, int numberOfThreads,
+  const PieceReductions& reduce, std::vector<float>& coarse, ImageGeometry& coarseGeometry,
   std::string* error)
 {
-  ImageGeometry cutGeometry = piece.Whole;
   const AxisBlocks blocks[3] = { AxisBlocks(cut.End[0] - cut.Begin[0], f),
     AxisBlocks(cut.End[1] - cut.Begin[1], f), AxisBlocks(cut.End[2] - cut.Begin[2], f) };
-  ImageGeometry coarseGeometry = piece.Whole;
+  coarseGeometry = piece.Whole;
   double first[3];
   for (int a = 0; a < 3; ++a)
   {
     coarseGeometry.Dimensions[a] = blocks[a].Count;
     coarseGeometry.Spacing[a] = f * piece.Whole.Spacing[a];
     first[a] = cut.Begin[a] + blocks[a].First;
-    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
   }
   piece.Whole.IndexToWorld(first, coarseGeometry.Origin);
   const std::size_t m = static_cast<std::size_t>(coarseGeometry.NumberOfVoxels());
-  // Each block's mean comes from the piece counting its first voxel, summed there in the
-  // serial order (so in the same double roundings), and 0 from the others: the sum over the
-  // processes is the serial mean exactly. The last entry counts the pieces that lacked a block.
+  // Every process makes the same one sum below; one that counts the whole cut (a whole image
+  // on one process) adds its blocks in parallel (BlockMeans: the same sums in the same order).
+  const bool all = CountsAll(piece, cut);
   std::vector<double> means(m + 1, 0.0);
-  const VoxelBox counted = Intersect(piece.CountedVoxels(), cut);
-  std::size_t b = 0;
-  for (int K = 0; K < blocks[2].Count; ++K)
-    for (int J = 0; J < blocks[1].Count; ++J)
-      for (int I = 0; I < blocks[0].Count; ++I, ++b)
-      {
-        VoxelBox block;
-        const int index[3] = { I, J, K };
-        for (int a = 0; a < 3; ++a)
+  if (all)
+  {
+    VoxelBox inHeld = cut;
+    for (int a = 0; a < 3; ++a)
+    {
+      inHeld.Begin[a] -= piece.Held.Begin[a];
+      inHeld.End[a] -= piece.Held.Begin[a];
+    }
+    ImageGeometry ignored;
+    BlockMeans(piece.Image.Box(inHeld), f, coarse, ignored, numberOfThreads);
+    std::copy(coarse.begin(), coarse.end(), means.begin()); // floats: exact in double
+  }
+  else
+  {
+    // Each block's mean comes from the piece counting its first voxel, summed there in the
+    // serial order (so in the same double roundings), and 0 from the others: the sum over the
+    // processes is the serial mean exactly. The last entry counts the pieces that lacked a block.
+    const VoxelBox counted = Intersect(piece.CountedVoxels(), cut);
+    std::size_t b = 0;
+    for (int K = 0; K < blocks[2].Count; ++K)
+      for (int J = 0; J < blocks[1].Count; ++J)
+        for (int I = 0; I < blocks[0].Count; ++I, ++b)
         {
-          blocks[a].Range(index[a], block.Begin[a], block.End[a]);
-          block.Begin[a] += cut.Begin[a];
-          block.End[a] += cut.Begin[a];
-        }
-        VoxelBox corner = block;
-        for (int a = 0; a < 3; ++a)
-        {
-          corner.End[a] = corner.Begin[a] + 1;
-        }
-        if (!counted.Contains(corner))
-        {
-          continue;
-        }
-        if (!piece.Held.Contains(block))
-        {
-          means[m] = 1.0;
-          continue;
-        }
-        double sum = 0.0;
-        int count = 0;
-        ForEachHeldVoxel(piece, block,
-          [&](int, int, int, float v)
+          VoxelBox block;
+          const int index[3] = { I, J, K };
+          for (int a = 0; a < 3; ++a)
           {
-            sum += v;
-            ++count;
-          });
-        means[b] = sum / count;
-      }
+            blocks[a].Range(index[a], block.Begin[a], block.End[a]);
+            block.Begin[a] += cut.Begin[a];
+            block.End[a] += cut.Begin[a];
+          }
+          VoxelBox corner = block;
+          for (int a = 0; a < 3; ++a)
+          {
+            corner.End[a] = corner.Begin[a] + 1;
+          }
+          if (!counted.Contains(corner))
+          {
+            continue;
+          }
+          if (!piece.Held.Contains(block))
+          {
+            means[m] = 1.0;
+            continue;
+          }
+          double sum = 0.0;
+          int count = 0;
+          ForEachHeldVoxel(piece, block,
+            [&](int, int, int, float v)
+            {
+              sum += v;
+              ++count;
+            });
+          means[b] = sum / count;
+        }
+  }
   reduce.Sum(means);
   if (means[m] > 0.0)
   {
-    *error = "a piece holds too few ghost layers for the blocks of sigma " +
-      std::to_string(parameters.Sigma) + " (" + std::to_string(2 * f) + " voxels needed)";
+    if (error)
+    {
+      *error = "a piece holds too few ghost layers for blocks of " + std::to_string(f) +
+        " voxels (" + std::to_string(2 * f) + " needed)";
+    }
     return false;
   }
-  std::vector<float> coarse(m);
+  coarse.resize(m);
   for (std::size_t c = 0; c < m; ++c)
   {
     coarse[c] = static_cast<float>(means[c]);
+  }
+  return true;
+}
+
+namespace
+{
+/// Coarse scales: the block means of every piece, summed over the processes, give each the
+/// block means of the cut, and from them the serial coarse field.
+bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
+  const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
+  std::string* error)
+{
+  std::vector<float> coarse;
+  ImageGeometry coarseGeometry;
+  std::string message;
+  if (!PieceBlockMeans(
+        piece, cut, f, parameters.NumberOfThreads, reduce, coarse, coarseGeometry, &message))
+  {
+    *error = message + " (sigma " + std::to_string(parameters.Sigma) + ")";
+    return false;
+  }
+  ImageGeometry cutGeometry = piece.Whole;
+  for (int a = 0; a < 3; ++a)
+  {
+    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
   }
   ScaleSpaceParameters remaining = parameters;
   remaining.Sigma = RemainingSigma(parameters.Sigma, cutGeometry, f);

@@ -89,6 +89,16 @@ DEFORMABLESURFACEFILTERS_EXPORT int PieceGhostVoxels(
 /// PieceGhostVoxels for sigmaVoxels voxels of sigma along the axis.
 DEFORMABLESURFACEFILTERS_EXPORT int FineGhostVoxels(double sigmaVoxels);
 
+/// The means of the f^3 blocks of `cut` (whole-image voxels) in BlockMeans's layout, on every
+/// process: each block averaged by the process counting its first voxel (which holds it with
+/// 2 f ghost layers) and one sum over the processes (BlockMeans itself when this process counts
+/// the whole cut), so every process gets the serial block means bit for bit. coarseGeometry
+/// places each mean on its block's centre voxel. False with a message on every process when a
+/// piece holds too few ghost layers. Collective.
+DEFORMABLESURFACEFILTERS_EXPORT bool PieceBlockMeans(const ImagePiece& piece, const VoxelBox& cut,
+  int f, int numberOfThreads, const PieceReductions& reduce, std::vector<float>& coarse,
+  ImageGeometry& coarseGeometry, std::string* error);
+
 /// The field of ComputeForceAtScale(whole image, box, parameters) on this piece (see above):
 /// on coarse scales the whole coarse grid, on fine scales the owned voxels of the box and the
 /// ghosts around them (out's geometry says which). False with a message when the piece holds

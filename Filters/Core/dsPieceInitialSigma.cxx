@@ -188,8 +188,35 @@ int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a)
   const int second = wide < GaussianRecursiveFromSigmaVoxels
     ? static_cast<int>(std::ceil(4.0 * wide))
     : whole.Dimensions[a];
-  return std::min(whole.Dimensions[a], first + second);
+  // The coarse probe's blocks are averaged by the piece counting their first voxel (2 f).
+  const int coarse = 2 * CoarseProbeBlock(whole, whole.MeanExtent() / 6.0);
+  return std::min(whole.Dimensions[a], std::max(first + second, coarse));
 }
+
+int CoarseProbeBlock(const ImageGeometry& whole, double paperSigma)
+{
+  return DecimationFactor(CoarseProbeSigmaShare * paperSigma, whole);
+}
+
+namespace
+{
+/// The probe on the block means of f^3 blocks (PieceBlockMeans): the whole coarse grid on every
+/// process, so each walks the rays on it alone, as a single process would, and all choose alike.
+bool CoarseProbe(const ImagePiece& piece, const TriangleMesh& mesh, double paperSigma, int f,
+  int numberOfThreads, const PieceReductions& reduce, InitialSigmaChoice& choice,
+  std::string* error)
+{
+  std::vector<float> means;
+  ImageGeometry geometry;
+  if (!PieceBlockMeans(
+        piece, VoxelBox::Whole(piece.Whole), f, numberOfThreads, reduce, means, geometry, error))
+  {
+    return false;
+  }
+  return ChoosePieceInitialSigma(WholeImagePiece(ImageView::Of(means.data(), geometry)), mesh,
+    paperSigma, numberOfThreads, SingleProcessReductions(), choice, error);
+}
+} // namespace
 
 bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, double paperSigma,
   int numberOfThreads, const PieceReductions& reduce, InitialSigmaChoice& choice,
@@ -201,6 +228,26 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
   {
     choice.SpansVolume = true;
     return true;
+  }
+  // A large image is probed coarse first (docs/METHOD.md §9.7): a start that lies several
+  // blocks from its edges has its distance measured to well within the share of it that
+  // matters (a fraction of one halving of the hierarchy), at 1/f^3 of the fine probe's cost.
+  // Nearer, the fine probe decides. Every process takes the same branch: the coarse choice is
+  // the same on all of them.
+  const int f = CoarseProbeBlock(piece.Whole, paperSigma);
+  if (f > 1)
+  {
+    if (!CoarseProbe(piece, mesh, paperSigma, f, numberOfThreads, reduce, choice, error))
+    {
+      return false;
+    }
+    if (choice.Sigma >= CoarseProbeKeptBlocks * f * piece.Whole.MeanSpacing())
+    {
+      choice.ProbeBlock = f;
+      return true;
+    }
+    choice = InitialSigmaChoice();
+    choice.Sigma = paperSigma;
   }
   const VoxelBox reached = ReachedOwnedVoxels(piece, mesh, paperSigma);
   const VoxelBox region = ProbeRegion(piece, reached);

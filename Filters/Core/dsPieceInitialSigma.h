@@ -20,8 +20,20 @@ namespace dsurf
 /// Ghost voxels along axis a the probe field needs around the owned voxels the rays reach: the
 /// first Gaussian's (PieceGhostVoxels at one voxel of sigma) and the local normalisation's
 /// second Gaussian at twice that sigma (its sampled radius); the whole axis where either is
-/// recursive (an axis 3 times finer than the mean spacing, or 1.5 times for the second).
+/// recursive (an axis 3 times finer than the mean spacing, or 1.5 times for the second); at least
+/// twice the coarse probe's block (CoarseProbeBlock at the paper's sigma_0, extent / 6).
 DEFORMABLESURFACEFILTERS_EXPORT int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a);
+
+/// The coarse probe's grid (docs/METHOD.md §9.7): that of a field at this share of the paper's
+/// sigma_0 (DecimationFactor, dsFieldGrid.h): blocks of 3 from a mean extent of 432 voxels (the
+/// paper's sigma_0 72 voxels), so the fine probe alone serves every smaller image.
+constexpr double CoarseProbeSigmaShare = 1.0 / 8.0;
+/// The coarse probe's sigma_0 is kept when it spans at least this many of its blocks (the grid
+/// a field of that sigma may use, SamplesPerSigma); a start nearer its edges is probed fine.
+constexpr double CoarseProbeKeptBlocks = SamplesPerSigma;
+
+/// The block size of sigma_0's coarse probe on `whole` (1: no coarse probe).
+DEFORMABLESURFACEFILTERS_EXPORT int CoarseProbeBlock(const ImageGeometry& whole, double paperSigma);
 
 /// ChooseInitialSigma of the whole image whose piece this process holds: the same choice on
 /// every process. Collective (every process calls it with the same mesh and parameters); false

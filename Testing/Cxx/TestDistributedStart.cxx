@@ -11,6 +11,9 @@
 //   for the image turned about x (a direction matrix).
 // - A start spanning the image keeps extent / 6 on every rank without a probe, and so does one
 //   far outside it (no ray meets the image; its reach clamped to the image's border).
+// - A large image (96 x 96 x 1500) is probed coarse first: a start 20 units from a ball keeps
+//   the coarse choice (blocks of 3) within 1.5 of 20, one 4 units from it is probed fine, within
+//   1 of 4; every rank chooses the serial sigma_0 exactly either way.
 // - What lies beyond the rays' reach of the start does not change sigma_0 (a block 1 000 times
 //   brighter at the far end), serial or on slabs; a slab beyond it computes no probe.
 // - The intensity range estimated from a start around the first ball (object against
@@ -23,6 +26,7 @@
 //   second (no rank waits in a reduction: a hang would hit the ctest timeout).
 #include "DSTestHelpers.h"
 #include "PieceSlabs.h"
+#include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
 
 #include "dsPieceInitialSigma.h"
@@ -68,7 +72,8 @@ TriangleMesh Sphere(double radius, const Vec3& centre)
 bool SameChoice(const InitialSigmaChoice& a, const InitialSigmaChoice& b)
 {
   return a.Sigma == b.Sigma && a.StartDistance == b.StartDistance && a.Rays == b.Rays &&
-    a.RaysWithEdge == b.RaysWithEdge && a.SpansVolume == b.SpansVolume;
+    a.RaysWithEdge == b.RaysWithEdge && a.SpansVolume == b.SpansVolume &&
+    a.ProbeBlock == b.ProbeBlock;
 }
 
 /// The serial choice against every rank's, on 2 and 3 slabs; returns the serial one.
@@ -119,6 +124,31 @@ InitialSigmaChoice SameAsSerial(const ImageGeometry& g, const std::vector<T>& im
     }
   }
   return serial;
+}
+
+/// A large image (96 x 96 x 1500, the paper's sigma_0 86 world units) is probed coarse first
+/// (CoarseProbeBlock 3): a start 20 units from the ball it surrounds keeps the coarse choice, one
+/// 4 units from it is probed fine; serial and on slabs alike.
+void CoarseProbe()
+{
+  const ImageGeometry g = dstest::AnisotropicGeometry(96, 96, 1500);
+  const Vec3 centre{ 44.5, 54.25, 680.0 };
+  unsigned state = 4242; // SampleOnGrid visits the voxels in order, x fastest
+  const std::vector<float> values = sstest::SampleOnGrid(g,
+    [&](const double* x)
+    {
+      state = state * 1664525u + 1013904223u;
+      const double r = Norm(Vec3{ x[0], x[1], x[2] } - centre);
+      return 30.0 + 170.0 / (1.0 + std::exp(r - 20.0)) + 8.0 * (state >> 8) / 16777216.0;
+    });
+  const std::vector<std::uint8_t> image(values.begin(), values.end());
+  DS_CHECK(CoarseProbeBlock(g, g.MeanExtent() / 6.0) == 3, "the large image's coarse probe block");
+  const InitialSigmaChoice far = SameAsSerial(g, image, Sphere(40.0, centre), "coarse: 20 out");
+  DS_CHECK(far.ProbeBlock == 3, "a start 20 units out keeps the coarse probe's choice");
+  DS_CHECK_LE(std::abs(far.Sigma - 20.0), 1.5, "its sigma_0 against its distance 20");
+  const InitialSigmaChoice near = SameAsSerial(g, image, Sphere(24.0, centre), "coarse: 4 out");
+  DS_CHECK(near.ProbeBlock == 1, "a start 4 units out is probed fine");
+  DS_CHECK_LE(std::abs(near.Sigma - 4.0), 1.0, "its sigma_0 against its distance 4");
 }
 
 bool SameEstimate(const RangeEstimate& a, const RangeEstimate& b)
@@ -298,6 +328,7 @@ int TestDistributedStart(int, char*[])
   SameRange(g, image, across, "the range from a start across the slabs' borders");
   SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
   BeyondReach(g, image, nearBall);
+  CoarseProbe();
   BadPiece(g, image, nearBall);
   FailsAfterFirstMaximum();
   return dstest::Result("TestDistributedStart");
