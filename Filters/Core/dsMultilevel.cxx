@@ -8,7 +8,10 @@
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
 #include "dsSelfIntersectionCount.h"
+#include "dsThreads.h"
 #include "dsUntangle.h"
+
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -176,9 +179,17 @@ bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& m
     RangeEstimate estimate;
     std::string msg;
     const double reach = CompetitorReachSigmas * firstSigma;
-    const bool estimated = this->Distributed
-      ? EstimatePieceIntensityRange(this->Piece, mesh, 1.0, this->Reduce, estimate, &msg, reach)
-      : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg, reach);
+    bool estimated = false;
+    // The estimate's histograms are counted on the solver's threads.
+    vtkSMPTools::LocalScope(
+      vtkSMPTools::Config{
+        ResolveThreads(this->Parameters.Solver.NumberOfThreads), "STDThread", false },
+      [&]
+      {
+        estimated = this->Distributed
+          ? EstimatePieceIntensityRange(this->Piece, mesh, 1.0, this->Reduce, estimate, &msg, reach)
+          : EstimateIntensityRange(image, mesh, 1.0, estimate, &msg, reach);
+      });
     if (!estimated)
     {
       this->Warnings.push_back("the region force" + which +
@@ -199,10 +210,10 @@ bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& m
     model.OutwardOnly = !estimate.Contrast;
     model.FollowsFront = estimate.Classes > 1 && estimate.Contrast;
   }
-  const long long matching = this->Distributed
-    ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce)
-    : CountVoxelsInRange(image, lo, hi);
-  if (matching == 0)
+  const bool matching = this->Distributed
+    ? CountPieceVoxelsInRange(this->Piece, lo, hi, this->Reduce) > 0
+    : AnyVoxelInRange(image, lo, hi);
+  if (!matching)
   {
     this->Warnings.push_back("the region force" + which + " is off: the intensity range [" +
       std::to_string(lo) + ", " + std::to_string(hi) + "] matches no voxel of the image");

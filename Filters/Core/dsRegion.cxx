@@ -5,6 +5,9 @@
 #include "dsInsideVoxels.h"
 #include "dsMixture.h"
 
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -68,6 +71,38 @@ long long CountOfAll(const std::vector<float>& values, const PieceReductions& re
   return static_cast<long long>(n[0]);
 }
 
+/// The counts of the values whose OrderKey has `prefix` in its `known` bits, by the `digits`
+/// values of its bits from `shift` on, counted in parallel (in the caller's SMP scope): counts
+/// are whole numbers, so their sum is the same in any order.
+std::vector<double> DigitHistogram(const std::vector<float>& values, int shift, int digits,
+  std::uint32_t known, std::uint32_t prefix)
+{
+  vtkSMPThreadLocal<std::vector<double>> counts;
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()), 1 << 16,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      std::vector<double>& h = counts.Local();
+      h.resize(digits, 0.0);
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const std::uint32_t key = OrderKey(values[i]);
+        if ((key & known) == prefix)
+        {
+          h[(key >> shift) & (digits - 1)] += 1.0;
+        }
+      }
+    });
+  std::vector<double> histogram(digits, 0.0);
+  for (const std::vector<double>& h : counts)
+  {
+    for (std::size_t d = 0; d < h.size(); ++d)
+    {
+      histogram[d] += h[d];
+    }
+  }
+  return histogram;
+}
+
 /// The value at fraction q in [0, 1] of all processes' values (Count > 0): the k-th smallest,
 /// k = q (n - 1) rounded, found digit by digit of OrderKey (11, 11 and 10 bits) from the
 /// summed histograms of each share: every process gets the value a sort of all of them gives.
@@ -79,15 +114,7 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
   for (const int shift : { 21, 10, 0 })
   {
     const int digits = shift == 0 ? 1 << 10 : 1 << 11;
-    std::vector<double> histogram(digits, 0.0);
-    for (float v : all.Values)
-    {
-      const std::uint32_t key = OrderKey(v);
-      if ((key & known) == prefix)
-      {
-        histogram[(key >> shift) & (digits - 1)] += 1.0;
-      }
-    }
+    std::vector<double> histogram = DigitHistogram(all.Values, shift, digits, known, prefix);
     reduce.Sum(histogram);
     int d = 0;
     for (; d + 1 < digits && k >= static_cast<long long>(histogram[d]); ++d)
@@ -100,11 +127,27 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
   return KeyValue(prefix);
 }
 
+/// Values a robust statistic of a large image or start reads at most (about): beyond them,
+/// every n-th voxel (n odd, so that no power-of-two row length aliases with it). 2^25 floats are
+/// 128 MiB (a 512^3 image's every 7th voxel is fewer), and their quantiles are those of all
+/// voxels to well within a voxel's noise.
+constexpr long long SampledValues = 1LL << 25;
+
+/// The n of SampledValues for `voxels` voxels: 1 up to SampledValues, else odd.
+long long SampleEvery(double voxels)
+{
+  return voxels <= SampledValues ? 1 : (static_cast<long long>(voxels) / SampledValues) | 1;
+}
+
 /// The values of the voxels whose centres lie inside the closed mesh (RowCrossings,
 /// dsInsideVoxels.h), of those the piece counts (ImagePiece::CountedVoxels: each voxel by one
-/// process).
+/// process); of a start enclosing more than SampledValues voxels, those whose voxel id is a
+/// multiple of SampleEvery(its volume in voxels), the same on every process.
 std::vector<float> ValuesInside(const ImagePiece& piece, const TriangleMesh& mesh)
 {
+  const ImageGeometry& g = piece.Whole;
+  const long long every =
+    SampleEvery(std::abs(mesh.SignedVolume()) / (g.Spacing[0] * g.Spacing[1] * g.Spacing[2]));
   const int nx = piece.Whole.Dimensions[0];
   const VoxelBox rows = piece.CountedVoxels();
   const std::size_t rowsY = static_cast<std::size_t>(rows.End[1] - rows.Begin[1]);
@@ -116,38 +159,58 @@ std::vector<float> ValuesInside(const ImagePiece& piece, const TriangleMesh& mes
     [&](int j, int k, const auto* row)
     {
       const std::vector<double>& xs = crossings[rowIndex(j, k)];
+      const long long first = (static_cast<long long>(k) * g.Dimensions[1] + j) * nx; // (0, j, k)
       for (std::size_t p = 0; p + 1 < xs.size(); p += 2)
       {
         const int i0 = std::max(0, ClampedIndex(std::ceil(xs[p]), nx));
         const int i1 = std::min(nx - 1, ClampedIndex(std::floor(xs[p + 1]), nx));
         for (int i = std::max(i0, rows.Begin[0]); i <= std::min(i1, rows.End[0] - 1); ++i)
         {
-          values.push_back(AsFloat(row[i - rows.Begin[0]]));
+          if (every == 1 || (first + i) % every == 0)
+          {
+            values.push_back(AsFloat(row[i - rows.Begin[0]]));
+          }
         }
       }
     });
   return values;
 }
 
-/// The image's 1st-99th percentile span, from every 7th voxel (x fastest) of all pieces.
+/// The image's 1st-99th percentile span, from every 7th voxel (x fastest) of all pieces, or
+/// every SampleEvery-th of a larger image.
 double RobustSpan(const ImagePiece& piece, const PieceReductions& reduce)
 {
-  std::vector<float> sample;
   const VoxelBox counted = piece.CountedVoxels();
   const int nx = piece.Whole.Dimensions[0], ny = piece.Whole.Dimensions[1];
-  sample.reserve(static_cast<std::size_t>(counted.NumberOfVoxels() / 7 + 1));
-  ForEachCountedRow(piece, counted,
-    [&](int j, int k, const auto* row)
+  const long long n = std::max(7LL, SampleEvery(static_cast<double>(piece.Whole.NumberOfVoxels())));
+  // Slabs of slices in parallel (in the caller's SMP scope): the quantiles count values, so
+  // the order the slabs' samples are joined in does not matter.
+  vtkSMPThreadLocal<std::vector<float>> parts;
+  vtkSMPTools::For(counted.Begin[2], counted.End[2],
+    [&](int kBegin, int kEnd)
     {
-      const long long first = (static_cast<long long>(k) * ny + j) * nx; // id of (0, j, k)
-      for (long long i = (7 - first % 7) % 7; i < counted.End[0]; i += 7)
-      {
-        if (i >= counted.Begin[0])
+      VoxelBox slab = counted;
+      slab.Begin[2] = kBegin;
+      slab.End[2] = kEnd;
+      std::vector<float>& part = parts.Local();
+      ForEachCountedRow(piece, slab,
+        [&](int j, int k, const auto* row)
         {
-          sample.push_back(AsFloat(row[i - counted.Begin[0]]));
-        }
-      }
+          const long long first = (static_cast<long long>(k) * ny + j) * nx; // id of (0, j, k)
+          for (long long i = (n - first % n) % n; i < counted.End[0]; i += n)
+          {
+            if (i >= counted.Begin[0])
+            {
+              part.push_back(AsFloat(row[i - counted.Begin[0]]));
+            }
+          }
+        });
     });
+  std::vector<float> sample;
+  for (const std::vector<float>& part : parts)
+  {
+    sample.insert(sample.end(), part.begin(), part.end());
+  }
   const SharedValues all{ sample, CountOfAll(sample, reduce) };
   const double lo = Quantile(all, 0.01, reduce), hi = Quantile(all, 0.99, reduce);
   return hi - lo;
@@ -625,6 +688,22 @@ bool EstimatePieceIntensityRange(const ImagePiece& piece, const TriangleMesh& me
       { insideValues, count }, { outside, estimate.OutsideSamples }, floor, reduce, estimate);
   }
   return true;
+}
+
+bool AnyVoxelInRange(const ImageView& image, double lo, double hi)
+{
+  bool found = false;
+  const int nx = image.Geometry.Dimensions[0];
+  ForEachRow(image,
+    [&](int, int, const auto* row)
+    {
+      for (int i = 0; i < nx && !found; ++i)
+      {
+        const float v = AsFloat(row[i]);
+        found = v >= lo && v <= hi;
+      }
+    });
+  return found;
 }
 
 long long CountVoxelsInRange(const ImageView& image, double lo, double hi)

@@ -87,6 +87,9 @@ DEFORMABLESURFACEFILTERS_EXPORT bool EstimatePieceIntensityRange(const ImagePiec
   const TriangleMesh& mesh, double outwardSign, const PieceReductions& reduce,
   RangeEstimate& estimate, std::string* error, double competitorReach = 0.0);
 
+/// Whether a voxel's value lies in [lo, hi] (a scan that ends at the first).
+DEFORMABLESURFACEFILTERS_EXPORT bool AnyVoxelInRange(const ImageView& image, double lo, double hi);
+
 /// Voxels whose value lies in [lo, hi].
 DEFORMABLESURFACEFILTERS_EXPORT long long CountVoxelsInRange(
   const ImageView& image, double lo, double hi);
