@@ -611,6 +611,10 @@ struct MultilevelSolver::RunState
   ForceField Field;
   VoxelBox FieldBox; ///< the image's voxels Field covers
   ScaleSpaceParameters FieldParameters;
+  /// Field was made at FieldParameters.Sigma over FieldBox. Distributed, a piece that holds
+  /// nothing of the box has an empty field of its own: whether to make the field again is
+  /// decided on this and the box, which every process shares, so that all take part.
+  bool FieldMade = false;
   double Voxel = 0; ///< mean spacing: the finest detail the image shows
   double Sigma = 0; ///< this level's
   double FirstSigma = 0;
@@ -782,9 +786,10 @@ bool MultilevelSolver::SetUpLevel(
         (P.EdgeNormalization == EdgeNormalization::Local ? NeighbourhoodSigmasLocal
                                                          : NeighbourhoodSigmas) *
           sigma);
-  if (state.Field.Empty() || std::abs(state.Field.Sigma - sigma) > 1e-12 * sigma ||
+  if (!state.FieldMade || std::abs(state.FieldParameters.Sigma - sigma) > 1e-12 * sigma ||
     !state.FieldBox.Contains(box))
   {
+    state.FieldMade = false;
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
@@ -799,6 +804,7 @@ bool MultilevelSolver::SetUpLevel(
       *error = "scale-space force: " + msg;
       return false;
     }
+    state.FieldMade = true;
   }
   const double h = mesh.MeanEdgeLength();
   state.LevelSolver.SetMesh(&mesh);
