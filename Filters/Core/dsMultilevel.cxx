@@ -4,6 +4,7 @@
 #include "dsGaussianSmoother.h"
 
 #include "dsFieldBricks.h"
+#include "dsFrontGrid.h"
 #include "dsObjects.h"
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
@@ -621,6 +622,10 @@ struct MultilevelSolver::RunState
   ForceField Field;
   VoxelBox FieldBox; ///< the image's voxels Field covers
   ScaleSpaceParameters FieldParameters;
+  /// Field was made at FieldParameters.Sigma over FieldBox. Distributed, a piece that holds
+  /// nothing of the box has an empty field of its own: whether to make the field again is
+  /// decided on this and the box, which every process shares, so that all take part.
+  bool FieldMade = false;
   double Voxel = 0; ///< mean spacing: the finest detail the image shows
   double Sigma = 0; ///< this level's
   double FirstSigma = 0;
@@ -792,9 +797,10 @@ bool MultilevelSolver::SetUpLevel(
         (P.EdgeNormalization == EdgeNormalization::Local ? NeighbourhoodSigmasLocal
                                                          : NeighbourhoodSigmas) *
           sigma);
-  if (state.Field.Empty() || std::abs(state.Field.Sigma - sigma) > 1e-12 * sigma ||
+  if (!state.FieldMade || std::abs(state.FieldParameters.Sigma - sigma) > 1e-12 * sigma ||
     !state.FieldBox.Contains(box))
   {
+    state.FieldMade = false;
     state.FieldParameters.Sigma = sigma;
     state.FieldBox = box;
     std::string msg;
@@ -809,6 +815,7 @@ bool MultilevelSolver::SetUpLevel(
       *error = "scale-space force: " + msg;
       return false;
     }
+    state.FieldMade = true;
   }
   const double h = mesh.MeanEdgeLength();
   state.LevelSolver.SetMesh(&mesh);
@@ -1250,88 +1257,85 @@ bool MultilevelSolver::RunLevels(
   return true;
 }
 
-std::vector<char> MultilevelSolver::FrontTriangles(
-  const ImageView& image, const TriangleMesh& mesh) const
+namespace
 {
-  // Points of a barycentric grid on each triangle, about a voxel apart, looked at FrontLookSteps
-  // depths up to FrontLookVoxels out along its normal: a coarse triangle bridges the mouth of a
-  // horn narrower than its edges, so no vertex need lie in the horn, but a point beyond the
-  // triangle does; a surface resting on its object's edge has the competitor, not the object,
-  // beyond it (a vertex's own value is noise around the range's end there); and the object must go
-  // on from the surface out, not lie behind a gap (the engine's pistons have their block beyond a
-  // voxel of air, which blurs to values in their range but for a dip a voxel wide). Each sample is
-  // taken by the process that owns its cell and the samples in the object summed (the others add
-  // 0), so every process marks the same triangles.
-  const int count = mesh.NumberOfTriangles();
+/// The region of triangle t's object (its first corner's; the last region for an object
+/// beyond them).
+const ObjectRegion& RegionOfTriangle(
+  const std::vector<ObjectRegion>& regions, const TriangleMesh& mesh, int t)
+{
+  const int v = mesh.Triangles[t][0];
+  return regions[mesh.Objects.empty() ? 0
+                                      : std::min<std::size_t>(mesh.Objects[v], regions.size() - 1)];
+}
+} // namespace
+
+bool MultilevelSolver::InObjectAt(
+  const ImageView& image, const Vec3& x, const ObjectRegion& region) const
+{
+  // Distributed, only the process that owns x's cell samples it (inside false elsewhere).
+  bool inside = false;
+  const double value = this->Distributed ? this->Piece.SampleOwned(x.data(), &inside)
+                                         : SampleVolume(image, x.data(), &inside);
+  return inside && RegionSpeed(value, region.Low, region.High) >= FrontSpeed;
+}
+
+std::vector<double> MultilevelSolver::FrontSamples(const ImageView& image, const TriangleMesh& mesh,
+  const std::vector<int>& divisions, const std::vector<long long>& first) const
+{
+  // Each sample is taken by the process that owns its cell and the samples in the object summed
+  // (the others add 0), so every process sees the same sums.
   const double voxel = image.Geometry.MeanSpacing();
-  std::vector<int> grid(count, 0);            // the grid's divisions per side (0: no samples)
-  std::vector<long long> first(count + 1, 0); // the triangle's first sample
-  auto regionOf = [&](int t) -> const ObjectRegion&
+  std::vector<double> inObject(static_cast<std::size_t>(first.back()), 0.0);
+  std::vector<Vec3> points;
+  for (int t = 0; t < mesh.NumberOfTriangles(); ++t)
   {
-    const int v = mesh.Triangles[t][0];
-    return this->ObjectRegions[mesh.Objects.empty()
-        ? 0
-        : std::min<std::size_t>(mesh.Objects[v], this->ObjectRegions.size() - 1)];
-  };
-  for (int t = 0; t < count; ++t)
-  {
-    const auto& c = mesh.Triangles[t];
-    const Vec3 &a = mesh.Points[c[0]], &b = mesh.Points[c[1]], &d = mesh.Points[c[2]];
-    const ObjectRegion& o = regionOf(t);
-    const Vec3 normal = Cross(b - a, d - a);
-    if (o.On && o.FollowsFront && Dot(normal, normal) > 0)
+    if (divisions[t] == 0)
     {
-      const double longest =
-        std::sqrt(std::max({ Dot(b - a, b - a), Dot(d - b, d - b), Dot(a - d, a - d) }));
-      grid[t] =
-        static_cast<int>(std::ceil(std::min<double>(FrontGridMax, std::max(1.0, longest / voxel))));
+      continue;
     }
-    first[t + 1] =
-      first[t] + (grid[t] > 0 ? FrontLookSteps * (grid[t] + 1LL) * (grid[t] + 2) / 2 : 0);
-  }
-  std::vector<double> inObject(static_cast<std::size_t>(first[count]), 0.0);
-  for (int t = 0; t < count; ++t)
-  {
     const auto& c = mesh.Triangles[t];
-    const Vec3 &a = mesh.Points[c[0]], &b = mesh.Points[c[1]], &d = mesh.Points[c[2]];
-    const Vec3 normal = Cross(b - a, d - a);
-    const ObjectRegion& o = regionOf(t);
-    const int k = grid[t];
-    const Vec3 out =
-      k > 0 ? (FrontLookVoxels * voxel / std::sqrt(Dot(normal, normal))) * normal : Vec3{};
-    long long at = first[t];
-    for (int i = 0; i <= k && k > 0; ++i)
+    FrontSamplePoints(
+      mesh.Points[c[0]], mesh.Points[c[1]], mesh.Points[c[2]], divisions[t], voxel, points);
+    const ObjectRegion& region = RegionOfTriangle(this->ObjectRegions, mesh, t);
+    for (std::size_t s = 0; s < points.size(); ++s)
     {
-      for (int j = 0; i + j <= k; ++j)
-      {
-        const double u = static_cast<double>(i) / k, w = static_cast<double>(j) / k;
-        const Vec3 x = (1.0 - u - w) * a + u * b + w * d;
-        for (int step = 0; step < FrontLookSteps; ++step)
-        {
-          const double depth = static_cast<double>(step) / (FrontLookSteps - 1);
-          const Vec3 y = x + depth * out;
-          bool inside = false;
-          const double value = this->Distributed ? this->Piece.SampleOwned(y.data(), &inside)
-                                                 : SampleVolume(image, y.data(), &inside);
-          inObject[at++] = inside && RegionSpeed(value, o.Low, o.High) >= FrontSpeed ? 1.0 : 0.0;
-        }
-      }
+      inObject[first[t] + s] = this->InObjectAt(image, points[s], region) ? 1.0 : 0.0;
     }
   }
   if (this->Distributed)
   {
     this->Reduce.Sum(inObject);
   }
+  return inObject;
+}
+
+std::vector<char> MultilevelSolver::FrontTriangles(
+  const ImageView& image, const TriangleMesh& mesh) const
+{
+  // Looking beyond the triangles (dsFrontGrid.h) rather than at their vertices: a surface
+  // resting on its object's edge has the competitor, not the object, beyond it (a vertex's own
+  // value is noise around the range's end there); and the object must go on from the surface
+  // out, not lie behind a gap (the engine's pistons have their block beyond a voxel of air, which
+  // blurs to values in their range but for a dip a voxel wide).
+  const int count = mesh.NumberOfTriangles();
+  const double voxel = image.Geometry.MeanSpacing();
+  std::vector<int> divisions(count, 0);       // per side of the grid (0: not looked beyond)
+  std::vector<long long> first(count + 1, 0); // the triangle's first sample
+  for (int t = 0; t < count; ++t)
+  {
+    const auto& c = mesh.Triangles[t];
+    const ObjectRegion& region = RegionOfTriangle(this->ObjectRegions, mesh, t);
+    divisions[t] = region.On && region.FollowsFront
+      ? FrontGridDivisions(mesh.Points[c[0]], mesh.Points[c[1]], mesh.Points[c[2]], voxel)
+      : 0;
+    first[t + 1] = first[t] + FrontGridSamples(divisions[t]);
+  }
+  const std::vector<double> inObject = this->FrontSamples(image, mesh, divisions, first);
   std::vector<char> front(count, 0);
   for (int t = 0; t < count; ++t)
   {
-    for (long long at = first[t]; at < first[t + 1] && !front[t]; at += FrontLookSteps)
-    {
-      front[t] = std::all_of(inObject.begin() + at, inObject.begin() + at + FrontLookSteps,
-                   [](double n) { return n > 0; })
-        ? 1
-        : 0;
-    }
+    front[t] = ObjectBeyond(inObject.data() + first[t], first[t + 1] - first[t]) ? 1 : 0;
   }
   return front;
 }

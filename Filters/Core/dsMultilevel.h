@@ -478,6 +478,14 @@ private:
   /// push the surface on, which has not reached the object's edge there. Collective when
   /// distributed.
   std::vector<char> FrontTriangles(const ImageView& image, const TriangleMesh& mesh) const;
+  /// FrontTriangles' samples: per triangle with `divisions` (per side of its grid, 0: none), from
+  /// `first[t]` on, 1 where the sample point (FrontSamplePoints) lies in the object (InObjectAt),
+  /// else 0; distributed, summed over the processes. Collective when distributed.
+  std::vector<double> FrontSamples(const ImageView& image, const TriangleMesh& mesh,
+    const std::vector<int>& divisions, const std::vector<long long>& first) const;
+  /// Whether the image at x is in `region`'s object (region speed at least FrontSpeed);
+  /// distributed, false unless this process owns x's cell.
+  bool InObjectAt(const ImageView& image, const Vec3& x, const ObjectRegion& region) const;
   /// Per vertex: 1 on a corner of a front triangle (`triangles`, FrontTriangles) of an object
   /// whose front holds at most FrontShare of its triangles; empty when there is none.
   /// `followed` (per object): whether its front is followed.

@@ -15,6 +15,12 @@
 // centred at (22.3, 28.3) and (50.3, 28.3); in each a piston of 100 and radius 8 (one voxel of
 // air around it), z in [12.3, 36.3); air 0; noise s.d. 5 (seed 2502). Labels 1 the block, 2 and
 // 3 the pistons.
+//
+// Tube and slab (MRI-like, float "T1", 1 mm, 144 x 112 x 64 voxels, origin 0): a dark ball (20) of
+// radius 7 at (26.3, 20.3, 32.3) with a tube three voxels wide along +y reaching 22 voxels beyond
+// the ball's surface (a rounded tip), and a bright slab (120) filling x from 48.3 on, cut by the
+// image's faces; in a surround of 70; noise s.d. 4 (seed 2503). Labels 1 the ball and tube, 2
+// the slab.
 #ifndef SeveralObjectPhantoms_h
 #define SeveralObjectPhantoms_h
 
@@ -125,6 +131,49 @@ inline std::vector<Point3> EngineBlockPicks()
         picks.push_back({ engine::BoreX[b] + engine::BoreRadius * std::cos(k * M_PI / 4),
           engine::BoreY + engine::BoreRadius * std::sin(k * M_PI / 4), z });
   return picks;
+}
+
+namespace tubeslab
+{
+constexpr int Dims[3] = { 144, 112, 64 };
+constexpr double Spacing[3] = { 1.0, 1.0, 1.0 };
+constexpr Point3 Centre = { 26.3, 20.3, 32.3 }; ///< the ball's
+constexpr double Radius = 7.0;
+constexpr double TubeWidth = 3.0, TubeLength = 22.0; ///< voxels; its length beyond the ball
+constexpr double SlabX = 48.3;
+constexpr double Dark = 20, Surround = 70, Bright = 120, Noise = 4;
+constexpr unsigned Seed = 2503;
+
+/// Distance of p from the tube's axis segment, from the ball's centre along +y to its tip less
+/// the radius (the rounded tip reaches TubeLength beyond the ball's surface).
+inline double TubeAxisDistance(const Point3& p)
+{
+  const double tip = Centre[1] + Radius + TubeLength - 0.5 * TubeWidth;
+  const double y = std::min(tip, std::max(Centre[1], p[1]));
+  return std::sqrt((p[0] - Centre[0]) * (p[0] - Centre[0]) + (p[1] - y) * (p[1] - y) +
+    (p[2] - Centre[2]) * (p[2] - Centre[2]));
+}
+
+inline Sample At(double x, double y, double z)
+{
+  const Point3 p = { x, y, z };
+  if (TubeAxisDistance(p) < 0.5 * TubeWidth ||
+    std::hypot(x - Centre[0], y - Centre[1], z - Centre[2]) < Radius)
+    return { Dark, 1, 1 };
+  return x >= SlabX ? Sample{ Bright, 2, 2 } : Sample{ Surround, 0, 0 };
+}
+} // namespace tubeslab
+
+/// The tube and slab phantom; a click at the ball's centre and one in the slab, ten voxels from
+/// its face.
+inline SeveralPhantom TubeSlabPhantom()
+{
+  SeveralPhantom s;
+  s.Phantom = RenderPhantom<vtkFloatArray>("tube and slab", "T1", tubeslab::Dims, tubeslab::Spacing,
+    tubeslab::At, tubeslab::Noise, tubeslab::Seed);
+  s.Clicks = { tubeslab::Centre, { tubeslab::SlabX + 10.0, 56.3, tubeslab::Centre[2] } };
+  s.Labels = { 1, 2 };
+  return s;
 }
 
 /// The spine phantom (ObjectPhantoms.h) with a click in the middle of vertebrae 2, 3 and 4.

@@ -15,6 +15,10 @@
 // - A click grown by the region force in the ridged ball of TestRegionForce (RegionWeight 1,
 //   every other default), 2 slabs: the serial surface bit for bit through the levels where the
 //   force has faded and refinement keeps triangles finer than 2 sigma (UnsplitEdgeLength).
+// - A click in the tube and slab phantom's ball (SeveralObjectPhantoms.h), every default, 2 and 4
+//   slabs: front levels (at least one) follow its tube three voxels wide, the serial surface bit
+//   for bit and the serial number of front levels, though on 4 slabs the outer ones hold nothing
+//   of the surface's neighbourhood (every rank decides alike whether to make the field again).
 // - Two clicks in the capsule as two objects (RegionWeight 1): they grow toward each other and
 //   meet without crossing; the serial surface bit for bit on 2 ranks, and on two threads.
 // - The ghost layers the request allows for (DistributedGhostVoxels): 13 with every default on
@@ -29,6 +33,7 @@
 #include "CapsulePhantom.h"
 #include "DSTestHelpers.h"
 #include "PieceSlabs.h"
+#include "SeveralObjectPhantoms.h"
 #include "SoftBallImage.h"
 #include "TestSolverMeshes.h"
 
@@ -58,7 +63,15 @@ struct Outcome
   std::string Error;
   TriangleMesh Mesh;
   long long Held = 0;
+  int FrontLevels = 0; ///< levels past sigma's floor that followed a thin part
 };
+
+int FrontLevelsOf(const MultilevelSolver& solver)
+{
+  const std::vector<LevelRecord>& levels = solver.GetLevels();
+  return static_cast<int>(
+    std::count_if(levels.begin(), levels.end(), [](const LevelRecord& l) { return l.Front; }));
+}
 
 /// The serial run and one run per rank, each from `start`.
 void Solve(const ImageGeometry& g, const std::vector<float>& image, const MultilevelParameters& p,
@@ -69,6 +82,7 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
   MultilevelSolver solver;
   solver.SetParameters(p);
   serial.Ok = solver.Run(image.data(), g, serial.Mesh, &serial.Error);
+  serial.FrontLevels = FrontLevelsOf(solver);
 
   dstest::EmulatedRanks emulated(nRanks);
   ranks.assign(nRanks, Outcome());
@@ -86,6 +100,7 @@ void Solve(const ImageGeometry& g, const std::vector<float>& image, const Multil
       ImageView whole = piece.Image; // the whole image's geometry, the piece's values
       whole.Geometry = g;
       ranks[r].Ok = s.Run(whole, ranks[r].Mesh, &ranks[r].Error);
+      ranks[r].FrontLevels = FrontLevelsOf(s);
     });
   DS_CHECK(emulated.Mismatches() == 0, "the ranks reduced vectors of one size");
 }
@@ -97,10 +112,12 @@ struct Phantom
   std::vector<float> Image = dstest::CapsuleImage();
 };
 
-void SameAsSerial(const std::string& label, const MultilevelParameters& p,
-  const TriangleMesh& start, bool pieceSmaller, const std::vector<int>& rankCounts = { 2, 3 },
+/// Returns the serial run's front levels.
+int SameAsSerial(const std::string& label, const MultilevelParameters& p, const TriangleMesh& start,
+  bool pieceSmaller, const std::vector<int>& rankCounts = { 2, 3 },
   const Phantom& phantom = Phantom())
 {
+  int frontLevels = 0;
   const ImageGeometry& g = phantom.Geometry;
   const std::vector<float>& image = phantom.Image;
   for (int nRanks : rankCounts)
@@ -115,6 +132,9 @@ void SameAsSerial(const std::string& label, const MultilevelParameters& p,
     for (const Outcome& o : ranks)
     {
       DS_CHECK(o.Ok, l + ": " + o.Error);
+      DS_CHECK(o.FrontLevels == serial.FrontLevels,
+        l + ": " + std::to_string(o.FrontLevels) + " front levels, serial " +
+          std::to_string(serial.FrontLevels));
       DS_CHECK(o.Mesh.NumberOfPoints() == serial.Mesh.NumberOfPoints(),
         l + ": " + std::to_string(o.Mesh.NumberOfPoints()) + " vertices, serial " +
           std::to_string(serial.Mesh.NumberOfPoints()));
@@ -127,14 +147,17 @@ void SameAsSerial(const std::string& label, const MultilevelParameters& p,
       }
       held = std::max(held, o.Held);
     }
-    std::cout << l << ": " << serial.Mesh.NumberOfPoints() << " vertices; the largest piece held "
-              << held << " of " << g.NumberOfVoxels() << " voxels" << std::endl;
+    std::cout << l << ": " << serial.Mesh.NumberOfPoints() << " vertices, " << serial.FrontLevels
+              << " front levels; the largest piece held " << held << " of " << g.NumberOfVoxels()
+              << " voxels" << std::endl;
+    frontLevels = serial.FrontLevels;
     DS_CHECK_LE(worst, 1e-12, l + ": max |x_rank - x_serial| / |x_serial|");
     if (pieceSmaller)
     {
       DS_CHECK_LE(held, g.NumberOfVoxels() - 1, l + ": voxels held by the largest piece");
     }
   }
+  return frontLevels;
 }
 
 /// The ridged ball of TestRegionForce (radius 30 +- 3 in 96^3, value 100 inside) as floats.
@@ -155,6 +178,28 @@ Phantom RidgedBall()
     static_cast<vtkFloatArray*>(image->GetPointData()->GetScalars())->GetPointer(0);
   phantom.Image.assign(values, values + static_cast<size_t>(n) * n * n);
   return phantom;
+}
+
+/// A click at the centre of the tube and slab phantom's ball (SeveralObjectPhantoms.h: a tube
+/// three voxels wide sticks out of it along y), every default: past sigma's floor front levels
+/// follow the tube, each rank sampling the front where it owns the image (FrontTriangles). On 2
+/// ranks the ball and tube straddle the slabs' border; on 4 the outer slabs hold nothing of the
+/// surface's neighbourhood, yet every rank must make the field again or none (a front level keeps
+/// sigma). The ranks give the serial surface and front levels.
+void FrontLevels(const MultilevelParameters& defaults)
+{
+  const dsobjects::SeveralPhantom s = dsobjects::TubeSlabPhantom();
+  Phantom phantom;
+  ImageGeometry& g = phantom.Geometry;
+  g = ImageGeometry();
+  s.Phantom.Image->GetDimensions(g.Dimensions);
+  const float* values =
+    static_cast<vtkFloatArray*>(s.Phantom.Image->GetPointData()->GetScalars())->GetPointer(0);
+  phantom.Image.assign(values, values + g.NumberOfVoxels());
+  const dsobjects::Point3& c = dsobjects::tubeslab::Centre;
+  const int front = SameAsSerial("a click followed along a tube (front levels)", defaults,
+    dstest::MakeIcosphere(2, 5.0, { c[0], c[1], c[2] }), true, { 2, 4 }, phantom);
+  DS_CHECK_GE(front, 1, "a click followed along a tube: front levels");
 }
 
 /// Two clicks in the capsule as two objects (docs/METHOD.md §9.9), RegionWeight 1: they grow
@@ -324,6 +369,7 @@ int TestDistributedSolve(int, char*[])
   click.RegionWeight = 1.0;
   SameAsSerial("a click grown in the ridged ball, RegionWeight 1", click,
     dstest::MakeIcosphere(2, 3.0, { 49.5, 46.5, 48.5 }), true, { 2 }, RidgedBall());
+  FrontLevels(defaults);
   TwoObjects(defaults);
   GhostLayers(defaults);
   BadInput(around);

@@ -15,9 +15,7 @@
 // - the output counts its front levels (FrontLevels, 1 to MaxFrontLevels) and keeps no level
 //   apart (KeptApartLevels 0: the surface never crosses itself).
 #include "DSTestHelpers.h"
-#include "ObjectPhantoms.h"
-#include "ObjectScore.h"
-#include "OneClick.h"
+#include "OneClickScore.h"
 #include "SeveralObjects.h"
 #include "dsMultilevel.h"
 
@@ -31,16 +29,9 @@ using namespace dsobjects;
 
 int TestFrontLevels(int, char*[])
 {
-  const ObjectPhantom phantom = HornedPhantom();
-  const ClickResult click = RunOneClick(phantom.Image, phantom.Click, ClickSettings());
-  const int object = phantom.ObjectLabel;
-  const std::vector<unsigned char> reference =
-    MaskOf(phantom.Label, [object](double l, vtkIdType) { return l == object; });
-  const ObjectScore s = Score(click.Surface, SurfaceInterior(click.Surface, phantom.Image),
-    reference, MaskBoundary(reference, phantom.Image), phantom.Image);
-  std::cout << "horned: " << s.Vertices << " vertices; reference -> surface mean "
-            << s.ReferenceMean << " (95 % " << s.ReferenceP95 << ") voxels, " << s.SelfIntersections
-            << " intersecting pairs" << std::endl;
+  const ScoredClick scored = ScoreOneClick(HornedPhantom());
+  const ClickResult& click = scored.Click;
+  const ObjectScore& s = scored.Score;
   DS_CHECK_LE(s.ReferenceP95, 1.5, "horned: reference -> surface 95 % (voxels)");
   DS_CHECK_LE(s.ReferenceMean, 0.65, "horned: reference -> surface mean (voxels)");
   DS_CHECK_LE(s.SurfaceP95, 0.6, "horned: surface -> reference 95 % (voxels)");

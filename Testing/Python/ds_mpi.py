@@ -1,7 +1,23 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Helpers for the mpi_*.py tests (run under `mpiexec -n 2 pvbatch`): what each rank holds of a
-proxy's output. The script runs on rank 0; the other ranks serve the proxies."""
+proxy's output, and the errors its filter reports; start_ranks loads the plugin. The script runs on
+rank 0; the other ranks serve the proxies."""
+import os
+
 from paraview import servermanager, simple
+from paraview.modules.vtkRemotingCore import vtkProcessModule
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+
+
+def start_ranks():
+    """Loads the plugin (DS_PLUGIN) and returns the number of ranks (at least 2)."""
+    simple.LoadPlugin(os.environ["DS_PLUGIN"])
+    n_ranks = vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+    print("ranks:", n_ranks)
+    assert n_ranks >= 2, "run this test under mpiexec with at least 2 processes"
+    return n_ranks
+
 
 # One vertex per rank carrying that rank's sizes (points/cells, or rows/columns of a table);
 # Fetch appends them on rank 0.
@@ -43,3 +59,15 @@ def per_rank(proxy, port=0):
             int(pd.GetArray("Points").GetValue(i)), int(pd.GetArray("Cells").GetValue(i)))
     simple.Delete(reporter)
     return result
+
+
+class Errors:
+    """The error messages proxy's filter reports on this rank (rank 0, where the script runs)."""
+
+    def __init__(self, proxy):
+        self.errors = []
+        proxy.GetClientSideObject().AddObserver("ErrorEvent", self.on_error)
+
+    @calldata_type(VTK_STRING)
+    def on_error(self, obj, event, text):
+        self.errors.append(text)

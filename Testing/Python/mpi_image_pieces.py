@@ -26,21 +26,15 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import numpy  # noqa: E402
 from paraview import servermanager, simple  # noqa: E402
-from paraview.modules.vtkRemotingCore import vtkProcessModule  # noqa: E402
-from vtkmodules.util.misc import calldata_type  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
-from vtkmodules.util.vtkConstants import VTK_STRING  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 from vtkmodules.vtkIOParallelXML import vtkXMLPImageDataWriter  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter  # noqa: E402
 
 from deformablesurface import vtkDeformableSurfaceFilter  # noqa: E402
-from ds_mpi import per_rank  # noqa: E402
+from ds_mpi import Errors, per_rank, start_ranks  # noqa: E402
 
-simple.LoadPlugin(os.environ["DS_PLUGIN"])
-n_ranks = vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
-print("ranks:", n_ranks)
-assert n_ranks >= 2, "run this test under mpiexec with at least 2 processes"
+n_ranks = start_ranks()
 
 NX, NY, NZ = 32, 32, 240
 # Sigma given and the region force off: no rank holds the whole image.
@@ -89,16 +83,6 @@ out.ShallowCopy(self.GetInputDataObject(0, 0))
 if STRIP and rank == 1:
     out.GetPointData().Initialize()
 """
-
-
-class Errors:
-    def __init__(self, proxy):
-        self.errors = []
-        proxy.GetClientSideObject().AddObserver("ErrorEvent", self.on_error)
-
-    @calldata_type(VTK_STRING)
-    def on_error(self, obj, event, text):
-        self.errors.append(text)
 
 
 def serial(start, settings, path=None):
