@@ -345,6 +345,56 @@ struct EdgeStatistics
   double GradientMax = 0, SmoothMin = 0, SmoothMax = 0;
 };
 
+/// g^2 (double) of the voxels 1 .. nx - 2 of a row whose voxels all have both neighbours along
+/// y and z: WorldGradientAt's arithmetic (central differences, then to world), written so that
+/// the loop vectorises.
+void InnerRowSquares(const float* __restrict row, std::ptrdiff_t sy, std::ptrdiff_t sz, int nx,
+  const GradientToWorld& toWorld, double* __restrict squares)
+{
+  const double* J = toWorld.J;
+  const double j0 = J[0], j1 = J[1], j2 = J[2], j3 = J[3], j4 = J[4], j5 = J[5], j6 = J[6],
+               j7 = J[7], j8 = J[8];
+  for (int i = 1; i < nx - 1; ++i)
+  {
+    const double a = 0.5 * (static_cast<double>(row[i + 1]) - row[i - 1]);
+    const double b = 0.5 * (static_cast<double>(row[i + sy]) - row[i - sy]);
+    const double c = 0.5 * (static_cast<double>(row[i + sz]) - row[i - sz]);
+    const double w0 = j0 * a + j1 * b + j2 * c;
+    const double w1 = j3 * a + j4 * b + j5 * c;
+    const double w2 = j6 * a + j7 * b + j8 * c;
+    squares[i] = w0 * w0 + w1 * w1 + w2 * w2;
+  }
+}
+
+/// Calls visit(row, squares) for every row of slice k, squares[i] the squared world gradient
+/// of `values` at voxel i of the row (WorldGradientAt's arithmetic: InnerRowSquares inside,
+/// WorldGradientAt at the border).
+template <typename Visit>
+void ForEachRowSquares(
+  const float* values, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
+{
+  const int nx = dims[0], ny = dims[1];
+  const std::ptrdiff_t step[3] = { 1, nx, static_cast<std::ptrdiff_t>(nx) * ny };
+  std::vector<double> squares(nx);
+  for (int j = 0; j < ny; ++j)
+  {
+    const std::ptrdiff_t row = k * step[2] + j * step[1];
+    const bool inner = nx > 2 && j > 0 && j < ny - 1 && k > 0 && k < dims[2] - 1;
+    for (int i = 0; i < nx; i += inner && i == 0 ? nx - 1 : 1)
+    {
+      const int p[3] = { i, j, k };
+      double gw[3];
+      WorldGradientAt(values + row + i, p, dims, step, toWorld, gw);
+      squares[i] = gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
+    }
+    if (inner)
+    {
+      InnerRowSquares(values + row, step[1], step[2], nx, toWorld, squares.data());
+    }
+    visit(row, squares.data());
+  }
+}
+
 /// g = |grad smooth| into `edges` (unless nullptr), with the extrema the normalisation needs.
 EdgeStatistics EdgeMagnitude(
   const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
@@ -358,17 +408,20 @@ EdgeStatistics EdgeMagnitude(
       // The largest g^2, rooted once: the root is correctly rounded and monotonic, so the root
       // of the largest square is the largest root bit for bit.
       double gm2 = 0.0, lo = sMin[k], hi = sMax[k];
-      ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
-        [&](std::ptrdiff_t v, const double gw[3])
+      ForEachRowSquares(smooth, dims, toWorld, k,
+        [&](std::ptrdiff_t row, const double* squares)
         {
-          const double g2 = gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
-          if (edges)
+          for (int i = 0; i < dims[0]; ++i)
           {
-            edges[v] = static_cast<float>(std::sqrt(g2));
+            const double g2 = squares[i];
+            if (edges)
+            {
+              edges[row + i] = static_cast<float>(std::sqrt(g2));
+            }
+            gm2 = std::max(gm2, g2);
+            lo = std::min(lo, static_cast<double>(smooth[row + i]));
+            hi = std::max(hi, static_cast<double>(smooth[row + i]));
           }
-          gm2 = std::max(gm2, g2);
-          lo = std::min(lo, static_cast<double>(smooth[v]));
-          hi = std::max(hi, static_cast<double>(smooth[v]));
         });
       gMax[k] = std::sqrt(gm2);
       sMin[k] = lo;
@@ -733,27 +786,6 @@ struct SlabBox
   }
 };
 
-/// g^2 (double) of the voxels 1 .. nx - 2 of a row whose voxels all have both neighbours along
-/// y and z: WorldGradientAt's arithmetic (central differences, then to world), written so that
-/// the loop vectorises.
-void InnerRowSquares(const float* __restrict row, std::ptrdiff_t sy, std::ptrdiff_t sz, int nx,
-  const GradientToWorld& toWorld, double* __restrict squares)
-{
-  const double* J = toWorld.J;
-  const double j0 = J[0], j1 = J[1], j2 = J[2], j3 = J[3], j4 = J[4], j5 = J[5], j6 = J[6],
-               j7 = J[7], j8 = J[8];
-  for (int i = 1; i < nx - 1; ++i)
-  {
-    const double a = 0.5 * (static_cast<double>(row[i + 1]) - row[i - 1]);
-    const double b = 0.5 * (static_cast<double>(row[i + sy]) - row[i - sy]);
-    const double c = 0.5 * (static_cast<double>(row[i + sz]) - row[i - sz]);
-    const double w0 = j0 * a + j1 * b + j2 * c;
-    const double w1 = j3 * a + j4 * b + j5 * c;
-    const double w2 = j6 * a + j7 * b + j8 * c;
-    squares[i] = w0 * w0 + w1 * w1 + w2 * w2;
-  }
-}
-
 /// g = |grad s| on the slab's slices [k0, k1) (as EdgeMagnitude) and, in the same pass, the
 /// largest g^2 over the box (rooted once, as BoxGradientMaximum), the range of s over the core
 /// and whether the core's s and g are finite, folded into `scan`.
@@ -772,38 +804,26 @@ void SlabEdges(const float* s, const int dims[3], const GradientToWorld& toWorld
         const bool core = k >= slab.Core0 && k < slab.Core1;
         double m = 0.0, l = lo[k], h = hi[k];
         bool f = true;
-        std::vector<double> squares(nx);
-        for (int j = 0; j < ny; ++j)
-        {
-          const std::ptrdiff_t row = k * step[2] + j * step[1];
-          const bool rowInBox = slab.InBox(slab.Box0[0], j, k);
-          const bool inner = nx > 2 && j > 0 && j < ny - 1 && k > 0 && k < dims[2] - 1;
-          for (int i = 0; i < nx; i += inner && i == 0 ? nx - 1 : 1)
+        ForEachRowSquares(s, dims, toWorld, k,
+          [&](std::ptrdiff_t row, const double* squares)
           {
-            const int p[3] = { i, j, k };
-            double gw[3];
-            WorldGradientAt(s + row + i, p, dims, step, toWorld, gw);
-            squares[i] = gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
-          }
-          if (inner)
-          {
-            InnerRowSquares(s + row, step[1], step[2], nx, toWorld, squares.data());
-          }
-          for (int i = 0; i < nx; ++i)
-          {
-            g[row + i] = static_cast<float>(std::sqrt(squares[i]));
-          }
-          for (int i = rowInBox ? slab.Box0[0] : 0; rowInBox && i < slab.Box1[0]; ++i)
-          {
-            m = std::max(m, squares[i]);
-          }
-          for (std::ptrdiff_t v = row; core && v < row + nx; ++v)
-          {
-            f = f && std::isfinite(g[v]) && std::isfinite(s[v]);
-            l = std::min(l, static_cast<double>(s[v]));
-            h = std::max(h, static_cast<double>(s[v]));
-          }
-        }
+            const int j = static_cast<int>((row - k * step[2]) / nx);
+            const bool rowInBox = slab.InBox(slab.Box0[0], j, k);
+            for (int i = 0; i < nx; ++i)
+            {
+              g[row + i] = static_cast<float>(std::sqrt(squares[i]));
+            }
+            for (int i = rowInBox ? slab.Box0[0] : 0; rowInBox && i < slab.Box1[0]; ++i)
+            {
+              m = std::max(m, squares[i]);
+            }
+            for (std::ptrdiff_t v = row; core && v < row + nx; ++v)
+            {
+              f = f && std::isfinite(g[v]) && std::isfinite(s[v]);
+              l = std::min(l, static_cast<double>(s[v]));
+              h = std::max(h, static_cast<double>(s[v]));
+            }
+          });
         gm2[k] = m;
         finite[k] = f;
         lo[k] = l;
