@@ -445,13 +445,14 @@ double BoxGradientMaximum(const float* smooth, const int dims[3], const Gradient
   double gm2 = 0.0; // the largest g^2, rooted once (as in EdgeMagnitude)
   for (int k = std::max(0, b[2]); k < std::min(dims[2], e[2]); ++k)
   {
-    ForEachWorldGradientOfSlice(smooth, dims, toWorld, k,
-      [&](std::ptrdiff_t v, const double gw[3])
+    ForEachRowSquares(smooth, dims, toWorld, k,
+      [&](std::ptrdiff_t row, const double* squares)
       {
-        const std::ptrdiff_t j = (v - k * sz) / nx, i = v - k * sz - j * nx;
-        if (j >= b[1] && j < e[1] && i >= b[0] && i < e[0])
+        const std::ptrdiff_t j = (row - k * sz) / nx;
+        for (std::ptrdiff_t i = std::max(0, b[0]);
+             j >= b[1] && j < e[1] && i < std::min(nx, std::ptrdiff_t(e[0])); ++i)
         {
-          gm2 = std::max(gm2, gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2]);
+          gm2 = std::max(gm2, squares[i]);
         }
       });
   }
