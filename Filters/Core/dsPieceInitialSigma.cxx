@@ -202,19 +202,38 @@ namespace
 {
 /// The probe on the block means of f^3 blocks (PieceBlockMeans): the whole coarse grid on every
 /// process, so each walks the rays on it alone, as a single process would, and all choose alike.
+/// One that fails (its memory, its field) tells the others, which fail with it.
 bool CoarseProbe(const ImagePiece& piece, const TriangleMesh& mesh, double paperSigma, int f,
   int numberOfThreads, const PieceReductions& reduce, InitialSigmaChoice& choice,
   std::string* error)
 {
   std::vector<float> means;
   ImageGeometry geometry;
-  if (!PieceBlockMeans(
-        piece, VoxelBox::Whole(piece.Whole), f, numberOfThreads, reduce, means, geometry, error))
+  std::string problem;
+  if (!PieceBlockMeans(piece, VoxelBox::Whole(piece.Whole), f, numberOfThreads, reduce, means,
+        geometry, &problem)) // false on every process alike
   {
+    if (error)
+    {
+      *error = "the coarse probe of sigma_0: " + problem;
+    }
     return false;
   }
-  return ChoosePieceInitialSigma(WholeImagePiece(ImageView::Of(means.data(), geometry)), mesh,
-    paperSigma, numberOfThreads, SingleProcessReductions(), choice, error);
+  const bool ok = ChoosePieceInitialSigma(WholeImagePiece(ImageView::Of(means.data(), geometry)),
+    mesh, paperSigma, numberOfThreads, SingleProcessReductions(), choice, &problem);
+  if (reduce.Max(ok ? 0.0 : 1.0) > 0.0)
+  {
+    if (error)
+    {
+      *error = ok ? std::string("another process could not compute its coarse probe of sigma_0")
+                  : "the coarse probe of sigma_0: " + problem;
+    }
+    return false;
+  }
+  // The coarse grid reaches half a block past the image: a start it spans may not span the
+  // image, whose check came first.
+  choice.SpansVolume = false;
+  return true;
 }
 } // namespace
 
@@ -241,7 +260,9 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     {
       return false;
     }
-    if (choice.Sigma >= CoarseProbeKeptBlocks * f * piece.Whole.MeanSpacing())
+    // In blocks along the axis with the largest spacing, which sets f (DecimationFactor).
+    const double* s = piece.Whole.Spacing;
+    if (choice.Sigma >= CoarseProbeKeptBlocks * f * std::max({ s[0], s[1], s[2] }))
     {
       choice.ProbeBlock = f;
       return true;

@@ -5,7 +5,6 @@
 #include "dsInsideVoxels.h"
 #include "dsMixture.h"
 
-#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -71,31 +70,38 @@ long long CountOfAll(const std::vector<float>& values, const PieceReductions& re
   return static_cast<long long>(n[0]);
 }
 
+/// Values a chunk of the parallel loops below holds.
+constexpr std::size_t ChunkValues = 1 << 20;
+
 /// The counts of the values whose OrderKey has `prefix` in its `known` bits, by the `digits`
-/// values of its bits from `shift` on, counted in parallel (in the caller's SMP scope): counts
-/// are whole numbers, so their sum is the same in any order.
+/// values of its bits from `shift` on, counted chunk by chunk in parallel (in the caller's SMP
+/// scope) and added in the chunks' order.
 std::vector<double> DigitHistogram(const std::vector<float>& values, int shift, int digits,
   std::uint32_t known, std::uint32_t prefix)
 {
-  vtkSMPThreadLocal<std::vector<double>> counts;
-  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()), 1 << 16,
-    [&](vtkIdType begin, vtkIdType end)
+  const std::size_t chunks = (values.size() + ChunkValues - 1) / ChunkValues;
+  std::vector<std::vector<double>> counts(chunks, std::vector<double>(digits, 0.0));
+  vtkSMPTools::For(0, static_cast<vtkIdType>(chunks), 1,
+    [&](vtkIdType first, vtkIdType last)
     {
-      std::vector<double>& h = counts.Local();
-      h.resize(digits, 0.0);
-      for (vtkIdType i = begin; i < end; ++i)
+      for (vtkIdType c = first; c < last; ++c)
       {
-        const std::uint32_t key = OrderKey(values[i]);
-        if ((key & known) == prefix)
+        const std::size_t end =
+          std::min(values.size(), static_cast<std::size_t>(c + 1) * ChunkValues);
+        for (std::size_t i = static_cast<std::size_t>(c) * ChunkValues; i < end; ++i)
         {
-          h[(key >> shift) & (digits - 1)] += 1.0;
+          const std::uint32_t key = OrderKey(values[i]);
+          if ((key & known) == prefix)
+          {
+            counts[c][(key >> shift) & (digits - 1)] += 1.0;
+          }
         }
       }
     });
   std::vector<double> histogram(digits, 0.0);
   for (const std::vector<double>& h : counts)
   {
-    for (std::size_t d = 0; d < h.size(); ++d)
+    for (int d = 0; d < digits; ++d)
     {
       histogram[d] += h[d];
     }
@@ -133,10 +139,12 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
 /// voxels to well within a voxel's noise.
 constexpr long long SampledValues = 1LL << 25;
 
-/// The n of SampledValues for `voxels` voxels: 1 up to SampledValues, else odd.
+/// The n of SampledValues for `voxels` voxels: 1 up to SampledValues, else odd, so that at most
+/// SampledValues are read.
 long long SampleEvery(double voxels)
 {
-  return voxels <= SampledValues ? 1 : (static_cast<long long>(voxels) / SampledValues) | 1;
+  const long long v = static_cast<long long>(voxels);
+  return v <= SampledValues ? 1 : ((v + SampledValues - 1) / SampledValues) | 1;
 }
 
 /// The values of the voxels whose centres lie inside the closed mesh (RowCrossings,
@@ -183,34 +191,44 @@ double RobustSpan(const ImagePiece& piece, const PieceReductions& reduce)
   const VoxelBox counted = piece.CountedVoxels();
   const int nx = piece.Whole.Dimensions[0], ny = piece.Whole.Dimensions[1];
   const long long n = std::max(7LL, SampleEvery(static_cast<double>(piece.Whole.NumberOfVoxels())));
-  // Slabs of slices in parallel (in the caller's SMP scope): the quantiles count values, so
-  // the order the slabs' samples are joined in does not matter.
-  vtkSMPThreadLocal<std::vector<float>> parts;
-  vtkSMPTools::For(counted.Begin[2], counted.End[2],
-    [&](int kBegin, int kEnd)
+  // Every n-th voxel id: a row's are the multiples of n in its ids [a, b).
+  const auto multiples = [n](long long a, long long b)
+  { return (b + n - 1) / n - (a + n - 1) / n; };
+  const auto rowId = [&](int j, int k) { return (static_cast<long long>(k) * ny + j) * nx; };
+  // Slice by slice in parallel (in the caller's SMP scope), each written at its own offset.
+  const int slices = std::max(0, counted.End[2] - counted.Begin[2]);
+  std::vector<long long> offset(slices + 1, 0);
+  for (int z = 0; z < slices; ++z)
+  {
+    long long count = 0;
+    for (int j = counted.Begin[1]; j < counted.End[1]; ++j)
+    {
+      const long long id = rowId(j, counted.Begin[2] + z);
+      count += multiples(id + counted.Begin[0], id + counted.End[0]);
+    }
+    offset[z + 1] = offset[z] + count;
+  }
+  std::vector<float> sample(static_cast<std::size_t>(offset[slices]));
+  vtkSMPTools::For(0, slices,
+    [&](int zBegin, int zEnd)
     {
       VoxelBox slab = counted;
-      slab.Begin[2] = kBegin;
-      slab.End[2] = kEnd;
-      std::vector<float>& part = parts.Local();
+      slab.Begin[2] = counted.Begin[2] + zBegin;
+      slab.End[2] = counted.Begin[2] + zEnd;
+      float* out = sample.data() + offset[zBegin];
       ForEachCountedRow(piece, slab,
         [&](int j, int k, const auto* row)
         {
-          const long long first = (static_cast<long long>(k) * ny + j) * nx; // id of (0, j, k)
+          const long long first = rowId(j, k);
           for (long long i = (n - first % n) % n; i < counted.End[0]; i += n)
           {
             if (i >= counted.Begin[0])
             {
-              part.push_back(AsFloat(row[i - counted.Begin[0]]));
+              *out++ = AsFloat(row[i - counted.Begin[0]]);
             }
           }
         });
     });
-  std::vector<float> sample;
-  for (const std::vector<float>& part : parts)
-  {
-    sample.insert(sample.end(), part.begin(), part.end());
-  }
   const SharedValues all{ sample, CountOfAll(sample, reduce) };
   const double lo = Quantile(all, 0.01, reduce), hi = Quantile(all, 0.99, reduce);
   return hi - lo;

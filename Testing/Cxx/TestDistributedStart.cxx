@@ -145,6 +145,12 @@ void CoarseProbe()
   DS_CHECK(CoarseProbeBlock(g, g.MeanExtent() / 6.0) == 3, "the large image's coarse probe block");
   const InitialSigmaChoice far = SameAsSerial(g, image, Sphere(40.0, centre), "coarse: 20 out");
   DS_CHECK(far.ProbeBlock == 3, "a start 20 units out keeps the coarse probe's choice");
+  InitialSigmaChoice twoThreads;
+  std::string error;
+  DS_CHECK(ChooseInitialSigma(ImageView::Of(image.data(), g), Sphere(40.0, centre),
+             g.MeanExtent() / 6.0, 2, twoThreads, &error) &&
+      SameChoice(twoThreads, far),
+    "coarse: 20 out, two threads choose as one: " + error);
   DS_CHECK_LE(std::abs(far.Sigma - 20.0), 1.5, "its sigma_0 against its distance 20");
   const InitialSigmaChoice near = SameAsSerial(g, image, Sphere(24.0, centre), "coarse: 4 out");
   DS_CHECK(near.ProbeBlock == 1, "a start 4 units out is probed fine");

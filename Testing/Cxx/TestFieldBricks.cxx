@@ -62,6 +62,7 @@ std::vector<Vec3> PointsWithinReach(const TriangleMesh& surface, const Vec3& c, 
   }
   return points;
 }
+
 /// The field at sigma (two threads) over the surface's neighbourhood box, whole and in bricks
 /// around the surface; returns the box.
 VoxelBox WholeAndBricked(const ImageView& view, const TriangleMesh& surface, double sigma,
@@ -106,7 +107,8 @@ void TurnedGrid()
       points.push_back(v + t * u);
     }
   }
-  DS_CHECK(LargestDifference(bricked, whole, points) == 0.0 && bricked.Bricks->Misses() == 0,
+  DS_CHECK(bricked.Bricks && LargestDifference(bricked, whole, points) == 0.0 &&
+      bricked.Bricks->Misses() == 0,
     "a turned anisotropic grid: bricked = whole-box field bit for bit within the reach");
 }
 } // namespace
