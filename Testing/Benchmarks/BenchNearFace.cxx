@@ -12,6 +12,14 @@
 // scored against the object's label (ObjectScore.h: volume ratio, distances both ways in
 // voxels, Dice).
 //
+// What it shows at RegionWeight 0.3 (the filter's default): a click 7 voxels or less inside the
+// face stays a cap on the face (volume ratio ~0.01 on the ball, ~0 on the slab) although its range
+// is right. sigma_0 from a click is its seed's distance to the nearest edges (docs/METHOD.md §9.1),
+// here the object's own face as seen from the seed's far side, so the whole seed lies in that
+// edge's basin: the edge force pulls the far side toward the face, against the region force, and
+// at 0.3 x the edge force's weight the region force loses (with EdgeWeight 0.3 or RegionWeight 1
+// every such click finds the ball). At RegionWeight 1 every click finds its object.
+//
 //   BenchNearFace [CASE ...]    (CASE: a part of a case's name; none: every case)
 #include "../Cxx/ObjectScore.h"
 #include "../Cxx/OneClick.h"
