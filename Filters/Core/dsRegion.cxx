@@ -476,11 +476,20 @@ void ObjectAgainstBackground(const SharedValues& in, const SharedValues& out, do
 /// 7.3; taken for a blend, the range ran over it to 139 and the caudate leaked over the brain).
 constexpr double PartialVolumeShare = 1.0;
 
+/// A class whose mean lies within this many of the narrower s.d. of its own and the object's class
+/// o makes one mode with o: two Gaussians of one s.d. have a single mode for every weight exactly
+/// when their means lie within two s.d. (Robertson and Fryer, Scand. Actuarial J. 1969), so no
+/// image shows them as two tissues. The histogram fit splits a large class in two such halves (a
+/// slab of 120, noise s.d. 4: 118.3 and 121.9, s.d. 3.6 and 3.4); a click whose median fell to the
+/// lower half took the upper for a competitor, its range ended at its own median, and the surface
+/// shrank.
+constexpr double OneModeSds = 2.0;
+
 /// Whether class k, on side `direction` (-1 below, +1 above) of the object's class o, competes.
 bool Competes(const Mixture& m, int o, int k, double direction)
 {
   const double offset = direction * (m.Mean[k] - m.Mean[o]);
-  if (k == o || !(offset > 0))
+  if (k == o || !(offset > OneModeSds * std::min(m.Sd[o], m.Sd[k])))
   {
     return false;
   }
