@@ -14,6 +14,22 @@ namespace dsurf
 {
 namespace
 {
+/// The fine probe's ghosts along axis a: its two Gaussians' (see InitialSigmaProbeGhostVoxels).
+int FineProbeGhostVoxels(const ImageGeometry& whole, int a)
+{
+  // The probe smooths each piece on its own (its Gaussians are not passed between the pieces,
+  // dsPieceGaussian.h): where one is recursive (a very anisotropic grid) it needs the whole axis.
+  const double sigma = whole.MeanSpacing();
+  const int first = sigma / whole.Spacing[a] < GaussianRecursiveFromSigmaVoxels
+    ? PieceGhostVoxels(sigma, whole, a)
+    : whole.Dimensions[a];
+  const double wide = 2.0 * sigma / whole.Spacing[a];
+  const int second = wide < GaussianRecursiveFromSigmaVoxels
+    ? static_cast<int>(std::ceil(4.0 * wide))
+    : whole.Dimensions[a];
+  return std::min(whole.Dimensions[a], first + second);
+}
+
 /// Rays' steps sampled per round on a distributed image: one sum of this many strengths per
 /// ray still walking (a ray of 2 * extent / 6 each way takes up to ~8 extent / 6 voxels of
 /// steps; most end at their first edge, a few voxels out).
@@ -44,7 +60,7 @@ VoxelBox ProbeRegion(const ImagePiece& piece, const VoxelBox& reached)
   VoxelBox region = reached;
   for (int a = 0; a < 3 && reached.NumberOfVoxels() > 0; ++a)
   {
-    const int ghost = InitialSigmaProbeGhostVoxels(piece.Whole, a);
+    const int ghost = FineProbeGhostVoxels(piece.Whole, a);
     region.Begin[a] = std::max(0, region.Begin[a] - ghost);
     region.End[a] = std::min(piece.Whole.Dimensions[a], region.End[a] + ghost);
   }
@@ -178,19 +194,9 @@ double SampleProbe(
 
 int InitialSigmaProbeGhostVoxels(const ImageGeometry& whole, int a)
 {
-  // The probe smooths each piece on its own (its Gaussians are not passed between the pieces,
-  // dsPieceGaussian.h): where one is recursive (a very anisotropic grid) it needs the whole axis.
-  const double sigma = whole.MeanSpacing();
-  const int first = sigma / whole.Spacing[a] < GaussianRecursiveFromSigmaVoxels
-    ? PieceGhostVoxels(sigma, whole, a)
-    : whole.Dimensions[a];
-  const double wide = 2.0 * sigma / whole.Spacing[a];
-  const int second = wide < GaussianRecursiveFromSigmaVoxels
-    ? static_cast<int>(std::ceil(4.0 * wide))
-    : whole.Dimensions[a];
   // The coarse probe's blocks are averaged by the piece counting their first voxel (2 f).
   const int coarse = 2 * CoarseProbeBlock(whole, whole.MeanExtent() / 6.0);
-  return std::min(whole.Dimensions[a], std::max(first + second, coarse));
+  return std::min(whole.Dimensions[a], std::max(FineProbeGhostVoxels(whole, a), coarse));
 }
 
 int CoarseProbeBlock(const ImageGeometry& whole, double paperSigma)
@@ -276,7 +282,7 @@ bool ChoosePieceInitialSigma(const ImagePiece& piece, const TriangleMesh& mesh, 
     ? std::string()
     : "the piece holds too few ghost layers for "
       "the probe of sigma_0 (" +
-      std::to_string(InitialSigmaProbeGhostVoxels(piece.Whole, 0)) + " voxels needed)";
+      std::to_string(FineProbeGhostVoxels(piece.Whole, 0)) + " voxels needed)";
   const VoxelSet wanted = RayVoxels(piece, mesh, paperSigma, problem.empty() ? region : VoxelBox());
   if (problem.empty() && region.NumberOfVoxels() > 0)
   {

@@ -16,6 +16,7 @@
 //                   [sizes... (default 128 256 512 1024)]
 #include "BenchRow.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -35,8 +36,15 @@ int main(int argc, char* argv[])
       reserve = std::atof(argv[++i]) * GiB;
     else if (a == "--only" && i + 1 < argc)
       only.emplace_back(argv[++i]);
-    else
+    else if (std::atoi(a.c_str()) > 0)
       sizes.push_back(std::atoi(a.c_str()));
+    else
+    {
+      std::fprintf(stderr,
+        "usage: BenchScale [--time-limit CPU s] [--reserve-gib G] [--only TEXT]... [sizes...]\n"
+        "(see the comment at the top of Testing/Benchmarks/BenchScale.cxx)\n");
+      return a == "--help" || a == "-h" ? 0 : 2;
+    }
   }
   if (sizes.empty())
     sizes = { 128, 256, 512, 1024 };
