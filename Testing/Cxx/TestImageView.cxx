@@ -128,6 +128,12 @@ void CheckReaders(const ImageView& typed, const ImageView& asFloat)
     "the region force's range from the uint16 view = from its float copy");
   DS_CHECK(CountVoxelsInRange(typed, 1500, 2500) == CountVoxelsInRange(asFloat, 1500, 2500),
     "voxels in a range");
+  // The solver's check that a range matches a voxel (it stops at the first).
+  DS_CHECK(CountVoxelsInRange(typed, 1500, 2500) > 0 && AnyVoxelInRange(typed, 1500, 2500) &&
+      AnyVoxelInRange(asFloat, 1500, 2500),
+    "a range with voxels matches one, uint16 view and float copy");
+  DS_CHECK(!AnyVoxelInRange(typed, 70000, 80000) && !AnyVoxelInRange(asFloat, 70000, 80000),
+    "a range above every uint16 value matches none");
 
   MultilevelSolver s1, s2;
   TriangleMesh m1 = sphere, m2 = sphere;
