@@ -197,10 +197,9 @@ constexpr int FrontLookSteps = 5;
 /// At most this many samples along a triangle's side when looking beyond it (a side longer than
 /// this many voxels is sampled more sparsely than a voxel).
 constexpr int FrontGridMax = 16;
-/// Front levels at most, beyond MaxLevels: the horned phantom's horns of 25-35 voxels, three
-/// and four wide, take about 20; its horn two voxels wide, whose voxels lie near the range's end,
-/// reaches 20 of its 40 voxels in 32 levels and 26 in 64 (its tip slows to about 0.2 voxel a
-/// level), the run ending at this cap.
+/// Front levels at most, beyond MaxLevels: the horned phantom's four horns, 2-4 voxels wide and
+/// 25-40 long, are followed to their ends in 53 (the two-voxel horn's tip moves about 0.2 voxel
+/// a level).
 constexpr int MaxFrontLevels = 64;
 /// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
 /// keep one vertex stepping back and forth for ever.

@@ -6,10 +6,11 @@
 // - the horns three and four voxels wide to within a voxel of their ends, and no horn beyond
 //   its end by more than a voxel (the surface's farthest vertex near each horn's axis, measured
 //   from the body's surface along it);
-// - the horn two voxels wide at least 24 of its 40 voxels (issue 24's goal, its end, is not met:
-//   its voxels lie near the range's end, docs/RESULTS.md);
-// - reference boundary -> surface 95 % at most 1.5 voxel (issue 24's goal) and mean at most 0.65
-//   (the goal 0.5 is not met); surface -> reference 95 % at most 0.6 voxel and at most 1 % of
+// - the horn two voxels wide to within two voxels of its end (its voxels, partly surround, lie
+//   near the range's end; it reached 26 of its 40 voxels while the click's mixture was fitted
+//   between the 0.5 % quantiles, dsRegion.cxx MixtureTailShare);
+// - reference boundary -> surface mean at most 0.5 voxel and 95 % at most 1.5 voxel (issue 24's
+//   goals); surface -> reference 95 % at most 0.6 voxel and at most 1 % of
 //   the enclosed volume outside the object (no leak); at most 6 000 vertices (only the front is
 //   refined past sigma's floor); no self-intersections;
 // - the output counts its front levels (FrontLevels, 1 to MaxFrontLevels) and keeps no level
@@ -33,7 +34,7 @@ int TestFrontLevels(int, char*[])
   const ClickResult& click = scored.Click;
   const ObjectScore& s = scored.Score;
   DS_CHECK_LE(s.ReferenceP95, 1.5, "horned: reference -> surface 95 % (voxels)");
-  DS_CHECK_LE(s.ReferenceMean, 0.65, "horned: reference -> surface mean (voxels)");
+  DS_CHECK_LE(s.ReferenceMean, 0.5, "horned: reference -> surface mean (voxels)");
   DS_CHECK_LE(s.SurfaceP95, 0.6, "horned: surface -> reference 95 % (voxels)");
   DS_CHECK_LE(s.OutsideShare, 0.01, "horned: share of the enclosed volume outside the object");
   DS_CHECK_LE(s.Vertices, 6000, "horned: vertices");
@@ -61,7 +62,7 @@ int TestFrontLevels(int, char*[])
     }
     std::cout << "horn " << h << " (" << horn.Width << " voxels wide, " << horn.Length
               << " long): reached " << reach << std::endl;
-    const double wanted = horn.Width >= 3 ? horn.Length - 1.0 : 24.0;
+    const double wanted = horn.Length - (horn.Width >= 3 ? 1.0 : 2.0);
     DS_CHECK_GE(reach, wanted, "horn " + std::to_string(h) + ": reach beyond the body (voxels)");
     DS_CHECK_LE(reach, horn.Length + 1.0, "horn " + std::to_string(h) + ": not beyond its end");
   }

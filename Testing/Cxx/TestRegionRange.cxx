@@ -257,9 +257,9 @@ int TestRegionRange(int, char*[])
   }
 
   // One Gaussian (mean 1100, s.d. 60) as CompetitorsAround bins it: 256 bins between its
-  // 0.5 and 99.5 % quantiles (-+2.576 s.d.), the 0.5 % beyond each end in the end bins.
+  // 0.2 and 99.8 % quantiles (-+2.878 s.d.), the 0.2 % beyond each end in the end bins.
   {
-    const double low = 1100 - 2.576 * 60, width = 2 * 2.576 * 60 / 256;
+    const double low = 1100 - 2.878 * 60, width = 2 * 2.878 * 60 / 256;
     const auto below = [](double x)
     { return 0.5 * std::erfc(-(x - 1100) / (60 * std::sqrt(2.0))); };
     std::vector<double> counts(256);
@@ -270,7 +270,7 @@ int TestRegionRange(int, char*[])
       counts[b] = std::round(1e6 * (below(c) - below(a)));
     }
     DS_CHECK(IsOneClass(counts, low, width, 4),
-      "one Gaussian cut at its 0.5 and 99.5 % quantiles, the tails in the end bins: one class");
+      "one Gaussian cut at its 0.2 and 99.8 % quantiles, the tails in the end bins: one class");
   }
 
   // Speeds: +1 inside, -1 outside, 0 at the ends, never NaN.
