@@ -846,6 +846,11 @@ bool MultilevelSolver::SetUpLevel(
       const bool followed = o < state.FrontObjects.size() && state.FrontObjects[o];
       const double fade = RegionFade(sigma, own ? this->StartSigmas[o] : state.FirstSigma);
       m.Scale = state.FrontLevel ? (followed ? 1.0 : fade) : (own ? fade : 1.0);
+      // A click's seed lies inside its object, in the basin of the face nearest it, which its
+      // sigma_0 was chosen to span: on its first level that edge pulls the seed's far side back
+      // across the object's own voxels, and a click a few voxels from a face stayed a cap on
+      // it. Later levels rest on the boundary, where the edge must hold (docs/METHOD.md §9.3).
+      m.PastInnerEdges = r.FollowsFront && !state.FrontLevel && fade >= 1.0;
       models.push_back(m);
     }
     state.LevelSolver.SetRegionForce(

@@ -363,6 +363,36 @@ inline ObjectPhantom HornedPhantom()
   p.Click = horned::Centre;
   return p;
 }
+
+//------------------------------------------------------------------------------
+// Bright ball (MRI-like, float "T1", 1 mm, 64^3 voxels, origin 0): a ball of radius 16 and value
+// 120 centred off the grid at (32.3, 32.2, 32.1) in a surround of 70, noise s.d. 4 (seed 2601).
+// Label 1: the ball. Clicked d voxels inside its face along +x (BenchNearFace, TestNearFaceClick).
+namespace brightball
+{
+constexpr int Dims[3] = { 64, 64, 64 };
+constexpr double Spacing[3] = { 1.0, 1.0, 1.0 };
+constexpr Point3 Centre = { 32.3, 32.2, 32.1 };
+constexpr double Radius = 16.0, Bright = 120, Surround = 70, Noise = 4;
+constexpr unsigned Seed = 2601;
+
+inline Sample At(double x, double y, double z)
+{
+  const bool in = std::hypot(x - Centre[0], y - Centre[1], z - Centre[2]) < Radius;
+  return in ? Sample{ Bright, 1, 1 } : Sample{ Surround, 0, 0 };
+}
+} // namespace brightball
+
+/// The bright ball; the click: d voxels inside its face along +x.
+inline ObjectPhantom BrightBall(double d)
+{
+  ObjectPhantom p = RenderPhantom<vtkFloatArray>("ball", "T1", brightball::Dims,
+    brightball::Spacing, brightball::At, brightball::Noise, brightball::Seed);
+  p.ObjectLabel = 1;
+  p.Click = { brightball::Centre[0] + brightball::Radius - d, brightball::Centre[1],
+    brightball::Centre[2] };
+  return p;
+}
 } // namespace dsobjects
 
 #endif
