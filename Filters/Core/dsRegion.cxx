@@ -134,10 +134,13 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
 }
 
 /// Values a robust statistic of a large image or start reads at most (about): beyond them,
-/// every n-th voxel (n odd, so that no power-of-two row length aliases with it). 2^25 floats are
-/// 128 MiB (a 512^3 image's every 7th voxel is fewer), and their quantiles are those of all
-/// voxels to well within a voxel's noise.
-constexpr long long SampledValues = 1LL << 25;
+/// every n-th voxel (n odd, so that no power-of-two row length aliases with it). 2^22 floats are
+/// 16 MiB, and their quantiles are those of all voxels to well within a voxel's noise (the
+/// standard error of a quantile of 4 million values is under 0.1 % of the class's spread). At
+/// 2^25 the range estimate of issue 28's near start at 512^3 (15 million voxels inside, the image
+/// sampled every 7th voxel for its span) took 0.5 s of its 2.5; at 2^22, 0.25 s less
+/// (BENCHMARKS.md).
+constexpr long long SampledValues = 1LL << 22;
 
 /// The n of SampledValues for `voxels` voxels: 1 up to SampledValues, else odd, so that at most
 /// SampledValues are read.
