@@ -781,6 +781,35 @@ bool MultilevelSolver::Start(
   return true;
 }
 
+std::vector<Solver::RegionModel> MultilevelSolver::LevelRegionModels(
+  const RunState& state, double sigma) const
+{
+  const bool own = this->StartSigmas.size() == this->ObjectRegions.size();
+  std::vector<Solver::RegionModel> models;
+  for (std::size_t o = 0; o < this->ObjectRegions.size(); ++o)
+  {
+    const ObjectRegion& r = this->ObjectRegions[o];
+    Solver::RegionModel m;
+    m.On = r.On;
+    m.Low = r.Low;
+    m.High = r.High;
+    m.OutwardOnly = r.OutwardOnly;
+    // On a front level the objects whose front is not followed keep their fade.
+    const bool followed = o < state.FrontObjects.size() && state.FrontObjects[o];
+    const double fade = RegionFade(sigma, own ? this->StartSigmas[o] : state.FirstSigma);
+    m.Scale = state.FrontLevel ? (followed ? 1.0 : fade) : (own ? fade : 1.0);
+    // A click's seed lies inside its object, in the basin of the face nearest it, which its
+    // sigma_0 was chosen to span: while sigma is that large (the object's first levels, its
+    // force not yet faded) that edge pulls the seed's far side back across the object's own
+    // voxels. Smaller sigmas rest on the boundary, where the edge must hold; with a constant
+    // sigma nothing fades and the rule never applies (docs/METHOD.md §9.3).
+    m.DropInwardEdgePull =
+      r.FollowsFront && !state.FrontLevel && this->Parameters.HierarchicalSigma && fade >= 1.0;
+    models.push_back(m);
+  }
+  return models;
+}
+
 bool MultilevelSolver::SetUpLevel(
   const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
 {
@@ -833,26 +862,7 @@ bool MultilevelSolver::SetUpLevel(
     const bool own = this->StartSigmas.size() == this->ObjectRegions.size();
     const double decay = state.FrontLevel || own ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
-    std::vector<Solver::RegionModel> models;
-    for (std::size_t o = 0; o < this->ObjectRegions.size(); ++o)
-    {
-      const ObjectRegion& r = this->ObjectRegions[o];
-      Solver::RegionModel m;
-      m.On = r.On;
-      m.Low = r.Low;
-      m.High = r.High;
-      m.OutwardOnly = r.OutwardOnly;
-      // On a front level the objects whose front is not followed keep their fade.
-      const bool followed = o < state.FrontObjects.size() && state.FrontObjects[o];
-      const double fade = RegionFade(sigma, own ? this->StartSigmas[o] : state.FirstSigma);
-      m.Scale = state.FrontLevel ? (followed ? 1.0 : fade) : (own ? fade : 1.0);
-      // A click's seed lies inside its object, in the basin of the face nearest it, which its
-      // sigma_0 was chosen to span: on its first level that edge pulls the seed's far side back
-      // across the object's own voxels, and a click a few voxels from a face stayed a cap on
-      // it. Later levels rest on the boundary, where the edge must hold (docs/METHOD.md §9.3).
-      m.PastInnerEdges = r.FollowsFront && !state.FrontLevel && fade >= 1.0;
-      models.push_back(m);
-    }
+    std::vector<Solver::RegionModel> models = this->LevelRegionModels(state, sigma);
     state.LevelSolver.SetRegionForce(
       this->Distributed ? this->Piece.Image : image, std::move(models), decay * P.RegionWeight * h);
   }

@@ -198,8 +198,8 @@ constexpr int FrontLookSteps = 5;
 /// this many voxels is sampled more sparsely than a voxel).
 constexpr int FrontGridMax = 16;
 /// Front levels at most, beyond MaxLevels: the horned phantom's four horns, 2-4 voxels wide and
-/// 25-40 long, are followed to their ends in 53 (the two-voxel horn's tip moves about 0.2 voxel
-/// a level).
+/// 25-40 long, are followed to within 1.5 voxels of their ends in 53 (the two-voxel horn's tip
+/// moves about 0.2 voxel a level).
 constexpr int MaxFrontLevels = 64;
 /// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
 /// keep one vertex stepping back and forth for ever.
@@ -456,6 +456,10 @@ private:
   bool SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// After a level kept apart: its remaining folds smoothed open (SmoothFolds) on any mesh.
   void SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec);
+  /// Each object's region model for a level at sigma: its range, its fade (its own sigma_0's
+  /// when each object has one), front levels at full strength for the objects they follow, and
+  /// whether the edge force's inward pull is dropped (a click's first levels; docs/METHOD.md §9.3).
+  std::vector<Solver::RegionModel> LevelRegionModels(const RunState& state, double sigma) const;
   /// The level's force field (rebuilt when sigma changed), edge and region force scales, and
   /// rec's sigma, sizes and mean edge length.
   bool SetUpLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec,

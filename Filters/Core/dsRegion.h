@@ -35,6 +35,17 @@ inline double RegionSpeed(double intensity, double lo, double hi)
   return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : (s == s ? s : 0.0)); // NaN: no force
 }
 
+/// The edge force `force` at a vertex with its component against the unit normal n scaled by
+/// 1 - speed, speed the region speed in (0, 1] there: where the image says object, an edge
+/// behind the vertex lies inside the object (its far face seen through a click's seed), not
+/// where the surface is to stop (a click's first levels, docs/METHOD.md §9.3). A force along n
+/// or across it is kept.
+inline Vec3 WithoutInwardEdgePull(const Vec3& force, const Vec3& n, double speed)
+{
+  const double along = Dot(force, n);
+  return along < 0 ? force - (speed * along) * n : force;
+}
+
 /// A start enclosing fewer voxel centres than this is a click (EstimateIntensityRange): a
 /// ball of radius ~6 voxels; a seed sphere around one point (5 mm on 1 mm voxels) holds ~520.
 constexpr long long ClickVoxels = 1000;

@@ -457,20 +457,14 @@ Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) 
         this->RegionModels[this->LocalObjects.empty() ? 0 : this->LocalObjects[v]];
       double speed = model.On ? RegionSpeed(intensity, model.Low, model.High) : 0.0;
       speed = model.OutwardOnly ? std::max(speed, 0.0) : speed;
-      if (model.PastInnerEdges && speed > 0)
+      if (model.DropInwardEdgePull && speed > 0)
       {
-        force = WithoutInnerEdgePull(force, (1.0 / nn) * normal, speed);
+        force = WithoutInwardEdgePull(force, (1.0 / nn) * normal, speed);
       }
       force = force + (this->RegionScale * model.Scale * speed / nn) * normal;
     }
   }
   return force;
-}
-
-Vec3 Solver::WithoutInnerEdgePull(const Vec3& force, const Vec3& n, double speed)
-{
-  const double along = Dot(force, n);
-  return along < 0 ? force - (speed * along) * n : force;
 }
 
 void Solver::UpdateRange(int first, int last)

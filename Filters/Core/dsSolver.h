@@ -124,9 +124,9 @@ public:
     bool OutwardOnly = false;
     bool On = true;
     double Scale = 1.0; ///< times the force's scale: the object's own fade
-    /// The edge force does not pull a vertex back into voxels of the range (a click's first
-    /// level; WithoutInnerEdgePull, docs/METHOD.md §9.3).
-    bool PastInnerEdges = false;
+    /// The edge force's pull against the normal weakens by the region speed where that is
+    /// positive (a click's first levels; WithoutInwardEdgePull, docs/METHOD.md §9.3).
+    bool DropInwardEdgePull = false;
   };
   void SetRegionForce(const ImageView& image, std::vector<RegionModel> models, double scale)
   {
@@ -237,11 +237,6 @@ private:
   /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
   /// region force's fan normal is returned in `normal` (haveNormal) for the rule to reuse.
   Vec3 ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const;
-  /// The edge force `force` less the share `speed` (the region speed in (0, 1] at the vertex)
-  /// of its pull against the unit normal n: where the image says object, an edge behind the
-  /// vertex lies inside the object (a face seen through a click's seed), not where the surface
-  /// is to stop (docs/METHOD.md §9.3).
-  static Vec3 WithoutInnerEdgePull(const Vec3& force, const Vec3& n, double speed);
   /// An edge field or a region force is set (else the external force is zero).
   bool HasExternalForce() const { return (this->Field && this->Sampler) || this->RegionImage.Data; }
 

@@ -14,11 +14,10 @@
 //
 // sigma_0 from a click is its seed's distance to the nearest edges (docs/METHOD.md §9.1), here
 // the object's own face as seen from the seed's far side, so the whole seed lies in that edge's
-// basin and the edge force pulls the far side toward the face. At RegionWeight 0.3 (the
-// default) a ball click 7 voxels or less inside the face stayed a cap on it (volume ratio
-// ~0.01) until a click's first level stopped the edge force pulling a vertex back into its
-// object's range (METHOD.md §9.3); the slab, cut by the image's faces, still ends short of its
-// volume at 0.3 (0.6-0.9). At RegionWeight 1 every click finds its object.
+// basin and the edge force pulls the far side toward the face; a click's first levels drop that
+// inward pull where the image says object (METHOD.md §9.3), so at RegionWeight 0.3 (the
+// default) every ball click finds the ball. The slab, cut by the image's faces, ends short of
+// its volume at 0.3 (0.6-0.9); at RegionWeight 1 every click finds its object.
 //
 //   BenchNearFace [CASE ...]    (CASE: a part of a case's name; none: every case)
 #include "../Cxx/ObjectScore.h"

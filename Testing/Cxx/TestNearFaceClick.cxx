@@ -12,9 +12,10 @@
 //   at most a voxel from it on average.
 // And with every default (RegionWeight 0.3) the bright ball of ObjectPhantoms.h (radius 16)
 // clicked 7 and 4 voxels inside its face, where the click's sigma_0 is its own face and that
-// edge held the seed's far side (volume ratio 0.01) until a click's first level stopped the edge
-// force pulling a vertex back into its range: the surface encloses the ball (within 5 % of its
-// voxels) and lies on it (mean distance both ways at most 0.3 voxel).
+// edge pulls the seed's far side toward it (a cap on the face, volume ratio 0.01, unless a
+// click's first levels drop the inward edge pull where the image says object,
+// WithoutInwardEdgePull): the surface encloses the ball (within 5 % of its voxels) and lies on
+// it (mean distance both ways at most 0.3 voxel).
 #include "DSTestHelpers.h"
 #include "OneClickScore.h"
 #include "SeveralObjects.h"

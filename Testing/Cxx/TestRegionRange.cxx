@@ -278,6 +278,16 @@ int TestRegionRange(int, char*[])
       RegionSpeed(50, 50, 150) == 0.0,
     "speed +1 inside, -1 outside, 0 at the ends");
   DS_CHECK(RegionSpeed(std::nan(""), 50, 150) == 0.0, "NaN intensity: no force");
+
+  // A click's first levels (WithoutInwardEdgePull): the edge force's pull against the normal
+  // weakens by the region speed; a push along the normal and a pull across it are kept.
+  const Vec3 up{ 0, 0, 1 };
+  const Vec3 pull{ 0.3, -0.2, -2.0 }, push{ 0.3, -0.2, 2.0 };
+  DS_CHECK(WithoutInwardEdgePull(pull, up, 1.0) == (Vec3{ 0.3, -0.2, 0.0 }),
+    "speed 1: the inward pull is dropped, the tangential part kept");
+  DS_CHECK(WithoutInwardEdgePull(pull, up, 0.25) == (Vec3{ 0.3, -0.2, -1.5 }),
+    "speed 0.25: three quarters of the inward pull kept");
+  DS_CHECK(WithoutInwardEdgePull(push, up, 1.0) == push, "an outward push is kept");
   return dstest::Result("TestRegionRange");
 }
 
