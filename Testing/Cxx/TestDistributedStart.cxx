@@ -129,19 +129,27 @@ InitialSigmaChoice SameAsSerial(const ImageGeometry& g, const std::vector<T>& im
 /// A large image (96 x 96 x 1500, the paper's sigma_0 86 world units) is probed coarse first
 /// (CoarseProbeBlock 3): a start 20 units from the ball it surrounds keeps the coarse choice, one
 /// 4 units from it is probed fine; serial and on slabs alike.
-void CoarseProbe()
+/// The large image of CoarseProbe and SampledStatistics: 96 x 96 x 1500 voxels
+/// (AnisotropicGeometry), a soft ball of radius 20 at LargeCentre, noise; uint8.
+const Vec3 LargeCentre{ 44.5, 54.25, 680.0 };
+std::vector<std::uint8_t> LargeImage(const ImageGeometry& g)
 {
-  const ImageGeometry g = dstest::AnisotropicGeometry(96, 96, 1500);
-  const Vec3 centre{ 44.5, 54.25, 680.0 };
   unsigned state = 4242; // SampleOnGrid visits the voxels in order, x fastest
   const std::vector<float> values = sstest::SampleOnGrid(g,
     [&](const double* x)
     {
       state = state * 1664525u + 1013904223u;
-      const double r = Norm(Vec3{ x[0], x[1], x[2] } - centre);
+      const double r = Norm(Vec3{ x[0], x[1], x[2] } - LargeCentre);
       return 30.0 + 170.0 / (1.0 + std::exp(r - 20.0)) + 8.0 * (state >> 8) / 16777216.0;
     });
-  const std::vector<std::uint8_t> image(values.begin(), values.end());
+  return std::vector<std::uint8_t>(values.begin(), values.end());
+}
+
+void CoarseProbe()
+{
+  const ImageGeometry g = dstest::AnisotropicGeometry(96, 96, 1500);
+  const Vec3 centre = LargeCentre;
+  const std::vector<std::uint8_t> image = LargeImage(g);
   DS_CHECK(CoarseProbeBlock(g, g.MeanExtent() / 6.0) == 3, "the large image's coarse probe block");
   const InitialSigmaChoice far = SameAsSerial(g, image, Sphere(40.0, centre), "coarse: 20 out");
   DS_CHECK(far.ProbeBlock == 3, "a start 20 units out keeps the coarse probe's choice");
@@ -166,10 +174,10 @@ bool SameEstimate(const RangeEstimate& a, const RangeEstimate& b)
     a.Contrast == b.Contrast && a.Classes == b.Classes;
 }
 
-/// The serial range estimate against every rank's, on 2 and 3 slabs.
+/// The serial range estimate against every rank's, on 2 and 3 slabs; returns the serial one.
 template <typename T>
-void SameRange(const ImageGeometry& g, const std::vector<T>& image, const TriangleMesh& start,
-  const std::string& label, double competitorReach = 0.0)
+RangeEstimate SameRange(const ImageGeometry& g, const std::vector<T>& image,
+  const TriangleMesh& start, const std::string& label, double competitorReach = 0.0)
 {
   RangeEstimate serial;
   std::string error;
@@ -203,6 +211,25 @@ void SameRange(const ImageGeometry& g, const std::vector<T>& image, const Triang
       l + ": every rank's estimate equals the serial one exactly");
     DS_CHECK(ranks.Mismatches() == 0, l + ": the ranks reduced vectors of one size");
   }
+  return serial;
+}
+
+/// A start enclosing more than 2^22 voxels (an ellipsoid around the large image's ball, ~5.3
+/// million): the range statistics read every n-th voxel id (dsRegion.cxx, SampledValues), the
+/// same ids on every rank, so each rank's estimate equals the serial one exactly.
+void SampledStatistics()
+{
+  const ImageGeometry g = dstest::AnisotropicGeometry(96, 96, 1500);
+  const std::vector<std::uint8_t> image = LargeImage(g);
+  TriangleMesh large = Sphere(1.0, LargeCentre);
+  for (Vec3& p : large.Points)
+  {
+    const Vec3 d = p - LargeCentre;
+    p = LargeCentre + Vec3{ 44.0 * d[0], 48.0 * d[1], 600.0 * d[2] };
+  }
+  const RangeEstimate sampled = SameRange(g, image, large, "a start of ~5.3 million voxels");
+  DS_CHECK_LE(sampled.Samples, 1LL << 22, "its statistics read at most 2^22 values");
+  DS_CHECK_GE(sampled.Samples, 1LL << 20, "and about a third of its voxels");
 }
 
 /// sigma_0 depends only on the image within the rays' reach of the start
@@ -335,6 +362,7 @@ int TestDistributedStart(int, char*[])
   SameRange(g, image16, nearBall, "uint16, the range from a start around the first ball");
   BeyondReach(g, image, nearBall);
   CoarseProbe();
+  SampledStatistics();
   BadPiece(g, image, nearBall);
   FailsAfterFirstMaximum();
   return dstest::Result("TestDistributedStart");
