@@ -53,8 +53,8 @@ bool OuterBin(const Mixture& m, int c, double edge, bool below, double width, do
 /// centres of k equal-count slices (spread) or of k equal slices of the span (!spread): a few
 /// spikes (a noise-free phantom) can put several equal-count slices on one spike. With
 /// `openEnds` the first and last bins hold every value below and above the span (OuterBin):
-/// taken at its centre, such a bin is a spike (a 0.5 % tail in one bin) that even one Gaussian
-/// class cannot fit, so BIC took the one class of a noisy ball for four.
+/// taken at its centre, such a bin is a spike (a tail of MixtureTailShare in one bin) that even one
+/// Gaussian class cannot fit, so BIC took the one class of a noisy ball for four.
 Fit FitClasses(const std::vector<double>& x, const std::vector<double>& n, double width, int k,
   bool spread, bool openEnds)
 {

@@ -136,10 +136,9 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
 /// Values a robust statistic of a large image or start reads at most (about): beyond them,
 /// every n-th voxel (n odd, so that no power-of-two row length aliases with it). 2^22 floats are
 /// 16 MiB, and their quantiles are those of all voxels to well within a voxel's noise (the
-/// standard error of a quantile of 4 million values is under 0.1 % of the class's spread). At
-/// 2^25 the range estimate of issue 28's near start at 512^3 (15 million voxels inside, the image
-/// sampled every 7th voxel for its span) took 0.5 s of its 2.5; at 2^22, 0.25 s less
-/// (BENCHMARKS.md).
+/// standard error of a 1 % quantile of 4 million values is about 0.2 % of the class's s.d.).
+/// Reading every value of a start enclosing millions of voxels costs the solve a tenth of its
+/// time and tells nothing more (BENCHMARKS.md, issue 28's near start).
 constexpr long long SampledValues = 1LL << 22;
 
 /// The n of SampledValues for `voxels` voxels: 1 up to SampledValues, else odd, so that at most
@@ -536,10 +535,10 @@ double CompetitorBoundary(const Mixture& m, int o, double start, double stop, do
 }
 
 /// The share of a click's neighbourhood below and above the span of its mixture's histogram
-/// (piled into the end bins). A dark body of 1.2 % of the horned phantom's neighbourhood had half
-/// of its voxels below the 0.5 % quantile: the rest fitted a class of s.d. 2.2 where its noise is
-/// 4, its range ended at 37.8 instead of ~44, and the voxels of a two-voxel horn, partly surround,
-/// fell outside it (the horn was followed 26 of its 40 voxels; at 0.2 %, to its end).
+/// (piled into the end bins). A rare class must lie mostly within the span: the horned phantom's
+/// dark body is 1.2 % of its click's neighbourhood, and with half of it piled into the first bin
+/// (at 0.5 %) the rest fits a class of s.d. 2.2 where its noise is 4, whose range ends (37.8, not
+/// ~44) before the voxels of a two-voxel horn, partly surround (docs/METHOD.md §9.3).
 constexpr double MixtureTailShare = 0.002;
 
 /// A start inside one region (a click): its competitors are the other classes of intensity

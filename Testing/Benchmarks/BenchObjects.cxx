@@ -17,13 +17,14 @@
 //   BenchObjects [--wm-clicks N] [--verbose] [--write DIR] [CASE ...]
 // CASE: a part of a case's name (e.g. `spine`, `caudate`); none: every case. --wm-clicks: the
 // first N white-matter clicks only; --verbose: a row per white-matter click; --write: each
-// surface as DIR/CASE_ours.vtp and DIR/CASE_threshold.vtp.
+// surface as DIR/CASE_ours.vtp and DIR/CASE_threshold.vtp, its image as DIR/CASE_image.vti.
 #include "../Cxx/ObjectPhantoms.h"
 #include "../Cxx/ObjectScore.h"
 #include "../Cxx/OneClick.h"
 #include "BenchCases.h"
 
 #include "vtkDSNIFTIImageReader.h"
+#include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
@@ -56,7 +57,8 @@ struct ObjectCase
   vtkIdType ReferenceStride = 1;
 };
 
-/// --write DIR: where each case's surfaces go (NAME_ours.vtp, NAME_threshold.vtp); empty: none.
+/// --write DIR: where each case's surfaces and image go (NAME_ours.vtp, NAME_threshold.vtp,
+/// NAME_image.vti); empty: none.
 std::string& WriteDirectory()
 {
   static std::string directory;
@@ -74,6 +76,17 @@ void Write(vtkPolyData* surface, const std::string& name)
   writer->Write();
 }
 
+void WriteImage(vtkImageData* image, const std::string& name)
+{
+  if (WriteDirectory().empty())
+    return;
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(image);
+  writer->SetDataModeToBinary();
+  writer->SetFileName((WriteDirectory() + "/" + name + ".vti").c_str());
+  writer->Write();
+}
+
 struct Pair
 {
   ObjectScore Ours, Threshold;
@@ -85,6 +98,7 @@ Pair RunCase(const ObjectCase& c, const std::string& name)
   Pair p;
   const ClickResult click = RunOneClick(c.Image, c.Click, c.Settings);
   Write(click.Surface, name + "_ours");
+  WriteImage(c.Image, name + "_image");
   p.Ours = Score(click.Surface, SurfaceInterior(click.Surface, c.Image), c.Reference,
     c.ReferenceBoundary, c.Image, c.ReferenceStride);
   p.Ours.Seconds = click.Seconds;

@@ -7,8 +7,8 @@
 //   its end by more than a voxel (the surface's farthest vertex near each horn's axis, measured
 //   from the body's surface along it);
 // - the horn two voxels wide to within two voxels of its end (its voxels, partly surround, lie
-//   near the range's end; it reached 26 of its 40 voxels while the click's mixture was fitted
-//   between the 0.5 % quantiles, dsRegion.cxx MixtureTailShare);
+//   near the range's end, which the click's mixture places only when the dark body lies within
+//   the histogram's span: dsRegion.cxx MixtureTailShare);
 // - reference boundary -> surface mean at most 0.5 voxel and 95 % at most 1.5 voxel (issue 24's
 //   goals); surface -> reference 95 % at most 0.6 voxel and at most 1 % of
 //   the enclosed volume outside the object (no leak); at most 6 000 vertices (only the front is
