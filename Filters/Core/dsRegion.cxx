@@ -172,14 +172,13 @@ std::vector<float> ValuesInside(const ImagePiece& piece, const TriangleMesh& mes
       const long long first = (static_cast<long long>(k) * g.Dimensions[1] + j) * nx; // (0, j, k)
       for (std::size_t p = 0; p + 1 < xs.size(); p += 2)
       {
-        const int i0 = std::max(0, ClampedIndex(std::ceil(xs[p]), nx));
-        const int i1 = std::min(nx - 1, ClampedIndex(std::floor(xs[p + 1]), nx));
-        for (int i = std::max(i0, rows.Begin[0]); i <= std::min(i1, rows.End[0] - 1); ++i)
+        const int lo = std::max({ 0, ClampedIndex(std::ceil(xs[p]), nx), rows.Begin[0] });
+        const int hi =
+          std::min({ nx - 1, ClampedIndex(std::floor(xs[p + 1]), nx), rows.End[0] - 1 });
+        // The ids that are multiples of `every`, stepped to rather than tested one by one.
+        for (long long i = lo + (every - (first + lo) % every) % every; i <= hi; i += every)
         {
-          if (every == 1 || (first + i) % every == 0)
-          {
-            values.push_back(AsFloat(row[i - rows.Begin[0]]));
-          }
+          values.push_back(AsFloat(row[i - rows.Begin[0]]));
         }
       }
     });
