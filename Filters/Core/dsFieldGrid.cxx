@@ -164,6 +164,13 @@ double RemainingSigma(double sigma, const ImageGeometry& geometry, int f)
   return std::sqrt(std::max(0.0, sigma * sigma - boxVariance));
 }
 
+double FieldReach(EdgeNormalization normalization, double sigma)
+{
+  return (normalization == EdgeNormalization::Local ? NeighbourhoodSigmasLocal
+                                                    : NeighbourhoodSigmas) *
+    sigma;
+}
+
 VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geometry, double reach)
 {
   double lo[3] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),

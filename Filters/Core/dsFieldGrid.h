@@ -65,6 +65,26 @@ constexpr double NeighbourhoodSigmas = 6.0;
 /// The same with the local edge normalisation, whose second Gaussian (2 sigma) reaches 8 sigma.
 constexpr double NeighbourhoodSigmasLocal = 10.0;
 
+/// NeighbourhoodSigmas (or NeighbourhoodSigmasLocal with the local edge normalisation) times
+/// sigma: how far a level's field reaches past the surface.
+DEFORMABLESURFACEFILTERS_EXPORT double FieldReach(EdgeNormalization normalization, double sigma);
+
+/// A first level on the image's own grid covers the whole image when it holds at most this many
+/// voxels (its G_sigma * f, a float per voxel: 64 MiB), and a box that follows the surface on a
+/// larger image. The whole image's field is small next to the rest of such a solve, and its
+/// strongest edge normalises the first level of every start measured in docs/RESULTS.md; the
+/// strongest edge of the surface's box instead moved the spine phantom's click from 7.6 to 8.5 %
+/// outside its vertebra.
+constexpr long long WholeFieldVoxels = 1LL << 24;
+
+/// A first level on the image's own grid, whose surface may travel far (a click grown by the
+/// region force), covers the surface's neighbourhood and, each time the surface nears its side,
+/// a new box grown by this share of the surface's largest extent on every side: a surface
+/// growing from a click r voxels wide to an object R wide is boxed again about
+/// log(R / r) / log(1.5) times, and the boxes' voxels sum to about 1.4 times the last box's
+/// (MultilevelSolver::FollowSurface).
+constexpr double FieldGrowthShare = 0.25;
+
 /// The voxels within `reach` (world units, plus one voxel) of the mesh's bounding box in
 /// index space, clipped to the image.
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(

@@ -435,6 +435,42 @@ int MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
     : 1;
 }
 
+/// What the levels of one run share: the refiner, the solver and the force field, this
+/// level's sigma, and the facts about the start the schedule keeps checking.
+struct MultilevelSolver::RunState
+{
+  RedGreenRefiner Refiner;
+  Solver LevelSolver;
+  ForceField Field;
+  VoxelBox FieldBox; ///< the image's voxels Field covers
+  ScaleSpaceParameters FieldParameters;
+  /// Field was made at FieldParameters.Sigma over FieldBox. Distributed, a piece that holds
+  /// nothing of the box has an empty field of its own: whether to make the field again is
+  /// decided on this and the box, which every process shares, so that all take part.
+  bool FieldMade = false;
+  /// The level's field is on the image's own grid over a box that follows the surface (a first
+  /// level: FollowSurface).
+  bool FieldFollows = false;
+  double Voxel = 0; ///< mean spacing: the finest detail the image shows
+  double Sigma = 0; ///< this level's
+  double FirstSigma = 0;
+  bool Region = false;        ///< the region force is on
+  bool CheckTopology = false; ///< CheckTopology, always on in Debug builds
+  int EulerStart = 0;
+  bool ClosedStart = false;
+  bool BudgetWarned = false; ///< the MaxVertices warning is given once
+  int SweepCounter = 0;
+  /// Per vertex: a corner of a triangle the object lies beyond (FrontTriangles); after sigma's
+  /// floor the levels go on there (a front level).
+  std::vector<char> Front;
+  bool FrontLevel = false; ///< this level follows the front at sigma's floor
+  /// Per object, on a front level: whether its front is followed (FrontOf).
+  std::vector<char> FrontObjects;
+  /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
+  /// apart (SolveLevelKeptApart).
+  bool KeepApart = false;
+};
+
 namespace
 {
 /// Tells a level whose vertices step back and forth in place (StallWindowSweeps, StallNetShare):
@@ -486,9 +522,12 @@ private:
 } // namespace
 
 bool MultilevelSolver::SolveLevel(
-  Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec, int& sweepCounter)
+  const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec)
 {
   const MultilevelParameters& P = this->Parameters;
+  Solver& solver = state.LevelSolver;
+  const ForceField& field = state.Field; // made again in place when it follows the surface
+  int& sweepCounter = state.SweepCounter;
   const int cap = rec.FrontRest > 0 ? std::min(FrontLevelSweeps, std::max(1, P.MaxSweepsPerLevel))
                                     : std::max(1, P.MaxSweepsPerLevel);
   const int plannedLevels = std::max(rec.Level, this->PlannedLevels);
@@ -522,6 +561,7 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
       break;
     }
+    this->FollowSurface(image, mesh, state, rec);
     if (field.Bricks)
     {
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
@@ -552,9 +592,11 @@ bool MultilevelSolver::SolveLevel(
           return false;
         }
         // With bricks, the batch ends once a vertex may have moved half their reach, so that
-        // Cover follows the surface before a sweep could take a vertex out of them.
+        // Cover follows the surface before a sweep could take a vertex out of them; so does a
+        // field that follows the surface (distributed too: the boxes must be the same).
         batchTravel += st.MaxCorrection;
-        return !field.Bricks || batchTravel < 0.5 * BrickReachSigmas * rec.Sigma;
+        return !(field.Bricks || state.FieldFollows) ||
+          batchTravel < 0.5 * BrickReachSigmas * rec.Sigma;
       });
     for (const SweepStatistics& st : batchStats)
     {
@@ -603,6 +645,7 @@ bool MultilevelSolver::SolveLevel(
   }
   solver.SetContactBounds(nullptr);
   rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
+  rec.FieldVoxels = state.FieldBox.NumberOfVoxels();
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
     this->Warnings.push_back(
@@ -612,39 +655,6 @@ bool MultilevelSolver::SolveLevel(
   }
   return stop;
 }
-
-/// What the levels of one run share: the refiner, the solver and the force field, this
-/// level's sigma, and the facts about the start the schedule keeps checking.
-struct MultilevelSolver::RunState
-{
-  RedGreenRefiner Refiner;
-  Solver LevelSolver;
-  ForceField Field;
-  VoxelBox FieldBox; ///< the image's voxels Field covers
-  ScaleSpaceParameters FieldParameters;
-  /// Field was made at FieldParameters.Sigma over FieldBox. Distributed, a piece that holds
-  /// nothing of the box has an empty field of its own: whether to make the field again is
-  /// decided on this and the box, which every process shares, so that all take part.
-  bool FieldMade = false;
-  double Voxel = 0; ///< mean spacing: the finest detail the image shows
-  double Sigma = 0; ///< this level's
-  double FirstSigma = 0;
-  bool Region = false;        ///< the region force is on
-  bool CheckTopology = false; ///< CheckTopology, always on in Debug builds
-  int EulerStart = 0;
-  bool ClosedStart = false;
-  bool BudgetWarned = false; ///< the MaxVertices warning is given once
-  int SweepCounter = 0;
-  /// Per vertex: a corner of a triangle the object lies beyond (FrontTriangles); after sigma's
-  /// floor the levels go on there (a front level).
-  std::vector<char> Front;
-  bool FrontLevel = false; ///< this level follows the front at sigma's floor
-  /// Per object, on a front level: whether its front is followed (FrontOf).
-  std::vector<char> FrontObjects;
-  /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
-  /// apart (SolveLevelKeptApart).
-  bool KeepApart = false;
-};
 
 bool MultilevelSolver::CoarsenStart(TriangleMesh& mesh, RunState& state, std::string* error)
 {
@@ -810,6 +820,62 @@ std::vector<Solver::RegionModel> MultilevelSolver::LevelRegionModels(
   return models;
 }
 
+bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mesh, RunState& state,
+  const VoxelBox& box, std::string* error)
+{
+  state.FieldMade = false;
+  state.FieldBox = box;
+  std::string msg;
+  // Serial: a field on the image's own grid only where the surface is (dsFieldBricks.h),
+  // following it batch by batch (SolveLevel). Distributed: each piece's field (dsPieceField.h),
+  // no bricks.
+  const bool computed = this->Distributed
+    ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
+    : ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg, &mesh);
+  if (!computed)
+  {
+    *error = "scale-space force: " + msg;
+    return false;
+  }
+  state.FieldMade = true;
+  return true;
+}
+
+void MultilevelSolver::FollowSurface(
+  const ImageView& image, const TriangleMesh& mesh, RunState& state, LevelRecord& rec)
+{
+  // The box is made again once the surface comes within (reach - 1) sigma of its side: a batch
+  // moves no vertex more than a sigma (SolveLevel), so the Gaussian's support around every
+  // vertex stays inside the box, as on the later levels. The new box also takes in a quarter of
+  // the surface's extent on every side: a surface growing from a click is boxed again a
+  // logarithmic number of times, and the boxes together cost little more than the last.
+  const ImageGeometry& geometry = image.Geometry;
+  const double reach = FieldReach(this->Parameters.EdgeNormalization, state.Sigma);
+  if (!state.FieldFollows || !state.FieldMade ||
+    state.FieldBox.Contains(SurfaceNeighbourhood(mesh, geometry, reach - state.Sigma)))
+  {
+    return;
+  }
+  const VoxelBox own = SurfaceNeighbourhood(mesh, geometry, 0.0);
+  double extent = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent = std::max(extent, (own.End[a] - own.Begin[a]) * geometry.Spacing[a]);
+  }
+  const VoxelBox box = SurfaceNeighbourhood(mesh, geometry, reach + FieldGrowthShare * extent);
+  std::string error;
+  if (!this->MakeField(image, mesh, state, box, &error))
+  {
+    // The same sigma and parameters as the level's first box, which was made: not expected.
+    // The level goes on without an edge force (every process alike), the next makes its own.
+    this->Warnings.push_back("level " + std::to_string(rec.Level) +
+      ": the force field could not follow the surface: " + error);
+    state.FieldFollows = false;
+    return;
+  }
+  ++rec.FieldBoxes;
+}
+
 bool MultilevelSolver::SetUpLevel(
   const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec, std::string* error)
 {
@@ -817,34 +883,25 @@ bool MultilevelSolver::SetUpLevel(
   const MultilevelParameters& P = this->Parameters;
   const double sigma = state.Sigma;
   mesh.ExtendObjects(); // the points refinement added
-  // Force field at this level's sigma, over the whole image on the first level (a start may
-  // travel far, e.g. grown by the region force) and the surface's neighbourhood after it
-  // (dsFieldGrid.h); rebuilt when sigma changed or the surface needs more than it covers.
-  const VoxelBox box = rec.Level == 0
+  // Force field at this level's sigma over the surface's neighbourhood (dsFieldGrid.h), rebuilt
+  // when sigma changed or the surface needs more than it covers. The first level, whose surface
+  // may travel far (grown by the region force), covers the whole image on a coarse grid (block
+  // means: a small field) and on the image's own grid up to WholeFieldVoxels; beyond, its box
+  // follows the surface (FollowSurface): no float field of a large image is made whole
+  // (docs/METHOD.md §9.7).
+  state.FieldFollows = rec.Level == 0 && DecimationFactor(sigma, geometry) <= 1 &&
+    geometry.NumberOfVoxels() > WholeFieldVoxels;
+  const VoxelBox box = rec.Level == 0 && !state.FieldFollows
     ? VoxelBox::Whole(geometry)
-    : SurfaceNeighbourhood(mesh, geometry,
-        (P.EdgeNormalization == EdgeNormalization::Local ? NeighbourhoodSigmasLocal
-                                                         : NeighbourhoodSigmas) *
-          sigma);
+    : SurfaceNeighbourhood(mesh, geometry, FieldReach(P.EdgeNormalization, sigma));
   if (!state.FieldMade || std::abs(state.FieldParameters.Sigma - sigma) > 1e-12 * sigma ||
     !state.FieldBox.Contains(box))
   {
-    state.FieldMade = false;
     state.FieldParameters.Sigma = sigma;
-    state.FieldBox = box;
-    std::string msg;
-    // Serial: a field on the image's own grid only where the surface is (dsFieldBricks.h),
-    // following it batch by batch (SolveLevel), the first level's too, whose surface may
-    // travel far. Distributed: each piece's field (dsPieceField.h), no bricks.
-    const bool computed = this->Distributed
-      ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
-      : ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg, &mesh);
-    if (!computed)
+    if (!this->MakeField(image, mesh, state, box, error))
     {
-      *error = "scale-space force: " + msg;
       return false;
     }
-    state.FieldMade = true;
   }
   const double h = mesh.MeanEdgeLength();
   state.LevelSolver.SetMesh(&mesh);
@@ -1108,7 +1165,8 @@ bool MultilevelSolver::RefineLevel(
   return true;
 }
 
-bool MultilevelSolver::SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, LevelRecord& rec)
+bool MultilevelSolver::SolveLevelKeptApart(
+  const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec)
 {
   // A balloon grows the surface around the dark gaps of its object until their two sides meet,
   // and nothing else keeps them from passing through each other (docs/METHOD.md §9.3). Keeping
@@ -1127,8 +1185,7 @@ bool MultilevelSolver::SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, 
   if (!watch)
   {
     rec.KeptApart = this->SelfContact;
-    const bool stop =
-      this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
+    const bool stop = this->SolveLevel(image, mesh, state, rec);
     if (this->SelfContact)
     {
       this->SmoothKeptApart(mesh, rec);
@@ -1137,7 +1194,7 @@ bool MultilevelSolver::SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, 
   }
   const std::vector<Vec3> start = mesh.Points;
   const int crossingBefore = CountSelfIntersections(mesh);
-  const bool stop = this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
+  const bool stop = this->SolveLevel(image, mesh, state, rec);
   const int crossingAfter = CountSelfIntersections(mesh);
   if (stop || crossingAfter <= crossingBefore)
   {
@@ -1159,8 +1216,7 @@ bool MultilevelSolver::SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, 
   rec.KeptApart = true;
   state.KeepApart = true;
   this->SelfContact = true;
-  const bool again =
-    this->SolveLevel(state.LevelSolver, state.Field, mesh, rec, state.SweepCounter);
+  const bool again = this->SolveLevel(image, mesh, state, rec);
   this->SmoothKeptApart(mesh, rec);
   return again;
 }
@@ -1216,7 +1272,7 @@ bool MultilevelSolver::RunLevels(
     }
     rec.Front = state.FrontLevel;
     rec.FrontRest = state.FrontLevel ? FrontRestVoxels * state.Voxel : 0.0;
-    const bool stop = this->SolveLevelKeptApart(mesh, state, rec);
+    const bool stop = this->SolveLevelKeptApart(image, mesh, state, rec);
     // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).

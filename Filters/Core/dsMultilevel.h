@@ -305,6 +305,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   /// sweeps' largest corrections reaches half their reach, so this stays 0 unless one sweep
   /// moves a vertex more than BrickReachSigmas / 2 sigma).
   long long FieldMisses = 0;
+  /// The boxes the level's force field covered: 1, or on a first level whose box follows the
+  /// surface one more each time the surface came near its side (MultilevelSolver::FollowSurface).
+  int FieldBoxes = 1;
+  /// The voxels of the level's (last) field box: the image's region its field was made for.
+  long long FieldVoxels = 0;
   /// A front level (after sigma's floor, where the object still lies beyond the surface): it ends
   /// when the largest correction of a sweep is below this (world units); 0 on the other levels.
   double FrontRest = 0;
@@ -453,7 +458,8 @@ private:
   bool RunLevels(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
   /// SolveLevel, solved again with the surface kept off itself (SelfContact) when its sweeps
   /// made it cross itself; returns SolveLevel's stop.
-  bool SolveLevelKeptApart(TriangleMesh& mesh, RunState& state, LevelRecord& rec);
+  bool SolveLevelKeptApart(
+    const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// After a level kept apart: its remaining folds smoothed open (SmoothFolds) on any mesh.
   void SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec);
   /// Each object's region model for a level at sigma: its range, its fade (its own sigma_0's
@@ -528,8 +534,21 @@ private:
   /// A field in bricks (dsFieldBricks.h) gets the bricks the surface comes within reach of
   /// before each batch, and a batch ends early once its vertices may have moved half that reach
   /// (the sum of its sweeps' largest corrections).
-  bool SolveLevel(Solver& solver, const ForceField& field, TriangleMesh& mesh, LevelRecord& rec,
-    int& sweepCounter);
+  /// A first level on the image's own grid of an image above WholeFieldVoxels also makes its field
+  /// again over a larger box when the surface nears its box's side (FollowSurface), and its
+  /// batches end as with bricks.
+  bool SolveLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
+  /// The field at state.FieldParameters over `box` (serial: in bricks around `mesh`;
+  /// distributed: this piece's part) into state.Field. Collective when distributed.
+  bool MakeField(const ImageView& image, const TriangleMesh& mesh, RunState& state,
+    const VoxelBox& box, std::string* error);
+  /// On a first level whose field follows the surface (RunState::FieldFollows): the field made
+  /// again over the surface's neighbourhood grown by FieldGrowthShare of its extent once the
+  /// surface comes within a sigma of needing more than the box holds (a warning if that
+  /// failed). Collective when distributed (every process holds the same mesh, so all decide
+  /// alike).
+  void FollowSurface(
+    const ImageView& image, const TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The region force's range of every object (given or estimated, ObjectRange); false = no
   /// region force for any.
   bool RegionRange(const ImageView& image, const TriangleMesh& mesh, double firstSigma);

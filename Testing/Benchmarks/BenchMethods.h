@@ -5,8 +5,8 @@
 // Times are wall-clock with the CPU time of the process beside them (Stopwatch).
 // - our filter: vtkDeformableSurfaceFilter, every parameter default, started from the box
 //   enclosing the volume (vtkCubeSource, 12 triangles, half a voxel inside the border: the
-//   paper's cube test), or from a sphere near the object or one click (RunOursNear,
-//   RunOursClick); the time is its Update();
+//   paper's cube test), or from a sphere near the object, one click or a sphere a few voxels
+//   around the object (RunOursNear, RunOursClick, RunOursTightSphere); the time is its Update();
 // - vtkFlyingEdges3D at the value halfway between background and object; the time is its
 //   Update().
 #ifndef BenchMethods_h
@@ -103,9 +103,10 @@ inline std::string RunOursFrom(vtkImageData* image, const Phantom& ph, int threa
   vtkPolyData* out = filter->GetOutput();
   if (out->GetNumberOfCells() == 0)
     return "failed: empty output (see the error above)";
+  vtkDataArray* sigma0 = out->GetFieldData()->GetArray("InitialSigma");
   char notes[96];
-  std::snprintf(
-    notes, sizeof notes, "%d levels, %d sweeps", FieldInt(out, "Levels"), FieldInt(out, "Sweeps"));
+  std::snprintf(notes, sizeof notes, "%d levels, %d sweeps, sigma_0 %.1f", FieldInt(out, "Levels"),
+    FieldInt(out, "Sweeps"), sigma0 && sigma0->GetNumberOfTuples() ? sigma0->GetTuple1(0) : -1.0);
   return TimeAndMeasures(time, out, ph, notes);
 }
 
@@ -147,6 +148,22 @@ inline std::string RunOursClick(vtkImageData* image, const Phantom& ph, int thre
   seed->Update();
   return RunOursFrom(image, ph, threads, seed->GetOutput(),
     [](vtkDeformableSurfaceFilter* f) { f->SetRegionWeight(1.0); });
+}
+
+/// Our filter from a sphere `gap` voxels outside the ball, at its centre (48 x 48), every
+/// default: sigma_0 from so tight a start is a few voxels, so the first level runs on the
+/// image's own grid (as for picks a few voxels outside an object; docs/METHOD.md §9.7).
+inline std::string RunOursTightSphere(
+  vtkImageData* image, const Phantom& ph, int threads, double gap)
+{
+  const double c = 0.5 * (ph.N - 1);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(c, c, c);
+  sphere->SetRadius(ph.Size + gap);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(48);
+  sphere->Update();
+  return RunOursFrom(image, ph, threads, sphere->GetOutput());
 }
 
 /// vtkFlyingEdges3D at the phantom's mid value, all cores (vtkSMPTools).

@@ -9,7 +9,9 @@
 // estimate exceeds the memory available minus a reserve is skipped with the estimate printed.
 // Then issue 28's starts near the object on the ball+block scene (BenchVolumes.h NearScene):
 // a sphere of radius 0.3 n around the ball, and one click at its centre (vtkDelaunaySeedSurface,
-// RegionWeight 1), on two threads, beside vtkFlyingEdges3D at the ball's mid value.
+// RegionWeight 1), and a sphere 4 voxels around the ball (every default: sigma_0 a few voxels,
+// so the first level is on the image's own grid), on two threads, beside vtkFlyingEdges3D at
+// the ball's mid value.
 // Usage: BenchScale [--time-limit CPU seconds (default 600)] [--reserve-gib G (default 2)]
 //                   [--only TEXT (only the rows whose "phantom method" contains TEXT; repeat it
 //                   to ask for every TEXT: --only ball --only "2 threads")]
@@ -86,6 +88,8 @@ int main(int argc, char* argv[])
         [&](vtkImageData* im) { return RunOursNear(im, ph, 2); } },
       { "ours one click, 2 threads", 18,
         [&](vtkImageData* im) { return RunOursClick(im, ph, 2); } },
+      { "ours tight sphere, 2 threads", 18,
+        [&](vtkImageData* im) { return RunOursTightSphere(im, ph, 2, 4.0); } },
       { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },
     };
     for (const auto& m : methods)

@@ -344,6 +344,71 @@ void AgreedAbort(const TriangleMesh& near)
 }
 } // namespace
 
+/// The capsule padded with noisy background into a 272 x 272 x 240 image (17.8 million voxels,
+/// above WholeFieldVoxels), at (128, 128) in x and y.
+Phantom WideCapsule()
+{
+  Phantom phantom;
+  const int n = 272, shift = 128 - 15;
+  phantom.Geometry.Dimensions[0] = phantom.Geometry.Dimensions[1] = n;
+  const std::vector<float> capsule = dstest::CapsuleImage();
+  phantom.Image.assign(static_cast<std::size_t>(n) * n * dstest::CapsuleNZ, 0.0f);
+  unsigned state = 815;
+  for (std::size_t v = 0; v < phantom.Image.size(); ++v)
+  {
+    state = state * 1664525u + 1013904223u;
+    phantom.Image[v] = static_cast<float>(10.0 * ((state >> 8) / 16777216.0 - 0.5));
+  }
+  for (int k = 0; k < dstest::CapsuleNZ; ++k)
+    for (int j = 0; j < dstest::CapsuleNY; ++j)
+      for (int i = 0; i < dstest::CapsuleNX; ++i)
+      {
+        phantom.Image[(i + shift) + n * ((j + shift) + static_cast<std::size_t>(n) * k)] =
+          capsule[i + dstest::CapsuleNX * (j + static_cast<std::size_t>(dstest::CapsuleNY) * k)];
+      }
+  return phantom;
+}
+
+/// A click near one end of the capsule in an image above WholeFieldVoxels (Sigma 4 voxels,
+/// RegionWeight 1, every other default): the first level is on the image's own grid, and the
+/// surface grows along the capsule far beyond its first box (from the click, sigma_0 would be
+/// 17 voxels, the capsule's length showing in its rays: block means).
+/// The first level's field follows it (MultilevelSolver::FollowSurface): made again over larger
+/// boxes, the last still a small part of the image, the surface reaching the capsule's far end;
+/// every rank decides alike when to make it again, so 2 ranks give the serial surface.
+void FollowingField(const MultilevelParameters& defaults)
+{
+  const Phantom phantom = WideCapsule();
+  MultilevelParameters p = defaults;
+  p.RegionWeight = 1.0;
+  p.Sigma = 4.0;
+  const TriangleMesh start = dstest::MakeIcosphere(2, 3.0, { 128.5, 128.5, 70.5 });
+  TriangleMesh mesh = start;
+  MultilevelSolver solver;
+  solver.SetParameters(p);
+  std::string error;
+  DS_CHECK(solver.Run(phantom.Image.data(), phantom.Geometry, mesh, &error), error);
+  const LevelRecord& first = solver.GetLevels().front();
+  double zMax = 0;
+  for (const Vec3& x : mesh.Points)
+  {
+    zMax = std::max(zMax, x[2]);
+  }
+  std::cout << "following field: sigma_0 " << first.Sigma << ", " << first.FieldBoxes
+            << " boxes on the first level, the last of " << first.FieldVoxels << " of "
+            << phantom.Geometry.NumberOfVoxels() << " voxels; the surface reaches z " << zMax
+            << std::endl;
+  DS_CHECK(first.Sigma < 9.0, "following field: the first level is on the image's own grid");
+  DS_CHECK(first.FieldBoxes >= 2, "following field: the first level's box followed the surface");
+  DS_CHECK_LE(first.FieldVoxels, phantom.Geometry.NumberOfVoxels() / 8,
+    "following field: the first level's last box (voxels)");
+  DS_CHECK(std::abs(zMax - (dstest::CapsuleZ1 + dstest::CapsuleRadius)) < 2.0,
+    "following field: the surface reaches the capsule's far end (z " + std::to_string(zMax) +
+      ", the end at " + std::to_string(dstest::CapsuleZ1 + dstest::CapsuleRadius) + ")");
+  SameAsSerial("a click grown along the capsule, its first field following it", p, start, true,
+    { 2 }, phantom);
+}
+
 int TestDistributedSolve(int, char*[])
 {
   const TriangleMesh around = dstest::CapsuleBox({ 15.5, 15.5, 119.5 }, { 15.0, 15.0, 119.0 });
@@ -371,6 +436,7 @@ int TestDistributedSolve(int, char*[])
     dstest::MakeIcosphere(2, 3.0, { 49.5, 46.5, 48.5 }), true, { 2 }, RidgedBall());
   FrontLevels(defaults);
   TwoObjects(defaults);
+  FollowingField(defaults);
   GhostLayers(defaults);
   BadInput(around);
   AgreedAbort(near);
