@@ -164,6 +164,13 @@ double RemainingSigma(double sigma, const ImageGeometry& geometry, int f)
   return std::sqrt(std::max(0.0, sigma * sigma - boxVariance));
 }
 
+VoxelBox FieldCut(const VoxelBox& box, const ImageGeometry& whole, double sigma)
+{
+  const long long voxels = whole.NumberOfVoxels();
+  const bool large = voxels > WholeFieldVoxels && DecimationFactor(sigma, whole) <= 1;
+  return 2 * box.NumberOfVoxels() <= voxels || large ? box : VoxelBox::Whole(whole);
+}
+
 double FieldReach(EdgeNormalization normalization, double sigma)
 {
   return (normalization == EdgeNormalization::Local ? NeighbourhoodSigmasLocal
@@ -237,9 +244,9 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
   const TriangleMesh* surface)
 {
-  // The last level's field is released first, and a box of more than half the image is not
-  // cut out (the whole image is used): the solve then never holds more than one field of the
-  // whole image (docs/METHOD.md §9.6).
+  // The last level's field is released first, and a box of more than half the image is mostly
+  // not cut out (FieldCut): the solve then never holds more than one field of the whole image
+  // (docs/METHOD.md §9.6).
   out = ForceField();
   // Checked on the image itself, so that a sigma too large is named as the user gave it.
   const std::string problem =
@@ -252,8 +259,9 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
     }
     return false;
   }
+  const VoxelBox part = FieldCut(box, image.Geometry, parameters.Sigma);
   const ImageView cut =
-    2 * box.NumberOfVoxels() <= image.Geometry.NumberOfVoxels() ? image.Box(box) : image;
+    part.NumberOfVoxels() < image.Geometry.NumberOfVoxels() ? image.Box(part) : image;
   const int f = DecimationFactor(parameters.Sigma, cut.Geometry);
   const bool local =
     parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;

@@ -8,7 +8,9 @@
 //   to grids of 19^3-171^3);
 // - after the first level, only the surface's neighbourhood: the surface then lies near its
 //   object and moves a few sigma at most, so the field covers its bounding box grown by
-//   NeighbourhoodSigmas sigma (the reach and the Gaussian's support) and no more.
+//   NeighbourhoodSigmas sigma (the reach and the Gaussian's support) and no more; on a large
+//   image the first level's too, made again as the surface travels (WholeFieldVoxels,
+//   FieldGrowthShare).
 // Plain C++.
 #ifndef dsFieldGrid_h
 #define dsFieldGrid_h
@@ -58,9 +60,10 @@ DEFORMABLESURFACEFILTERS_EXPORT void BlockMeans(const ImageView& image, int f,
 DEFORMABLESURFACEFILTERS_EXPORT double RemainingSigma(
   double sigma, const ImageGeometry& geometry, int f);
 
-/// How far, in sigmas, the field reaches past the surface's bounding box after the first
-/// level: 4 sigma of the Gaussian's support (its tail beyond holds < 1e-4 of the weight), so
-/// the cut does not change the field where the surface is, and 2 sigma the surface may move.
+/// How far, in sigmas, the field reaches past the surface's bounding box (after the first
+/// level, and on the first one when its box follows the surface): 4 sigma of the Gaussian's support
+/// (its tail beyond holds < 1e-4 of the weight), so the cut does not change the field where the
+/// surface is, and 2 sigma the surface may move.
 constexpr double NeighbourhoodSigmas = 6.0;
 /// The same with the local edge normalisation, whose second Gaussian (2 sigma) reaches 8 sigma.
 constexpr double NeighbourhoodSigmasLocal = 10.0;
@@ -77,12 +80,12 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldReach(EdgeNormalization normalizatio
 /// outside its vertebra.
 constexpr long long WholeFieldVoxels = 1LL << 24;
 
-/// A first level on the image's own grid, whose surface may travel far (a click grown by the
-/// region force), covers the surface's neighbourhood and, each time the surface nears its side,
-/// a new box grown by this share of the surface's largest extent on every side: a surface
-/// growing from a click r voxels wide to an object R wide is boxed again about
-/// log(R / r) / log(1.5) times, and the boxes' voxels sum to about 1.4 times the last box's
-/// (MultilevelSolver::FollowSurface).
+/// A first level on the image's own grid of an image above WholeFieldVoxels, whose surface may
+/// travel far (a click grown by the region force), covers the surface's neighbourhood and, each
+/// time the surface nears its side, a new box grown by this share of the surface's largest extent
+/// on every side: a surface growing on all sides from a click r voxels wide to an object R wide is
+/// boxed again about log(R / r) / log(1.5) times (growing on one side, log(R / r) / log(1.25)), and
+/// the boxes' voxels sum to a small multiple of the last box's (MultilevelSolver::FollowSurface).
 constexpr double FieldGrowthShare = 0.25;
 
 /// The voxels within `reach` (world units, plus one voxel) of the mesh's bounding box in
@@ -90,14 +93,20 @@ constexpr double FieldGrowthShare = 0.25;
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
   const TriangleMesh& mesh, const ImageGeometry& geometry, double reach);
 
-/// The force field at parameters.Sigma over `box` of the image (over the whole image when the
-/// box holds more than half of it), on a grid decimated by DecimationFactor when that is above
-/// 1, else on the image's own grid (ComputeScaleSpaceForce). The edge strength is normalised
-/// within the box. With a `surface`, a field on the image's own grid with the global edge
-/// normalisation is kept only in the bricks within BrickReachSigmas sigma of its vertices
-/// (dsFieldBricks.h; more are computed as the surface moves: FieldBricks::Cover). out's earlier
-/// field is released first. out.Sigma is parameters.Sigma either way, out.Image the image's
-/// geometry.
+/// The part of an image of geometry `whole` a field at `sigma` over `box` is computed on: the
+/// whole image when the box holds more than half of it (one field of the whole image at most),
+/// except on the image's own grid of an image above WholeFieldVoxels, where it is the box (a
+/// view: no copy), so that no float field of a large image is made whole.
+DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
+  const VoxelBox& box, const ImageGeometry& whole, double sigma);
+
+/// The force field at parameters.Sigma over `box` of the image (over FieldCut), on a grid decimated
+/// by DecimationFactor when that is above 1, else on the image's own grid (ComputeScaleSpaceForce).
+/// The edge strength is normalised within the box. With a `surface`, a field on the image's own
+/// grid with the global edge normalisation is kept only in the bricks within BrickReachSigmas sigma
+/// of its vertices (dsFieldBricks.h; more are computed as the surface moves: FieldBricks::Cover).
+/// out's earlier field is released first. out.Sigma is parameters.Sigma either way, out.Image the
+/// image's geometry.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const ImageView& image,
   const VoxelBox& box, const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
   const TriangleMesh* surface = nullptr);

@@ -451,6 +451,11 @@ struct MultilevelSolver::RunState
   /// The level's field is on the image's own grid over a box that follows the surface (a first
   /// level: FollowSurface).
   bool FieldFollows = false;
+  /// Why the field could not follow the surface (FollowSurface); the run ends with it.
+  std::string FieldError;
+  /// Field misses (LevelRecord::FieldMisses) of the fields this level made before its current
+  /// one, and the current field's count when the level's sweeps began or it was made.
+  long long EarlierMisses = 0, MissesBase = 0;
   double Voxel = 0; ///< mean spacing: the finest detail the image shows
   double Sigma = 0; ///< this level's
   double FirstSigma = 0;
@@ -547,7 +552,8 @@ bool MultilevelSolver::SolveLevel(
   solver.SetContactBounds(contact ? &this->Bounds : nullptr);
   this->Contact.Reset(); // the mesh may have changed since the last level (refinement, smoothing)
   std::vector<SweepStatistics> batchStats;
-  const long long missesBefore = field.Bricks ? field.Bricks->Misses() : 0;
+  state.EarlierMisses = 0;
+  state.MissesBase = field.Bricks ? field.Bricks->Misses() : 0;
   StallWatch stall(mesh, rec.Sigma);
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
@@ -561,7 +567,11 @@ bool MultilevelSolver::SolveLevel(
       stop = true;
       break;
     }
-    this->FollowSurface(image, mesh, state, rec);
+    if (!this->FollowSurface(image, mesh, state, rec))
+    {
+      stop = true;
+      break;
+    }
     if (field.Bricks)
     {
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
@@ -644,7 +654,8 @@ bool MultilevelSolver::SolveLevel(
     }
   }
   solver.SetContactBounds(nullptr);
-  rec.FieldMisses = field.Bricks ? field.Bricks->Misses() - missesBefore : 0;
+  rec.FieldMisses =
+    state.EarlierMisses + (field.Bricks ? field.Bricks->Misses() - state.MissesBase : 0);
   rec.FieldVoxels = state.FieldBox.NumberOfVoxels();
   if (P.MaxSweeps > 0 && sweepCounter >= P.MaxSweeps && !stop)
   {
@@ -829,9 +840,16 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   // Serial: a field on the image's own grid only where the surface is (dsFieldBricks.h),
   // following it batch by batch (SolveLevel). Distributed: each piece's field (dsPieceField.h),
   // no bricks.
-  const bool computed = this->Distributed
+  bool computed = this->Distributed
     ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
     : ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg, &mesh);
+  // A piece's own checks (a field not finite) can fail on one process alone: all agree, so that
+  // none goes on to sweeps the others have left.
+  if (this->Distributed && this->Reduce.Max(computed ? 0.0 : 1.0) > 0.0 && computed)
+  {
+    computed = false;
+    msg = "another process's piece failed";
+  }
   if (!computed)
   {
     *error = "scale-space force: " + msg;
@@ -841,7 +859,7 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   return true;
 }
 
-void MultilevelSolver::FollowSurface(
+bool MultilevelSolver::FollowSurface(
   const ImageView& image, const TriangleMesh& mesh, RunState& state, LevelRecord& rec)
 {
   // The box is made again once the surface comes within (reach - 1) sigma of its side: a batch
@@ -854,7 +872,7 @@ void MultilevelSolver::FollowSurface(
   if (!state.FieldFollows || !state.FieldMade ||
     state.FieldBox.Contains(SurfaceNeighbourhood(mesh, geometry, reach - state.Sigma)))
   {
-    return;
+    return true;
   }
   const VoxelBox own = SurfaceNeighbourhood(mesh, geometry, 0.0);
   double extent = 0;
@@ -863,17 +881,20 @@ void MultilevelSolver::FollowSurface(
     extent = std::max(extent, (own.End[a] - own.Begin[a]) * geometry.Spacing[a]);
   }
   const VoxelBox box = SurfaceNeighbourhood(mesh, geometry, reach + FieldGrowthShare * extent);
+  state.EarlierMisses += state.Field.Bricks ? state.Field.Bricks->Misses() - state.MissesBase : 0;
   std::string error;
   if (!this->MakeField(image, mesh, state, box, &error))
   {
     // The same sigma and parameters as the level's first box, which was made: not expected.
-    // The level goes on without an edge force (every process alike), the next makes its own.
-    this->Warnings.push_back("level " + std::to_string(rec.Level) +
-      ": the force field could not follow the surface: " + error);
+    // Every process fails alike (MakeField), and the run ends with the error.
+    state.FieldError = "level " + std::to_string(rec.Level) +
+      ": the force field could not follow the surface: " + error;
     state.FieldFollows = false;
-    return;
+    return false;
   }
+  state.MissesBase = 0;
   ++rec.FieldBoxes;
+  return true;
 }
 
 bool MultilevelSolver::SetUpLevel(
@@ -1273,6 +1294,11 @@ bool MultilevelSolver::RunLevels(
     rec.Front = state.FrontLevel;
     rec.FrontRest = state.FrontLevel ? FrontRestVoxels * state.Voxel : 0.0;
     const bool stop = this->SolveLevelKeptApart(image, mesh, state, rec);
+    if (!state.FieldError.empty())
+    {
+      *error = state.FieldError;
+      return false;
+    }
     // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).

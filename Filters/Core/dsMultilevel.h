@@ -539,15 +539,16 @@ private:
   /// batches end as with bricks.
   bool SolveLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The field at state.FieldParameters over `box` (serial: in bricks around `mesh`;
-  /// distributed: this piece's part) into state.Field. Collective when distributed.
+  /// distributed: this piece's part) into state.Field. Collective when distributed: false on
+  /// every process when it failed on one.
   bool MakeField(const ImageView& image, const TriangleMesh& mesh, RunState& state,
     const VoxelBox& box, std::string* error);
   /// On a first level whose field follows the surface (RunState::FieldFollows): the field made
   /// again over the surface's neighbourhood grown by FieldGrowthShare of its extent once the
-  /// surface comes within a sigma of needing more than the box holds (a warning if that
-  /// failed). Collective when distributed (every process holds the same mesh, so all decide
-  /// alike).
-  void FollowSurface(
+  /// surface comes within a sigma of needing more than the box holds. False (the run ends with
+  /// RunState::FieldError) when that failed. Collective when distributed (every process holds
+  /// the same mesh, so all decide alike).
+  bool FollowSurface(
     const ImageView& image, const TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The region force's range of every object (given or estimated, ObjectRange); false = no
   /// region force for any.

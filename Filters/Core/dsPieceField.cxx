@@ -411,8 +411,7 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
     return false;
   }
   // The cut and the block size as ComputeForceAtScale chooses them.
-  const VoxelBox cut =
-    2 * box.NumberOfVoxels() <= piece.Whole.NumberOfVoxels() ? box : VoxelBox::Whole(piece.Whole);
+  const VoxelBox cut = FieldCut(box, piece.Whole, parameters.Sigma);
   ImageGeometry cutGeometry = piece.Whole;
   for (int a = 0; a < 3; ++a)
   {
