@@ -212,9 +212,20 @@ VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geo
   return box;
 }
 
-namespace
+bool FieldInBricks(
+  const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
-/// The field at parameters.Sigma over `cut` only in the bricks within reach of `surface`.
+  const VoxelBox cut = FieldCut(box, whole, parameters.Sigma);
+  ImageGeometry cutGeometry = whole;
+  for (int a = 0; a < 3; ++a)
+  {
+    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
+  }
+  const bool local =
+    parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
+  return !local && DecimationFactor(parameters.Sigma, cutGeometry) <= 1;
+}
+
 bool ComputeBrickedForce(const ImageView& cut, const ScaleSpaceParameters& parameters,
   const TriangleMesh& surface, ForceField& out, std::string* error)
 {
@@ -238,7 +249,6 @@ bool ComputeBrickedForce(const ImageView& cut, const ScaleSpaceParameters& param
   out.Bricks = std::move(bricks);
   return true;
 }
-} // namespace
 
 bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,

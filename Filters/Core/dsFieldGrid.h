@@ -100,6 +100,20 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
   const VoxelBox& box, const ImageGeometry& whole, double sigma);
 
+/// Whether a field at `parameters` over `box` of an image of geometry `whole` is kept in bricks
+/// around a surface (ComputeForceAtScale, ComputePieceForce with a surface): on the image's own
+/// grid, with the global edge normalisation. The same on every process of a distributed solve.
+DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
+  const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
+
+/// The field at parameters.Sigma over all of `cut` (a view of the image's values, placed in the
+/// image) but kept only in the bricks within BrickReachSigmas sigma of `surface`'s vertices
+/// (dsFieldBricks.h; the global edge normalisation only). With parameters.Smooth and
+/// GradientMaximum, a piece's part of the field (dsPieceField.h).
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& cut,
+  const ScaleSpaceParameters& parameters, const TriangleMesh& surface, ForceField& out,
+  std::string* error);
+
 /// The force field at parameters.Sigma over `box` of the image (over FieldCut), on a grid decimated
 /// by DecimationFactor when that is above 1, else on the image's own grid (ComputeScaleSpaceForce).
 /// The edge strength is normalised within the box. With a `surface`, a field on the image's own

@@ -451,6 +451,9 @@ struct MultilevelSolver::RunState
   /// The level's field is on the image's own grid over a box that follows the surface (a first
   /// level: FollowSurface).
   bool FieldFollows = false;
+  /// The level's field is kept in bricks around the surface (FieldInBricks; the same on every
+  /// process, whether its piece holds bricks or not).
+  bool FieldInBricks = false;
   /// Why the field could not follow the surface (FollowSurface); the run ends with it.
   std::string FieldError;
   /// Field misses (LevelRecord::FieldMisses) of the fields this level made before its current
@@ -603,9 +606,10 @@ bool MultilevelSolver::SolveLevel(
         }
         // With bricks, the batch ends once a vertex may have moved half their reach, so that
         // Cover follows the surface before a sweep could take a vertex out of them; so does a
-        // field that follows the surface (distributed too: the boxes must be the same).
+        // field that follows the surface. Decided on what every process shares (a piece holding
+        // nothing of the box has no bricks): the boxes and the batches must be the same.
         batchTravel += st.MaxCorrection;
-        return !(field.Bricks || state.FieldFollows) ||
+        return !(state.FieldInBricks || state.FieldFollows) ||
           batchTravel < 0.5 * BrickReachSigmas * rec.Sigma;
       });
     for (const SweepStatistics& st : batchStats)
@@ -837,11 +841,12 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   state.FieldMade = false;
   state.FieldBox = box;
   std::string msg;
-  // Serial: a field on the image's own grid only where the surface is (dsFieldBricks.h),
-  // following it batch by batch (SolveLevel). Distributed: each piece's field (dsPieceField.h),
-  // no bricks.
+  // On the image's own grid a field only where the surface is (dsFieldBricks.h), following it
+  // batch by batch (SolveLevel); distributed, each piece's part of it (dsPieceField.h).
+  state.FieldInBricks = FieldInBricks(box, image.Geometry, state.FieldParameters);
   bool computed = this->Distributed
-    ? ComputePieceForce(this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg)
+    ? ComputePieceForce(
+        this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg, &mesh)
     : ComputeForceAtScale(image, box, state.FieldParameters, state.Field, &msg, &mesh);
   // A piece's own checks (a field not finite) can fail on one process alone: all agree, so that
   // none goes on to sweeps the others have left.

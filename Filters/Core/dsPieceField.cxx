@@ -304,11 +304,12 @@ VoxelBox FineRegion(const ImagePiece& piece, const VoxelBox& cut, double sigma, 
 }
 
 /// Fine scales: the field on the owned voxels and their ghosts, normalised by the largest edge
-/// strength of all pieces. A failed piece still takes part in the reduction (with
-/// an infinite maximum, which tells the others).
+/// strength of all pieces; with a `surface`, P and -grad P only in the bricks around it (as the
+/// serial field's). A failed piece still takes part in the reduction (with an infinite maximum,
+/// which tells the others).
 bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
-  std::string* error)
+  std::string* error, const TriangleMesh* surface)
 {
   std::string problem;
   double sigmaVoxels[3];
@@ -363,7 +364,11 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
     gMax = reduce.Max(ownedMaximum);
     return gMax;
   };
-  if (problem.empty())
+  if (problem.empty() && surface)
+  {
+    ComputeBrickedForce(regionImage, pieceParameters, *surface, out, &problem);
+  }
+  else if (problem.empty())
   {
     ComputeScaleSpaceForce(regionImage, pieceParameters, out, &problem);
   }
@@ -390,7 +395,7 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
 
 bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
-  std::string* error)
+  std::string* error, const TriangleMesh* surface)
 {
   out = ForceField();
   std::string problem = ScaleSpaceProblem(piece.Whole, parameters.Sigma);
@@ -420,7 +425,7 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
   const int f = DecimationFactor(parameters.Sigma, cutGeometry);
   std::string message;
   const bool ok = f > 1 ? CoarsePieceForce(piece, cut, f, parameters, reduce, out, &message)
-                        : FinePieceForce(piece, cut, parameters, reduce, out, &message);
+                        : FinePieceForce(piece, cut, parameters, reduce, out, &message, surface);
   if (!ok && error)
   {
     *error = message;

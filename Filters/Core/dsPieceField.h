@@ -101,12 +101,15 @@ DEFORMABLESURFACEFILTERS_EXPORT bool PieceBlockMeans(const ImagePiece& piece, co
 
 /// The field of ComputeForceAtScale(whole image, box, parameters) on this piece (see above):
 /// on coarse scales the whole coarse grid, on fine scales the owned voxels of the box and the
-/// ghosts around them (out's geometry says which). False with a message when the piece holds
-/// too few ghost layers for sigma or the potential is not the default one; the processes
-/// still make the same reductions then, so none is left waiting.
+/// ghosts around them (out's geometry says which); with a `surface`, the fine scales keep P and
+/// -grad P only in the bricks within reach of its vertices (ComputeBrickedForce: those of the
+/// piece's part; FieldInBricks tells when), equal to the serial bricks on every owned voxel.
+/// False with a message when the piece holds too few ghost layers for sigma or the potential is
+/// not the default one; the processes still make the same reductions then, so none is left
+/// waiting.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
-  std::string* error);
+  std::string* error, const TriangleMesh* surface = nullptr);
 
 /// Why this piece cannot take part in a distributed solve (no voxels owned, values missing,
 /// owned voxels not held or outside the image); empty when it can. Local: the caller combines

@@ -1141,7 +1141,7 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
   WithThreads(parameters.NumberOfThreads,
     [&]()
     {
-      SmoothImage(image, sv, smooth);
+      SmoothImage(image, sv, smooth, parameters.Smooth);
       const EdgeStatistics stats =
         EdgeStatisticsOf(smooth, image.Geometry.Dimensions, toWorld, nullptr, parameters);
       gains = GainsOf(stats, stats.GradientMax, parameters);

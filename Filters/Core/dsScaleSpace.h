@@ -153,7 +153,8 @@ struct DEFORMABLESURFACEFILTERS_EXPORT PotentialGains
 /// (dsFieldBricks.h). First G_sigma * f over the whole `image` into `smooth` (NumberOfVoxels
 /// floats) and the gains, normalised over the whole image as ComputeScaleSpaceForceInto does;
 /// the same checks, false with a message. The local edge normalisation (a second Gaussian of
-/// g over the image) is not staged: parameters must not ask for it.
+/// g over the image) is not staged: parameters must not ask for it. On a piece of a distributed
+/// image, parameters.Smooth and GradientMaximum make the same reductions as there.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
   const ScaleSpaceParameters& parameters, float* smooth, PotentialGains& gains, std::string* error);
 /// Then P and -grad P at the voxels of `part` (a box within `box`) of the image of `geometry`

@@ -21,11 +21,6 @@
 //   of the surface's neighbourhood (every rank decides alike whether to make the field again).
 // - Two clicks in the capsule as two objects (RegionWeight 1): they grow toward each other and
 //   meet without crossing; the serial surface bit for bit on 2 ranks, and on two threads.
-// - A click grown along the capsule padded into a 272 x 272 x 240 image (above WholeFieldVoxels),
-//   Sigma 4 voxels, RegionWeight 1: the first level's field follows the surface (boxed again at
-//   least once, its last box at most an eighth of the image, no force sample missing), the
-//   surface lies on the capsule (mean 0.3 voxel) to its far end, and 2 and 4 ranks give the
-//   serial surface bit for bit (on 4, two pieces hold nothing of the first box).
 // - The ghost layers the request allows for (DistributedGhostVoxels): 13 with every default on
 //   this image (the sampled Gaussian's largest radius and one, or the sigma_0 probe's), twice the
 //   coarsest block for sigma_0 = extent / 6 at 512^3 and 1024^3 (54, 110), 11 with Sigma 2.5
@@ -37,6 +32,7 @@
 //   stops every rank after the same sweep, with the same surface.
 #include "CapsulePhantom.h"
 #include "DSTestHelpers.h"
+#include "DistributedSolveCheck.h"
 #include "PieceSlabs.h"
 #include "SeveralObjectPhantoms.h"
 #include "SoftBallImage.h"
@@ -51,127 +47,10 @@
 #include <vector>
 
 using namespace dsurf;
+using namespace dsdistributed;
 
 namespace
 {
-ImagePiece Slab(const ImageGeometry& g, const std::vector<float>& image, int r, int ranks,
-  const MultilevelParameters& p, std::vector<float>& held, bool empty = false)
-{
-  return dstest::Slab<float>(
-    g, image, r, ranks, [&](int a) { return MultilevelSolver::DistributedGhostVoxels(p, g, a); },
-    held, empty);
-}
-
-struct Outcome
-{
-  bool Ok = false;
-  std::string Error;
-  TriangleMesh Mesh;
-  long long Held = 0;
-  int FrontLevels = 0; ///< levels past sigma's floor that followed a thin part
-  LevelRecord First;   ///< the first level's record
-};
-
-int FrontLevelsOf(const MultilevelSolver& solver)
-{
-  const std::vector<LevelRecord>& levels = solver.GetLevels();
-  return static_cast<int>(
-    std::count_if(levels.begin(), levels.end(), [](const LevelRecord& l) { return l.Front; }));
-}
-
-/// The serial run and one run per rank, each from `start`.
-void Solve(const ImageGeometry& g, const std::vector<float>& image, const MultilevelParameters& p,
-  const TriangleMesh& start, int nRanks, int emptyRank, Outcome& serial,
-  std::vector<Outcome>& ranks)
-{
-  serial.Mesh = start;
-  MultilevelSolver solver;
-  solver.SetParameters(p);
-  serial.Ok = solver.Run(image.data(), g, serial.Mesh, &serial.Error);
-  serial.FrontLevels = FrontLevelsOf(solver);
-  serial.First = solver.GetLevels().empty() ? LevelRecord() : solver.GetLevels().front();
-
-  dstest::EmulatedRanks emulated(nRanks);
-  ranks.assign(nRanks, Outcome());
-  emulated.Run(
-    [&](int r)
-    {
-      std::vector<float> held;
-      const ImagePiece piece = Slab(g, image, r, nRanks, p, held, r == emptyRank);
-      const PieceReductions reduce = dstest::ReductionsOf(emulated, r);
-      MultilevelSolver s;
-      s.SetParameters(p);
-      s.SetDistribution(piece, reduce);
-      ranks[r].Mesh = start;
-      ranks[r].Held = piece.Held.NumberOfVoxels();
-      ImageView whole = piece.Image; // the whole image's geometry, the piece's values
-      whole.Geometry = g;
-      ranks[r].Ok = s.Run(whole, ranks[r].Mesh, &ranks[r].Error);
-      ranks[r].FrontLevels = FrontLevelsOf(s);
-    });
-  DS_CHECK(emulated.Mismatches() == 0, "the ranks reduced vectors of one size");
-}
-
-/// The image a case solves on: the capsule unless given.
-struct Phantom
-{
-  ImageGeometry Geometry = dstest::CapsuleGeometry();
-  std::vector<float> Image = dstest::CapsuleImage();
-};
-
-/// Returns the serial run's front levels; `last`, when given, gets the serial run of the last
-/// rank count.
-int SameAsSerial(const std::string& label, const MultilevelParameters& p, const TriangleMesh& start,
-  bool pieceSmaller, const std::vector<int>& rankCounts = { 2, 3 },
-  const Phantom& phantom = Phantom(), Outcome* last = nullptr)
-{
-  int frontLevels = 0;
-  const ImageGeometry& g = phantom.Geometry;
-  const std::vector<float>& image = phantom.Image;
-  for (int nRanks : rankCounts)
-  {
-    Outcome serial;
-    std::vector<Outcome> ranks;
-    Solve(g, image, p, start, nRanks, -1, serial, ranks);
-    const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
-    DS_CHECK(serial.Ok, l + ": the serial run: " + serial.Error);
-    double worst = 0.0;
-    long long held = 0;
-    for (const Outcome& o : ranks)
-    {
-      DS_CHECK(o.Ok, l + ": " + o.Error);
-      DS_CHECK(o.FrontLevels == serial.FrontLevels,
-        l + ": " + std::to_string(o.FrontLevels) + " front levels, serial " +
-          std::to_string(serial.FrontLevels));
-      DS_CHECK(o.Mesh.NumberOfPoints() == serial.Mesh.NumberOfPoints(),
-        l + ": " + std::to_string(o.Mesh.NumberOfPoints()) + " vertices, serial " +
-          std::to_string(serial.Mesh.NumberOfPoints()));
-      for (int v = 0;
-           v < o.Mesh.NumberOfPoints() && o.Mesh.NumberOfPoints() == serial.Mesh.NumberOfPoints();
-           ++v)
-      {
-        worst = std::max(
-          worst, Norm(o.Mesh.Points[v] - serial.Mesh.Points[v]) / Norm(serial.Mesh.Points[v]));
-      }
-      held = std::max(held, o.Held);
-    }
-    std::cout << l << ": " << serial.Mesh.NumberOfPoints() << " vertices, " << serial.FrontLevels
-              << " front levels; the largest piece held " << held << " of " << g.NumberOfVoxels()
-              << " voxels" << std::endl;
-    frontLevels = serial.FrontLevels;
-    if (last)
-    {
-      *last = serial;
-    }
-    DS_CHECK_LE(worst, 1e-12, l + ": max |x_rank - x_serial| / |x_serial|");
-    if (pieceSmaller)
-    {
-      DS_CHECK_LE(held, g.NumberOfVoxels() - 1, l + ": voxels held by the largest piece");
-    }
-  }
-  return frontLevels;
-}
-
 /// The ridged ball of TestRegionForce (radius 30 +- 3 in 96^3, value 100 inside) as floats.
 Phantom RidgedBall()
 {
@@ -354,75 +233,6 @@ void AgreedAbort(const TriangleMesh& near)
     ranks[0].Mesh.Points == ranks[1].Mesh.Points && ranks[1].Mesh.Points == ranks[2].Mesh.Points,
     "with the same surface");
 }
-/// How far WideCapsule moves the capsule along x and y (its axis at 128.5).
-constexpr int WideCapsuleShift = 113;
-
-/// The capsule padded with noisy background into a 272 x 272 x 240 image (17.8 million voxels,
-/// above WholeFieldVoxels), moved by WideCapsuleShift along x and y.
-Phantom WideCapsule()
-{
-  Phantom phantom;
-  const int n = 272, shift = WideCapsuleShift;
-  phantom.Geometry.Dimensions[0] = phantom.Geometry.Dimensions[1] = n;
-  const std::vector<float> capsule = dstest::CapsuleImage();
-  phantom.Image.assign(static_cast<std::size_t>(n) * n * dstest::CapsuleNZ, 0.0f);
-  unsigned state = 815;
-  for (std::size_t v = 0; v < phantom.Image.size(); ++v)
-  {
-    state = state * 1664525u + 1013904223u;
-    phantom.Image[v] = static_cast<float>(10.0 * ((state >> 8) / 16777216.0 - 0.5));
-  }
-  for (int k = 0; k < dstest::CapsuleNZ; ++k)
-    for (int j = 0; j < dstest::CapsuleNY; ++j)
-      for (int i = 0; i < dstest::CapsuleNX; ++i)
-      {
-        phantom.Image[(i + shift) + n * ((j + shift) + static_cast<std::size_t>(n) * k)] =
-          capsule[i + dstest::CapsuleNX * (j + static_cast<std::size_t>(dstest::CapsuleNY) * k)];
-      }
-  return phantom;
-}
-
-/// A click near one end of the capsule in an image above WholeFieldVoxels (Sigma 4 voxels,
-/// RegionWeight 1, every other default): the first level is on the image's own grid, and the
-/// surface grows along the capsule far beyond its first box (from the click, sigma_0 would be
-/// 17 voxels, the capsule's length showing in its rays: block means).
-/// The first level's field follows it (MultilevelSolver::FollowSurface): made again over larger
-/// boxes, the last still a small part of the image, the surface reaching the capsule's far end;
-/// every rank decides alike when to make it again, so 2 ranks give the serial surface.
-void FollowingField(const MultilevelParameters& defaults)
-{
-  const Phantom phantom = WideCapsule();
-  MultilevelParameters p = defaults;
-  p.RegionWeight = 1.0;
-  p.Sigma = 4.0;
-  Outcome serial;
-  SameAsSerial("a click grown along the capsule, its first field following it", p,
-    dstest::MakeIcosphere(2, 3.0, { 128.5, 128.5, 70.5 }), true, { 2, 4 }, phantom, &serial);
-  const LevelRecord& first = serial.First;
-  double zMax = 0, off = 0; // off: the vertices' mean distance from the capsule's surface
-  for (const Vec3& x : serial.Mesh.Points)
-  {
-    zMax = std::max(zMax, x[2]);
-    off += std::abs(
-      dstest::CapsuleAxisDistance(x[0] - 113.0, x[1] - 113.0, x[2]) - dstest::CapsuleRadius);
-  }
-  off /= std::max(1, serial.Mesh.NumberOfPoints());
-  std::cout << "following field: sigma_0 " << first.Sigma << ", " << first.FieldBoxes
-            << " boxes on the first level, the last of " << first.FieldVoxels << " of "
-            << phantom.Geometry.NumberOfVoxels() << " voxels, " << first.FieldMisses
-            << " samples missed; the surface reaches z " << zMax << ", " << off
-            << " voxel from the capsule (mean)" << std::endl;
-  DS_CHECK(first.Sigma < 9.0, "following field: the first level is on the image's own grid");
-  DS_CHECK(first.FieldBoxes >= 2, "following field: the first level's box followed the surface");
-  DS_CHECK_LE(first.FieldVoxels, phantom.Geometry.NumberOfVoxels() / 8,
-    "following field: the first level's last box (voxels)");
-  DS_CHECK(first.FieldMisses == 0, "following field: every force sample fell in the field");
-  DS_CHECK_LE(off, 0.3, "following field: the vertices' mean distance from the capsule (voxels)");
-  DS_CHECK(std::abs(zMax - (dstest::CapsuleZ1 + dstest::CapsuleRadius)) < 2.0,
-    "following field: the surface reaches the capsule's far end (z " + std::to_string(zMax) +
-      ", the end at " + std::to_string(dstest::CapsuleZ1 + dstest::CapsuleRadius) + ")");
-}
-
 } // namespace
 
 int TestDistributedSolve(int, char*[])
@@ -452,7 +262,6 @@ int TestDistributedSolve(int, char*[])
     dstest::MakeIcosphere(2, 3.0, { 49.5, 46.5, 48.5 }), true, { 2 }, RidgedBall());
   FrontLevels(defaults);
   TwoObjects(defaults);
-  FollowingField(defaults);
   GhostLayers(defaults);
   BadInput(around);
   AgreedAbort(near);

@@ -14,6 +14,8 @@
 //   cuts an image): P and -grad P equal the serial field bit for bit on every owned voxel, and
 //   each rank holds exactly its piece and one ghost layer (the largest
 //   piece 188 846 of 368 480 voxels on 2 slabs, 128 968 on 3, 132 300 on 3 bricks).
+// - Kept in bricks around a sphere across the slabs' borders (sigma 1.5 and 3): every rank's
+//   force equals the serial bricks' near the sphere to 1e-12 of the largest force.
 // - A single-level solve on every rank with its piece field and OwnerForceExchange equals the
 //   serial solve on the whole field (coordinates to 1e-12 relative).
 // - Bad input: a rank holding too few ghost layers makes every rank fail with a message, none
@@ -162,6 +164,80 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks
       label + ": voxels held by the largest piece");
   }
   DS_CHECK(ranks.Mismatches() == 0, label + ": the ranks reduced vectors of one size");
+}
+
+/// A field kept in bricks around a surface (ComputeForceAtScale and ComputePieceForce with a
+/// surface, a sphere across the slabs' borders): every rank's force equals the serial bricks'
+/// at every owned voxel within half a sigma of the sphere (where both have computed their
+/// bricks), to 1e-12 of the largest force as FieldsAgree's whole fields.
+void BrickedFieldsAgree(const ImageGeometry& g, const std::vector<float>& image, int nRanks,
+  double sigma, const std::string& label)
+{
+  const ScaleSpaceParameters parameters = OneThread(sigma);
+  const Vec3 c = { 17.0, 28.0, 65.0 }; // across z = 52.7 and 77, the borders of 3 and 2 slabs
+  const double radius = 14.0;
+  const TriangleMesh surface = dstest::MakeIcosphere(3, radius, c);
+  const VoxelBox box =
+    SurfaceNeighbourhood(surface, g, FieldReach(parameters.EdgeNormalization, sigma));
+  ForceField whole;
+  std::string error;
+  DS_CHECK(
+    ComputeForceAtScale(ImageView::Of(image.data(), g), box, parameters, whole, &error, &surface) &&
+      whole.Bricks,
+    label + ": the serial field in bricks: " + error);
+  DS_CHECK(FieldInBricks(box, g, parameters), label + ": FieldInBricks tells bricks");
+  dstest::EmulatedRanks ranks(nRanks);
+  std::vector<double> diff(nRanks, 0.0), force(nRanks, 0.0);
+  std::vector<int> ok(nRanks, 0), compared(nRanks, 0), bricked(nRanks, 0);
+  ranks.Run(
+    [&](int r)
+    {
+      std::vector<float> held;
+      const ImagePiece piece = Slab(g, image, r, nRanks, sigma, held);
+      ForceField field;
+      std::string message;
+      ok[r] = ComputePieceForce(
+        piece, box, parameters, ReductionsOf(ranks, r), field, &message, &surface);
+      bricked[r] = field.Bricks != nullptr;
+      for (int k = piece.Owned.Begin[2]; k < piece.Owned.End[2]; ++k)
+        for (int j = box.Begin[1]; j < box.End[1]; ++j)
+          for (int i = box.Begin[0]; i < box.End[0]; ++i)
+          {
+            const double ijk[3] = { double(i), double(j), double(k) };
+            double x[3], a[3], b[3];
+            g.IndexToWorld(ijk, x);
+            if (std::abs(Norm(Vec3{ x[0], x[1], x[2] } - c) - radius) > 0.5 * sigma)
+            {
+              continue;
+            }
+            whole.SampleForce(x, a);
+            field.SampleForce(x, b);
+            ++compared[r];
+            for (int d = 0; d < 3; ++d)
+            {
+              diff[r] = std::max(diff[r], std::abs(a[d] - b[d]));
+              force[r] = std::max(force[r], std::abs(a[d]));
+            }
+          }
+    });
+  std::cout << label << ": voxels compared per rank";
+  for (int r = 0; r < nRanks; ++r)
+  {
+    std::cout << " " << compared[r];
+  }
+  std::cout << std::endl;
+  DS_CHECK(std::count(ok.begin(), ok.end(), 1) == nRanks, label + ": every rank made its field");
+  DS_CHECK(std::count_if(compared.begin(), compared.end(), [](int c) { return c > 0; }) >= 2,
+    label + ": the sphere lies across a border of the pieces");
+  for (int r = 0; r < nRanks; ++r)
+  {
+    DS_CHECK(bricked[r] || compared[r] == 0,
+      label + ": rank " + std::to_string(r) + " keeps its part in bricks");
+  }
+  const double largest = *std::max_element(force.begin(), force.end());
+  DS_CHECK(largest > 0.0, label + ": a force near the sphere");
+  DS_CHECK_LE(*std::max_element(diff.begin(), diff.end()) / std::max(1e-300, largest), 1e-12,
+    label + ": max |F_piece - F_serial| / max |F| near the sphere");
 }
 
 /// The values of `piece` (a field on a box of the image) that differ from `whole`'s bit for
@@ -389,6 +465,8 @@ int TestPieceField(int, char*[])
     FieldsAgree(g, image, nRanks, 3.0, box, true, n + ", sigma 3 on a box");
     FieldsAgree(g, image, nRanks, 14.0, VoxelBox::Whole(g), true, n + ", sigma 14 (blocks of 3)");
     FieldsAgree(g, image, nRanks, 14.0, box, true, n + ", sigma 14 on a box");
+    BrickedFieldsAgree(g, image, nRanks, 1.5, n + ", sigma 1.5 in bricks");
+    BrickedFieldsAgree(g, image, nRanks, 3.0, n + ", sigma 3 in bricks");
     SolvesAgree(g, image, nRanks, 2.0);
     SolvesAgree(g, image, nRanks, 3.0);
   }
