@@ -80,10 +80,12 @@ ImagePiece Slab(const ImageGeometry& g, const std::vector<T>& image, int r, int 
 
 using dstest::ReductionsOf;
 
-/// Largest |F_piece - F_whole| over the world points of the piece's owned voxels in `box`,
-/// sampled in both fields, and the largest |F_whole| there.
+/// Largest |F_piece - F_whole| over the world points of the piece's owned voxels in `box` (those
+/// `keep` accepts, when given; `compared` counts them), sampled in both fields, and the largest
+/// |F_whole| there.
 void CompareOnOwned(const ForceField& whole, const ForceField& piece, const ImagePiece& p,
-  const VoxelBox& box, double& maxDiff, double& maxForce, int& missing)
+  const VoxelBox& box, double& maxDiff, double& maxForce, int& missing,
+  const std::function<bool(const double*)>& keep = nullptr, int* compared = nullptr)
 {
   for (int k = std::max(p.Owned.Begin[2], box.Begin[2]); k < std::min(p.Owned.End[2], box.End[2]);
        ++k)
@@ -93,6 +95,11 @@ void CompareOnOwned(const ForceField& whole, const ForceField& piece, const Imag
         const double ijk[3] = { double(i), double(j), double(k) };
         double x[3], a[3], b[3];
         p.Whole.IndexToWorld(ijk, x);
+        if (keep && !keep(x))
+        {
+          continue;
+        }
+        compared && ++*compared;
         const bool inWhole = whole.SampleForce(x, a);
         const bool inPiece = piece.SampleForce(x, b);
         missing += inWhole != inPiece;
@@ -124,6 +131,19 @@ ForceField SerialField(const ImageGeometry& g, const std::vector<T>& image, cons
   return whole;
 }
 
+/// Rank r's slab of `nRanks` (held: its values) and its field over `box` into `field` (ok: it
+/// was made), with a `surface` kept in bricks around it.
+template <typename T>
+ImagePiece PieceField(const ImageGeometry& g, const std::vector<T>& image, int r, int nRanks,
+  const VoxelBox& box, const ScaleSpaceParameters& parameters, dstest::EmulatedRanks& ranks,
+  std::vector<T>& held, ForceField& field, int& ok, const TriangleMesh* surface = nullptr)
+{
+  const ImagePiece piece = Slab(g, image, r, nRanks, parameters.Sigma, held);
+  std::string message;
+  ok = ComputePieceForce(piece, box, parameters, ReductionsOf(ranks, r), field, &message, surface);
+  return piece;
+}
+
 template <typename T>
 void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks, double sigma,
   const VoxelBox& box, bool pieceSmaller, const std::string& label)
@@ -138,11 +158,10 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks
     [&](int r)
     {
       std::vector<T> held;
-      const ImagePiece piece = Slab(g, image, r, nRanks, sigma, held);
-      heldVoxels[r] = piece.Held.NumberOfVoxels();
       ForceField field;
-      std::string message;
-      ok[r] = ComputePieceForce(piece, box, parameters, ReductionsOf(ranks, r), field, &message);
+      const ImagePiece piece =
+        PieceField(g, image, r, nRanks, box, parameters, ranks, held, field, ok[r]);
+      heldVoxels[r] = piece.Held.NumberOfVoxels();
       CompareOnOwned(whole, field, piece, box, diff[r], force[r], missing[r]);
     });
   const double relative = *std::max_element(diff.begin(), diff.end()) /
@@ -189,36 +208,19 @@ void BrickedFieldsAgree(const ImageGeometry& g, const std::vector<float>& image,
   dstest::EmulatedRanks ranks(nRanks);
   std::vector<double> diff(nRanks, 0.0), force(nRanks, 0.0);
   std::vector<int> ok(nRanks, 0), compared(nRanks, 0), bricked(nRanks, 0);
+  std::vector<int> missing(nRanks, 0);
+  const auto near = [&](const double* x) {
+    return std::abs(Norm(Vec3{ x[0], x[1], x[2] } - c) - radius) <= 0.5 * sigma;
+  };
   ranks.Run(
     [&](int r)
     {
       std::vector<float> held;
-      const ImagePiece piece = Slab(g, image, r, nRanks, sigma, held);
       ForceField field;
-      std::string message;
-      ok[r] = ComputePieceForce(
-        piece, box, parameters, ReductionsOf(ranks, r), field, &message, &surface);
+      const ImagePiece piece =
+        PieceField(g, image, r, nRanks, box, parameters, ranks, held, field, ok[r], &surface);
       bricked[r] = field.Bricks != nullptr;
-      for (int k = piece.Owned.Begin[2]; k < piece.Owned.End[2]; ++k)
-        for (int j = box.Begin[1]; j < box.End[1]; ++j)
-          for (int i = box.Begin[0]; i < box.End[0]; ++i)
-          {
-            const double ijk[3] = { double(i), double(j), double(k) };
-            double x[3], a[3], b[3];
-            g.IndexToWorld(ijk, x);
-            if (std::abs(Norm(Vec3{ x[0], x[1], x[2] } - c) - radius) > 0.5 * sigma)
-            {
-              continue;
-            }
-            whole.SampleForce(x, a);
-            field.SampleForce(x, b);
-            ++compared[r];
-            for (int d = 0; d < 3; ++d)
-            {
-              diff[r] = std::max(diff[r], std::abs(a[d] - b[d]));
-              force[r] = std::max(force[r], std::abs(a[d]));
-            }
-          }
+      CompareOnOwned(whole, field, piece, box, diff[r], force[r], missing[r], near, &compared[r]);
     });
   std::cout << label << ": voxels compared per rank";
   for (int r = 0; r < nRanks; ++r)
@@ -375,10 +377,10 @@ void SolvesAgree(const ImageGeometry& g, const std::vector<float>& image, int nR
     [&](int r)
     {
       std::vector<float> held;
-      const ImagePiece piece = Slab(g, image, r, nRanks, sigma, held);
       ForceField field;
-      std::string message;
-      ComputePieceForce(piece, box, parameters, ReductionsOf(ranks, r), field, &message);
+      int ok = 0;
+      const ImagePiece piece =
+        PieceField(g, image, r, nRanks, box, parameters, ranks, held, field, ok);
       results[r] = sweep(field, OwnerForceExchange(piece, ReductionsOf(ranks, r)));
     });
   double worst = 0.0, moved = 0.0;
