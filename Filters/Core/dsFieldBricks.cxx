@@ -15,6 +15,10 @@ bool FieldBricks::Initialize(
 {
   this->Grid = image.Geometry;
   this->Parameters = parameters;
+  // A piece's hooks (dsPieceField.h) capture its caller's locals and are used here only:
+  // the bricks computed later must not reach them.
+  this->Parameters.Smooth = nullptr;
+  this->Parameters.GradientMaximum = nullptr;
   this->Reach = reach;
   this->Potential.clear();
   this->Force.clear();

@@ -55,6 +55,9 @@ public:
   double SamplePotential(const double x[3]) const;
   /// Samples that fell in a brick not computed, since Initialize.
   long long Misses() const { return this->MissCount.load(); }
+  /// Counts a sample that missed the field in another way (ForceField::SampleForce: beyond the
+  /// box, inside the image).
+  void CountMiss() const { ++this->MissCount; }
   /// Bricks held now (computed and not dropped).
   int ComputedBricks() const
   {

@@ -226,11 +226,11 @@ bool FieldInBricks(
   return !local && DecimationFactor(parameters.Sigma, cutGeometry) <= 1;
 }
 
-bool ComputeBrickedForce(const ImageView& cut, const ScaleSpaceParameters& parameters,
+bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& parameters,
   const TriangleMesh& surface, ForceField& out, std::string* error)
 {
   auto bricks = std::make_shared<FieldBricks>();
-  if (!bricks->Initialize(cut, parameters, BrickReachSigmas * parameters.Sigma, error))
+  if (!bricks->Initialize(part, parameters, BrickReachSigmas * parameters.Sigma, error))
   {
     return false;
   }
@@ -244,7 +244,7 @@ bool ComputeBrickedForce(const ImageView& cut, const ScaleSpaceParameters& param
     }
     return false;
   }
-  out.Geometry = cut.Geometry;
+  out.Geometry = part.Geometry;
   out.Sigma = parameters.Sigma;
   out.Bricks = std::move(bricks);
   return true;

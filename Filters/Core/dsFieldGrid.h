@@ -102,15 +102,17 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
 
 /// Whether a field at `parameters` over `box` of an image of geometry `whole` is kept in bricks
 /// around a surface (ComputeForceAtScale, ComputePieceForce with a surface): on the image's own
-/// grid, with the global edge normalisation. The same on every process of a distributed solve.
+/// grid, unless with the local edge normalisation. The same on every process of a distributed
+/// solve.
 DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
 
-/// The field at parameters.Sigma over all of `cut` (a view of the image's values, placed in the
-/// image) but kept only in the bricks within BrickReachSigmas sigma of `surface`'s vertices
-/// (dsFieldBricks.h; the global edge normalisation only). With parameters.Smooth and
-/// GradientMaximum, a piece's part of the field (dsPieceField.h).
-DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& cut,
+/// The field at parameters.Sigma over all of `part` (a view of the image's values, placed in the
+/// image: the cut of ComputeForceAtScale, or a piece's region) but kept only in the bricks within
+/// BrickReachSigmas sigma of `surface`'s vertices (dsFieldBricks.h; not the local edge
+/// normalisation). With parameters.Smooth and GradientMaximum, a piece's part of the field
+/// (dsPieceField.h).
+DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,
   const ScaleSpaceParameters& parameters, const TriangleMesh& surface, ForceField& out,
   std::string* error);
 

@@ -453,7 +453,7 @@ struct MultilevelSolver::RunState
   bool FieldFollows = false;
   /// The level's field is kept in bricks around the surface (FieldInBricks; the same on every
   /// process, whether its piece holds bricks or not).
-  bool FieldInBricks = false;
+  bool FieldBricked = false;
   /// Why the field could not follow the surface (FollowSurface); the run ends with it.
   std::string FieldError;
   /// Field misses (LevelRecord::FieldMisses) of the fields this level made before its current
@@ -589,7 +589,7 @@ bool MultilevelSolver::SolveLevel(
     batchStats.clear();
     double batchTravel = 0; // the sum of the batch's largest corrections: no vertex moved more
     // A batch ends at each stall window's end, so that the window's check (StallWatch) sees the
-    // same sweeps whatever the batches (bricks end them early; a distributed solve has none).
+    // same sweeps whatever the batches (bricks and a following field end them early).
     solver.Sweeps(
       std::min({ sweepsNow, cap - s, budget, StallWindowSweeps - s % StallWindowSweeps }),
       [&](const SweepStatistics& st)
@@ -609,7 +609,7 @@ bool MultilevelSolver::SolveLevel(
         // field that follows the surface. Decided on what every process shares (a piece holding
         // nothing of the box has no bricks): the boxes and the batches must be the same.
         batchTravel += st.MaxCorrection;
-        return !(state.FieldInBricks || state.FieldFollows) ||
+        return !(state.FieldBricked || state.FieldFollows) ||
           batchTravel < 0.5 * BrickReachSigmas * rec.Sigma;
       });
     for (const SweepStatistics& st : batchStats)
@@ -843,7 +843,7 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   std::string msg;
   // On the image's own grid a field only where the surface is (dsFieldBricks.h), following it
   // batch by batch (SolveLevel); distributed, each piece's part of it (dsPieceField.h).
-  state.FieldInBricks = FieldInBricks(box, image.Geometry, state.FieldParameters);
+  state.FieldBricked = FieldInBricks(box, image.Geometry, state.FieldParameters);
   bool computed = this->Distributed
     ? ComputePieceForce(
         this->Piece, box, state.FieldParameters, this->Reduce, state.Field, &msg, &mesh)

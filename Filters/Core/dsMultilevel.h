@@ -300,10 +300,12 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   int MarkedTriangles = 0;     ///< marked for the next refinement (0 on the last level)
   RefinementCounts Refinement; ///< of the refinement that followed this level
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
-  /// Force samples that fell in a brick of the field not computed yet (no force there; the
-  /// bricks follow the surface between batches of sweeps, and a batch ends once the sum of its
-  /// sweeps' largest corrections reaches half their reach, so this stays 0 unless one sweep
-  /// moves a vertex more than BrickReachSigmas / 2 sigma).
+  /// Force samples of a field in bricks that fell in a brick not computed yet, or beyond the
+  /// field's box but inside the image (no force there; the bricks and a following box follow the
+  /// surface between batches of sweeps, and a batch ends once the sum of its sweeps' largest
+  /// corrections reaches half the bricks' reach, so this stays 0 unless one sweep moves a vertex
+  /// more than BrickReachSigmas / 2 sigma). This process's samples: a piece of a distributed
+  /// image also counts the vertices beyond its part, which other pieces sample.
   long long FieldMisses = 0;
   /// The boxes the level's force field covered: 1, or on a first level whose box follows the
   /// surface one more each time the surface came near its side (MultilevelSolver::FollowSurface).
@@ -538,8 +540,8 @@ private:
   /// again over a larger box when the surface nears its box's side (FollowSurface), and its
   /// batches end as with bricks.
   bool SolveLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
-  /// The field at state.FieldParameters over `box` (serial: in bricks around `mesh`;
-  /// distributed: this piece's part) into state.Field. Collective when distributed: false on
+  /// The field at state.FieldParameters over `box` (in bricks around `mesh` when FieldInBricks;
+  /// distributed, this piece's part) into state.Field. Collective when distributed: false on
   /// every process when it failed on one.
   bool MakeField(const ImageView& image, const TriangleMesh& mesh, RunState& state,
     const VoxelBox& box, std::string* error);

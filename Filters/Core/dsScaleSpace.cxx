@@ -29,6 +29,13 @@ bool ForceField::SampleForce(const double x[3], double f[3]) const
     {
       return true;
     }
+    // Beyond the bricks' box but inside the image: a vertex the box should have held.
+    const bool inImage = this->Image.Dimensions[0] > 0 && LocateImageCell(this->Image, x, c);
+    if (inImage)
+    {
+      this->Bricks->CountMiss();
+    }
+    return inImage;
   }
   else if (!this->Force.empty() && LocateImageCell(this->Geometry, x, c))
   {

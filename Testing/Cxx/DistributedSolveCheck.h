@@ -48,18 +48,25 @@ inline int FrontLevelsOf(const MultilevelSolver& solver)
     std::count_if(levels.begin(), levels.end(), [](const LevelRecord& l) { return l.Front; }));
 }
 
-/// The serial run and one run per rank, each from `start`.
-inline void Solve(const ImageGeometry& g, const std::vector<float>& image,
-  const MultilevelParameters& p, const TriangleMesh& start, int nRanks, int emptyRank,
-  Outcome& serial, std::vector<Outcome>& ranks)
+/// The serial run from `start`.
+inline Outcome SerialRun(const ImageGeometry& g, const std::vector<float>& image,
+  const MultilevelParameters& p, const TriangleMesh& start)
 {
+  Outcome serial;
   serial.Mesh = start;
   MultilevelSolver solver;
   solver.SetParameters(p);
   serial.Ok = solver.Run(image.data(), g, serial.Mesh, &serial.Error);
   serial.FrontLevels = FrontLevelsOf(solver);
   serial.First = solver.GetLevels().empty() ? LevelRecord() : solver.GetLevels().front();
+  return serial;
+}
 
+/// One run per rank from `start` (rank `emptyRank`'s piece empty; -1: none).
+inline void RankRuns(const ImageGeometry& g, const std::vector<float>& image,
+  const MultilevelParameters& p, const TriangleMesh& start, int nRanks, int emptyRank,
+  std::vector<Outcome>& ranks)
+{
   dstest::EmulatedRanks emulated(nRanks);
   ranks.assign(nRanks, Outcome());
   emulated.Run(
@@ -81,6 +88,15 @@ inline void Solve(const ImageGeometry& g, const std::vector<float>& image,
   DS_CHECK(emulated.Mismatches() == 0, "the ranks reduced vectors of one size");
 }
 
+/// The serial run and one run per rank, each from `start`.
+inline void Solve(const ImageGeometry& g, const std::vector<float>& image,
+  const MultilevelParameters& p, const TriangleMesh& start, int nRanks, int emptyRank,
+  Outcome& serial, std::vector<Outcome>& ranks)
+{
+  serial = SerialRun(g, image, p, start);
+  RankRuns(g, image, p, start, nRanks, emptyRank, ranks);
+}
+
 /// The image a case solves on: the capsule unless given.
 struct Phantom
 {
@@ -88,20 +104,23 @@ struct Phantom
   std::vector<float> Image = dstest::CapsuleImage();
 };
 
-/// Returns the serial run's front levels; `last`, when given, gets the serial run of the last
-/// rank count.
+/// The serial run, then the runs on each count of ranks, compared with it; returns the serial
+/// run's front levels; `serialOut`, when given, gets the serial run.
 inline int SameAsSerial(const std::string& label, const MultilevelParameters& p,
   const TriangleMesh& start, bool pieceSmaller, const std::vector<int>& rankCounts = { 2, 3 },
-  const Phantom& phantom = Phantom(), Outcome* last = nullptr)
+  const Phantom& phantom = Phantom(), Outcome* serialOut = nullptr)
 {
-  int frontLevels = 0;
   const ImageGeometry& g = phantom.Geometry;
   const std::vector<float>& image = phantom.Image;
+  const Outcome serial = SerialRun(g, image, p, start);
+  if (serialOut)
+  {
+    *serialOut = serial;
+  }
   for (int nRanks : rankCounts)
   {
-    Outcome serial;
     std::vector<Outcome> ranks;
-    Solve(g, image, p, start, nRanks, -1, serial, ranks);
+    RankRuns(g, image, p, start, nRanks, -1, ranks);
     const std::string l = label + ", " + std::to_string(nRanks) + " ranks";
     DS_CHECK(serial.Ok, l + ": the serial run: " + serial.Error);
     double worst = 0.0;
@@ -127,18 +146,13 @@ inline int SameAsSerial(const std::string& label, const MultilevelParameters& p,
     std::cout << l << ": " << serial.Mesh.NumberOfPoints() << " vertices, " << serial.FrontLevels
               << " front levels; the largest piece held " << held << " of " << g.NumberOfVoxels()
               << " voxels" << std::endl;
-    frontLevels = serial.FrontLevels;
-    if (last)
-    {
-      *last = serial;
-    }
     DS_CHECK_LE(worst, 1e-12, l + ": max |x_rank - x_serial| / |x_serial|");
     if (pieceSmaller)
     {
       DS_CHECK_LE(held, g.NumberOfVoxels() - 1, l + ": voxels held by the largest piece");
     }
   }
-  return frontLevels;
+  return serial.FrontLevels;
 }
 
 } // namespace dsdistributed

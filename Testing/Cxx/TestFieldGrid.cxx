@@ -3,7 +3,8 @@
 // geometry says (any spacing, origin, rotation) and equal each block's plain sum; a field at
 // a coarse sigma on the decimated grid agrees with the one on the image's own grid; a field
 // over the surface's neighbourhood agrees with the whole image's where the surface is; the
-// neighbourhood box holds the surface and its reach.
+// neighbourhood box holds the surface and its reach; the part a field is computed on (FieldCut)
+// and whether it is kept in bricks (FieldInBricks).
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
@@ -231,6 +232,48 @@ void CheckFields()
   const VoxelBox all = SurfaceNeighbourhood(surface, g, 12.0);
   DS_CHECK(all.NumberOfVoxels() == g.NumberOfVoxels(), "a surface around the image: all of it");
 }
+/// FieldCut: a box of more than half the image is widened to the whole image (one field of the
+/// whole image at most), except on the image's own grid of an image above WholeFieldVoxels,
+/// where no float field is made whole; a smaller box is kept. FieldInBricks: on the image's own
+/// grid, not with the local edge normalisation nor on a coarse grid.
+void CheckCutAndBricks()
+{
+  ImageGeometry small, large;
+  for (int a = 0; a < 3; ++a)
+  {
+    small.Dimensions[a] = 100;
+    large.Dimensions[a] = 300; // 27 million voxels, above WholeFieldVoxels
+  }
+  const auto centred = [](const ImageGeometry& g, int side)
+  {
+    VoxelBox box;
+    for (int a = 0; a < 3; ++a)
+    {
+      box.Begin[a] = (g.Dimensions[a] - side) / 2;
+      box.End[a] = box.Begin[a] + side;
+    }
+    return box;
+  };
+  const VoxelBox smallHalf = centred(small, 90), largeHalf = centred(large, 270),
+                 largeSmall = centred(large, 100);
+  DS_CHECK(large.NumberOfVoxels() > WholeFieldVoxels, "the large image is above the threshold");
+  DS_CHECK(FieldCut(smallHalf, small, 2.0).NumberOfVoxels() == small.NumberOfVoxels(),
+    "FieldCut: a small image's box of more than half of it: the whole image");
+  DS_CHECK(FieldCut(largeHalf, large, 2.0).NumberOfVoxels() == largeHalf.NumberOfVoxels(),
+    "FieldCut: a large image's box of more than half of it, on its own grid: the box");
+  DS_CHECK(FieldCut(largeHalf, large, 30.0).NumberOfVoxels() == large.NumberOfVoxels(),
+    "FieldCut: the same box on a coarse grid (sigma 30 voxels): the whole image");
+  DS_CHECK(FieldCut(largeSmall, large, 2.0).NumberOfVoxels() == largeSmall.NumberOfVoxels(),
+    "FieldCut: a box of less than half the image: the box");
+  ScaleSpaceParameters p;
+  p.Sigma = 2.0;
+  DS_CHECK(FieldInBricks(largeSmall, large, p), "FieldInBricks: the image's own grid");
+  p.EdgeNormalization = EdgeNormalization::Local;
+  DS_CHECK(!FieldInBricks(largeSmall, large, p), "FieldInBricks: not the local normalisation");
+  p.EdgeNormalization = EdgeNormalization::GlobalMaximum;
+  p.Sigma = 30.0;
+  DS_CHECK(!FieldInBricks(largeSmall, large, p), "FieldInBricks: not a coarse grid");
+}
 } // namespace
 
 int TestFieldGrid(int, char*[])
@@ -238,6 +281,7 @@ int TestFieldGrid(int, char*[])
   CheckBlockMeansOfRamp();
   CheckBlockMeansExact();
   CheckFields();
+  CheckCutAndBricks();
   return dstest::Result("TestFieldGrid");
 }
 

@@ -70,8 +70,9 @@ void FollowingField(const MultilevelParameters& defaults)
   for (const Vec3& x : serial.Mesh.Points)
   {
     zMax = std::max(zMax, x[2]);
-    off += std::abs(
-      dstest::CapsuleAxisDistance(x[0] - 113.0, x[1] - 113.0, x[2]) - dstest::CapsuleRadius);
+    off +=
+      std::abs(dstest::CapsuleAxisDistance(x[0] - WideCapsuleShift, x[1] - WideCapsuleShift, x[2]) -
+        dstest::CapsuleRadius);
   }
   off /= std::max(1, serial.Mesh.NumberOfPoints());
   std::cout << "following field: sigma_0 " << first.Sigma << ", " << first.FieldBoxes
