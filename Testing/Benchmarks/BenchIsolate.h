@@ -16,14 +16,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -45,10 +44,19 @@ struct IsolatedResult
 };
 
 /// CPU seconds (user + system, all threads) a running process has used so far; 0 if unknown.
+/// Read with C stdio: the process may be reaped while its /proc file is read, and a read error
+/// there makes libstdc++'s filebuf throw (which ended a run with std::terminate).
 inline double ProcessCpuSeconds(pid_t pid)
 {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string stat;
+  if (FILE* in = std::fopen(("/proc/" + std::to_string(pid) + "/stat").c_str(), "r"))
+  {
+    char chunk[512];
+    size_t got;
+    while ((got = std::fread(chunk, 1, sizeof chunk, in)) > 0)
+      stat.append(chunk, got);
+    std::fclose(in);
+  }
   const size_t close = stat.rfind(')'); // the command name may hold spaces
   if (close == std::string::npos)
     return 0;
@@ -99,7 +107,7 @@ inline IsolatedResult RunIsolated(const std::function<std::string()>& work, doub
     return r;
   }
   // Read until the child closes the pipe (it ends or dies); a watchdog kills it at the limit.
-  bool done = false;
+  std::atomic<bool> done{ false };
   std::thread watchdog(
     [&]
     {
