@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dsVTKPieces.h"
 
+#include "dsFieldGrid.h"
 #include "dsMultilevel.h"
 #include "dsScaleSpace.h"
 #include "dsVTKImage.h"
@@ -126,7 +127,13 @@ bool ReadImagePiece(const PieceReductions& reduce, int rank, int ranks, vtkImage
   }
   else
   {
-    GetImageVolume(image, array, ForceFieldBytesPerVoxel, volume, problem);
+    // As a whole image's solve (SolveBytesPerVoxel), over this process's piece.
+    long long wholeVoxels = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      wholeVoxels *= wholeExtent[2 * a + 1] - wholeExtent[2 * a] + 1;
+    }
+    GetImageVolume(image, array, SolveBytesPerVoxel(wholeVoxels), volume, problem);
   }
   if (reduce.Max(problem.empty() ? 0.0 : 1.0) > 0.0)
   {

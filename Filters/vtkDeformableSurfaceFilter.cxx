@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkDeformableSurfaceFilter.h"
 
+#include "dsFieldGrid.h"
 #include "dsMultilevel.h"
 #include "dsObjects.h"
+#include "dsRegionPreview.h"
 #include "dsScaleSpace.h"
 #include "dsSelfIntersectionCount.h"
 #include "dsSolver.h"
@@ -690,7 +692,12 @@ bool vtkDeformableSurfaceFilter::ReadImage(
   vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
 {
   std::string error;
-  if (!dsurf::GetImageVolume(image, array, dsurf::ForceFieldBytesPerVoxel, volume, error))
+  // The preview's labels, or a solve's first field when it may cover the whole image; a larger
+  // image's fields are checked as they are made (docs/METHOD.md §9.6).
+  const double workBytesPerVoxel = this->Preview->PreviewRegion
+    ? dsurf::PreviewBytesPerVoxel
+    : dsurf::SolveBytesPerVoxel(static_cast<long long>(image->GetNumberOfPoints()));
+  if (!dsurf::GetImageVolume(image, array, workBytesPerVoxel, volume, error))
   {
     vtkErrorMacro(<< error << ".");
     return false;

@@ -212,18 +212,50 @@ VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geo
   return box;
 }
 
+namespace
+{
+/// The geometry (dimensions) of FieldCut's part of an image of geometry `whole`.
+ImageGeometry CutGeometry(const VoxelBox& cut, const ImageGeometry& whole)
+{
+  ImageGeometry g = whole;
+  for (int a = 0; a < 3; ++a)
+  {
+    g.Dimensions[a] = cut.End[a] - cut.Begin[a];
+  }
+  return g;
+}
+} // namespace
+
 bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
-  const VoxelBox cut = FieldCut(box, whole, parameters.Sigma);
-  ImageGeometry cutGeometry = whole;
-  for (int a = 0; a < 3; ++a)
-  {
-    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
-  }
+  const ImageGeometry cut = CutGeometry(FieldCut(box, whole, parameters.Sigma), whole);
   const bool local =
     parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
-  return !local && DecimationFactor(parameters.Sigma, cutGeometry) <= 1;
+  return !local && DecimationFactor(parameters.Sigma, cut) <= 1;
+}
+
+double FieldBytes(
+  const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
+{
+  const ImageGeometry cut = CutGeometry(FieldCut(box, whole, parameters.Sigma), whole);
+  const int f = DecimationFactor(parameters.Sigma, cut);
+  if (f <= 1)
+  {
+    const double extra = FieldInBricks(box, whole, parameters) ? sizeof(float) : 0.0;
+    return static_cast<double>(cut.NumberOfVoxels()) * (ForceFieldBytesPerVoxel + extra);
+  }
+  double coarse = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    coarse *= cut.Dimensions[a] / f + 1;
+  }
+  return coarse * (ForceFieldBytesPerVoxel + sizeof(float));
+}
+
+double SolveBytesPerVoxel(long long voxels)
+{
+  return voxels <= WholeFieldVoxels ? ForceFieldBytesPerVoxel : 0.0;
 }
 
 bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& parameters,

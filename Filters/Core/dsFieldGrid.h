@@ -107,6 +107,22 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
 DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
 
+/// The bytes a field at `parameters` over `box` of an image of geometry `whole` holds at most
+/// (ComputeForceAtScale): P and -grad P (ForceFieldBytesPerVoxel) over FieldCut's part on its
+/// grid, and a float a voxel besides, the block means on a coarse grid or the smoothed part
+/// kept for bricks (whose bricks hold at most as many values as the part:
+/// FieldBricks::DropUnreachedOverBudget). MultilevelSolver::MakeField checks it before it makes
+/// the field (docs/METHOD.md §9.6).
+DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
+  const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
+
+/// The bytes per voxel of the input a solve is checked for before anything is allocated: the
+/// first level's field over the whole image (ForceFieldBytesPerVoxel) when the image holds at
+/// most WholeFieldVoxels, where that field may be made on the image's own grid; none for a
+/// larger image, whose fields cover a box around the surface or a coarse grid, each checked as
+/// it is made (FieldBytes), so that a 1024^3 CT is not refused for 16 GiB it never needs.
+DEFORMABLESURFACEFILTERS_EXPORT double SolveBytesPerVoxel(long long voxels);
+
 /// The field at parameters.Sigma over all of `part` (a view of the image's values, placed in the
 /// image: the cut of ComputeForceAtScale, or a piece's region) but kept only in the bricks within
 /// BrickReachSigmas sigma of `surface`'s vertices (dsFieldBricks.h; not the local edge

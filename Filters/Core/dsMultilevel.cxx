@@ -5,6 +5,7 @@
 
 #include "dsFieldBricks.h"
 #include "dsFrontGrid.h"
+#include "dsMemory.h"
 #include "dsObjects.h"
 #include "dsPieceInitialSigma.h"
 #include "dsRegion.h"
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <unordered_set>
 
 namespace dsurf
@@ -841,6 +843,28 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   state.FieldMade = false;
   state.FieldBox = box;
   std::string msg;
+  // Checked before it is made, the last field released first (docs/METHOD.md §9.6): the check
+  // before the solve counts no field of an image above WholeFieldVoxels (SolveBytesPerVoxel).
+  // Distributed, each process checks its piece's part and all agree.
+  state.Field = ForceField();
+  VoxelBox mine = box;
+  for (int a = 0; this->Distributed && a < 3; ++a)
+  {
+    mine.Begin[a] = std::max(box.Begin[a], this->Piece.Held.Begin[a]);
+    mine.End[a] = std::max(mine.Begin[a], std::min(box.End[a], this->Piece.Held.End[a]));
+  }
+  std::ostringstream what;
+  what.precision(3);
+  what << "The force field at sigma " << state.FieldParameters.Sigma << " over "
+       << mine.End[0] - mine.Begin[0] << "x" << mine.End[1] - mine.Begin[1] << "x"
+       << mine.End[2] - mine.Begin[2] << " voxels";
+  msg = MemoryShortfall(FieldBytes(mine, image.Geometry, state.FieldParameters), what.str());
+  if (this->Distributed ? this->Reduce.Max(msg.empty() ? 0.0 : 1.0) > 0.0 : !msg.empty())
+  {
+    *error =
+      msg.empty() ? std::string("another process's force field does not fit in memory") : msg;
+    return false;
+  }
   // On the image's own grid a field only where the surface is (dsFieldBricks.h), following it
   // batch by batch (SolveLevel); distributed, each piece's part of it (dsPieceField.h).
   state.FieldBricked = FieldInBricks(box, image.Geometry, state.FieldParameters);

@@ -14,6 +14,10 @@
 
 namespace dsurf
 {
+/// Bytes per voxel of the image the preview holds: the labels, and one object's mask at a time
+/// while its surface is made (dsVTKRegionPreview.h); checked before anything is allocated.
+constexpr double PreviewBytesPerVoxel = sizeof(unsigned short) + 1;
+
 /// Per voxel of `image` (x fastest): 0, or 1 + the index of the object whose region reaches it.
 /// An object's region: the voxels whose value lies in its range (regions[o], when On) and that
 /// join, through 6-neighbours that do too, a voxel inside its start surface (the part of `start`

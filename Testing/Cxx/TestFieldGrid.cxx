@@ -4,11 +4,12 @@
 // a coarse sigma on the decimated grid agrees with the one on the image's own grid; a field
 // over the surface's neighbourhood agrees with the whole image's where the surface is; the
 // neighbourhood box holds the surface and its reach; the part a field is computed on (FieldCut)
-// and whether it is kept in bricks (FieldInBricks).
+// and whether it is kept in bricks (FieldInBricks); the bytes a field holds (FieldBytes).
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
 
+#include "dsFieldBricks.h"
 #include "dsFieldGrid.h"
 
 #include <algorithm>
@@ -274,6 +275,49 @@ void CheckCutAndBricks()
   p.Sigma = 30.0;
   DS_CHECK(!FieldInBricks(largeSmall, large, p), "FieldInBricks: not a coarse grid");
 }
+/// The bytes a field holds (the potential and force, its bricks and smoothed box) stay within
+/// FieldBytes, which the solve checks before making it: on a coarse grid, on the image's own
+/// grid whole, and in bricks around a sphere; and the solve's check before it starts counts a
+/// whole field only on an image of at most WholeFieldVoxels (SolveBytesPerVoxel).
+void CheckFieldBytes()
+{
+  ImageGeometry g;
+  g.Dimensions[0] = g.Dimensions[1] = g.Dimensions[2] = 96;
+  const Vec3 c{ 47.5, 47.5, 47.5 };
+  const std::vector<float> image = sstest::SoftBall(g, c.data(), 20.0);
+  const TriangleMesh sphere = dstest::MakeIcosphere(3, 20.0, c);
+  const VoxelBox around =
+    SurfaceNeighbourhood(sphere, g, FieldReach(EdgeNormalization::GlobalMaximum, 2.0));
+  ScaleSpaceParameters p;
+  std::string error;
+  const auto held = [](const ForceField& f)
+  {
+    return sizeof(float) * static_cast<double>(f.Potential.size() + f.Force.size()) +
+      (f.Bricks ? f.Bricks->Bytes() : 0.0);
+  };
+  for (double sigma : { 12.0, 2.0 })
+  {
+    p.Sigma = sigma;
+    for (const TriangleMesh* surface : { static_cast<const TriangleMesh*>(nullptr), &sphere })
+    {
+      const VoxelBox box = surface ? around : VoxelBox::Whole(g);
+      ForceField field;
+      DS_CHECK(
+        ComputeForceAtScale(ImageView::Of(image.data(), g), box, p, field, &error, surface), error);
+      const double bound = FieldBytes(box, g, p);
+      std::cout << "sigma " << sigma << (surface ? ", around a sphere" : ", whole") << ": "
+                << held(field) << " bytes held, FieldBytes " << bound << std::endl;
+      DS_CHECK_LE(held(field), bound, "the field's bytes within FieldBytes");
+      DS_CHECK_GE(held(field), 0.5 * bound, "FieldBytes not far above the field's bytes");
+    }
+  }
+  ImageGeometry large;
+  large.Dimensions[0] = large.Dimensions[1] = large.Dimensions[2] = 300;
+  DS_CHECK(SolveBytesPerVoxel(g.NumberOfVoxels()) == ForceFieldBytesPerVoxel,
+    "a small image: its whole first field counted before the solve");
+  DS_CHECK(SolveBytesPerVoxel(large.NumberOfVoxels()) == 0.0,
+    "an image above WholeFieldVoxels: its fields checked as they are made");
+}
 } // namespace
 
 int TestFieldGrid(int, char*[])
@@ -282,6 +326,7 @@ int TestFieldGrid(int, char*[])
   CheckBlockMeansExact();
   CheckFields();
   CheckCutAndBricks();
+  CheckFieldBytes();
   return dstest::Result("TestFieldGrid");
 }
 

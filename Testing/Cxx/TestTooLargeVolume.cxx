@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A volume too large for the memory left is refused before anything is allocated: a clear
 // error naming the need and what is available, an empty output, and no growth of the process
-// (never an out-of-memory kill part-way). The volume is a real vtkImageData whose 8-bit voxels
-// live in a lazily mapped zero region: large enough to need 2.5x the machine's available
-// memory, yet it costs nothing until it is written.
+// (never an out-of-memory kill part-way; docs/METHOD.md §9.6). The Scale-Space Gradient and the
+// region preview are refused before they start (their output is the whole image); a solve of
+// an image above 2^24 voxels when the force field of its first level, a box around the start,
+// would not fit. The volumes are real vtkImageData whose 8-bit voxels live in a lazily mapped
+// zero region: large enough to need about twice the machine's available memory, yet they cost
+// nothing until written.
 #include "DSTestHelpers.h"
 
 #include "dsMemory.h"
@@ -54,6 +57,24 @@ double ResidentBytes()
   return kib * 1024.0;
 }
 
+/// `voxels` bytes of zeros, mapped lazily (only the pages written cost memory); null on failure.
+unsigned char* MapZeros(std::size_t voxels)
+{
+  void* zeros = mmap(
+    nullptr, voxels, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  return zeros == MAP_FAILED ? nullptr : static_cast<unsigned char*>(zeros);
+}
+
+/// An n^3 image of 8-bit values read in place from `values` (point array "CT").
+void MakeImage(vtkImageData* image, unsigned char* values, int n)
+{
+  image->SetDimensions(n, n, n);
+  vtkNew<vtkUnsignedCharArray> array;
+  array->SetName("CT");
+  array->SetArray(values, static_cast<vtkIdType>(n) * n * n, 1);
+  image->GetPointData()->SetScalars(array);
+}
+
 void CheckRefused(const ErrorText& errors, double rssBefore, const std::string& who)
 {
   std::cout << who << ": " << errors.Text << std::endl;
@@ -81,38 +102,38 @@ int TestTooLargeVolume(int, char*[])
     std::cout << "available memory unknown on this system: nothing to refuse" << std::endl;
     return dstest::Result("TestTooLargeVolume");
   }
-  // uint8 input, read in place: the force field of a whole-image level is 16 bytes a voxel,
-  // so available / 8 voxels need 2x what is available.
+  // uint8 input, read in place: the Scale-Space Gradient's field is 16 bytes a voxel, so
+  // available / 8 voxels need 2x what is available. A sphere reaching 0.45 of the image from its
+  // centre, at sigma 8 voxels (given: no probe), has its first field over about 0.9^3 of the
+  // image on the image's own grid, 20 bytes a voxel with the smoothed box of its bricks: 1.8x.
   const int n = static_cast<int>(std::ceil(std::cbrt(available / 8.0)));
   const std::size_t voxels = static_cast<std::size_t>(n) * n * n;
-  void* zeros = mmap(
-    nullptr, voxels, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-  DS_CHECK(zeros != MAP_FAILED, "the lazily mapped volume");
-  if (zeros == MAP_FAILED)
+  unsigned char* zeros = MapZeros(voxels);
+  DS_CHECK(zeros != nullptr, "the lazily mapped volume");
+  if (!zeros)
   {
     return dstest::Result("TestTooLargeVolume");
   }
   std::cout << n << "^3 voxels of 8 bits, " << available / 1073741824.0 << " GiB available"
             << std::endl;
+  zeros[1] = 1; // not constant (the filter refuses a constant image), one page written
   vtkNew<vtkImageData> image;
-  image->SetDimensions(n, n, n);
-  vtkNew<vtkUnsignedCharArray> values;
-  values->SetName("CT");
-  values->SetArray(static_cast<unsigned char*>(zeros), static_cast<vtkIdType>(voxels), 1);
-  image->GetPointData()->SetScalars(values);
+  MakeImage(image, zeros, n);
   vtkNew<vtkSphereSource> sphere;
   sphere->SetCenter(n / 2.0, n / 2.0, n / 2.0);
-  sphere->SetRadius(n / 4.0);
-
+  sphere->SetRadius(0.45 * n);
   {
     vtkNew<vtkDeformableSurfaceFilter> filter;
     vtkNew<ErrorText> errors;
     filter->AddObserver(vtkCommand::ErrorEvent, errors);
     filter->SetInputData(0, image);
     filter->SetInitialSurfaceConnection(sphere->GetOutputPort());
+    filter->SetSigma(8.0);
+    filter->SetRegionWeight(0.0);
     const double before = ResidentBytes();
     filter->Update();
     CheckRefused(*errors, before, "Deformable Surface");
+    DS_CHECK(errors->Text.find("force field") != std::string::npos, "the first field is named");
     DS_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0, "an empty surface");
   }
   {
@@ -124,6 +145,30 @@ int TestTooLargeVolume(int, char*[])
     gradient->Update();
     CheckRefused(*errors, before, "Scale-Space Gradient");
     DS_CHECK(gradient->GetOutput()->GetNumberOfPoints() == 0, "an empty image");
+  }
+  munmap(zeros, voxels);
+
+  // The preview holds 3 bytes a voxel of the whole image: available / 1.5 voxels need 2x.
+  const int m = static_cast<int>(std::ceil(std::cbrt(available / 1.5)));
+  const std::size_t previewVoxels = static_cast<std::size_t>(m) * m * m;
+  unsigned char* previewZeros = MapZeros(previewVoxels);
+  DS_CHECK(previewZeros != nullptr, "the lazily mapped preview volume");
+  if (previewZeros)
+  {
+    previewZeros[1] = 1;
+    vtkNew<vtkImageData> large;
+    MakeImage(large, previewZeros, m);
+    vtkNew<vtkDeformableSurfaceFilter> filter;
+    vtkNew<ErrorText> errors;
+    filter->AddObserver(vtkCommand::ErrorEvent, errors);
+    filter->SetInputData(0, large);
+    filter->SetInitialSurfaceConnection(sphere->GetOutputPort());
+    filter->SetPreviewRegion(true);
+    const double before = ResidentBytes();
+    filter->Update();
+    CheckRefused(*errors, before, "Region preview");
+    DS_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0, "an empty preview");
+    munmap(previewZeros, previewVoxels);
   }
   munmap(zeros, voxels);
   return dstest::Result("TestTooLargeVolume");
