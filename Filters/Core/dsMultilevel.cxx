@@ -1250,9 +1250,11 @@ bool MultilevelSolver::SolveLevelKeptApart(
   {
     return stop;
   }
-  // A few pairs on a mesh that resolves its sigma are what the smoothing after the level opens
-  // (EndSweeps): solved again only if it would not.
-  if (rec.MeanEdgeLength <= rec.Sigma)
+  // A few pairs on a mesh that resolves its sigma, or on the schedule's last level, are what the
+  // smoothing after the level (EndSweeps) or after the front levels that follow opens: solved
+  // again only if it would not. Solved again, the KmeansTest click's last level (57 pairs on
+  // 7 300 vertices) took 4.5 times as long for a surface 0.013 mm nearer its mask.
+  if (rec.MeanEdgeLength <= rec.Sigma || this->ScheduleEndsAt(state, rec.Level))
   {
     TriangleMesh trial = mesh;
     if (Untangle(trial).After <= crossingBefore)
@@ -1269,6 +1271,17 @@ bool MultilevelSolver::SolveLevelKeptApart(
   const bool again = this->SolveLevel(image, mesh, state, rec);
   this->SmoothKeptApart(mesh, rec);
   return again;
+}
+
+bool MultilevelSolver::AtSigmaFloor(const RunState& state) const
+{
+  return this->Parameters.HierarchicalSigma &&
+    !(state.Sigma > SigmaFloorVoxels * state.Voxel * (1 + 1e-9));
+}
+
+bool MultilevelSolver::ScheduleEndsAt(const RunState& state, int level) const
+{
+  return this->AtSigmaFloor(state) || level >= std::max(0, this->Parameters.MaxLevels);
 }
 
 void MultilevelSolver::SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec)
@@ -1331,7 +1344,7 @@ bool MultilevelSolver::RunLevels(
     // With the hierarchical sigma, the level solved at sigma's floor (SigmaFloorVoxels) is the
     // last: further levels would only refine the mesh for detail the image does not show
     // (a start near its object reaches the floor after a few halvings).
-    const bool atFloor = P.HierarchicalSigma && !(state.Sigma > sigmaFloor * (1 + 1e-9));
+    const bool atFloor = this->AtSigmaFloor(state);
     // At the floor the levels go on while the object still lies beyond part of the surface (a
     // thin part not yet followed to its end, docs/METHOD.md §9.3): front levels, beyond
     // MaxLevels, at most MaxFrontLevels.

@@ -462,6 +462,11 @@ private:
   /// made it cross itself; returns SolveLevel's stop.
   bool SolveLevelKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
+  /// The schedule's last level (before any front levels): sigma at its floor with the
+  /// hierarchical sigma, or level MaxLevels. The delivered surface's folds are smoothed after it.
+  bool ScheduleEndsAt(const RunState& state, int level) const;
+  /// With the hierarchical sigma: the level's sigma is at its floor (SigmaFloorVoxels).
+  bool AtSigmaFloor(const RunState& state) const;
   /// After a level kept apart: its remaining folds smoothed open (SmoothFolds) on any mesh.
   void SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec);
   /// Each object's region model for a level at sigma: its range, its fade (its own sigma_0's
