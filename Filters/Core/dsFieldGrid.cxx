@@ -235,6 +235,12 @@ bool FieldInBricks(
   return !local && DecimationFactor(parameters.Sigma, cut) <= 1;
 }
 
+double FieldBytesPerVoxel(bool bricked)
+{
+  const double shared = std::pow((FieldBricks::BrickSize + 1.0) / FieldBricks::BrickSize, 3);
+  return (bricked ? shared : 1.0) * ForceFieldBytesPerVoxel + sizeof(float);
+}
+
 double FieldBytes(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
@@ -242,15 +248,15 @@ double FieldBytes(
   const int f = DecimationFactor(parameters.Sigma, cut);
   if (f <= 1)
   {
-    const double extra = FieldInBricks(box, whole, parameters) ? sizeof(float) : 0.0;
-    return static_cast<double>(cut.NumberOfVoxels()) * (ForceFieldBytesPerVoxel + extra);
+    return static_cast<double>(cut.NumberOfVoxels()) *
+      FieldBytesPerVoxel(FieldInBricks(box, whole, parameters));
   }
   double coarse = 1;
   for (int a = 0; a < 3; ++a)
   {
     coarse *= cut.Dimensions[a] / f + 1;
   }
-  return coarse * (ForceFieldBytesPerVoxel + sizeof(float));
+  return coarse * FieldBytesPerVoxel(false);
 }
 
 double SolveBytesPerVoxel(long long voxels)

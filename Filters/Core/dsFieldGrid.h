@@ -107,12 +107,15 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
 DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
 
+/// Bytes a voxel of a field's grid holds at most: P and -grad P (ForceFieldBytesPerVoxel) and a
+/// float besides, the block means of a coarse grid or, `bricked`, the smoothed part kept for the
+/// bricks, which hold their shared layers twice ((BrickSize + 1)^3 values for BrickSize^3 voxels;
+/// FieldBricks::DropUnreachedOverBudget drops the bricks no vertex needs beyond the part's voxels).
+DEFORMABLESURFACEFILTERS_EXPORT double FieldBytesPerVoxel(bool bricked);
+
 /// The bytes a field at `parameters` over `box` of an image of geometry `whole` holds at most
-/// (ComputeForceAtScale): P and -grad P (ForceFieldBytesPerVoxel) over FieldCut's part on its
-/// grid, and a float a voxel besides, the block means on a coarse grid or the smoothed part
-/// kept for bricks (whose bricks hold at most as many values as the part:
-/// FieldBricks::DropUnreachedOverBudget). MultilevelSolver::MakeField checks it before it makes
-/// the field (docs/METHOD.md §9.6).
+/// (ComputeForceAtScale): FieldBytesPerVoxel over FieldCut's part on its grid.
+/// MultilevelSolver::MakeField checks it before it makes the field (docs/METHOD.md §9.6).
 DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
 

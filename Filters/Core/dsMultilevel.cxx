@@ -845,24 +845,28 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   std::string msg;
   // Checked before it is made, the last field released first (docs/METHOD.md §9.6): the check
   // before the solve counts no field of an image above WholeFieldVoxels (SolveBytesPerVoxel).
-  // Distributed, each process checks its piece's part and all agree.
+  // Distributed, each process checks what it would hold, and all agree.
   state.Field = ForceField();
-  VoxelBox mine = box;
-  for (int a = 0; this->Distributed && a < 3; ++a)
-  {
-    mine.Begin[a] = std::max(box.Begin[a], this->Piece.Held.Begin[a]);
-    mine.End[a] = std::max(mine.Begin[a], std::min(box.End[a], this->Piece.Held.End[a]));
-  }
+  const double need = this->Distributed ? PieceFieldBytes(this->Piece, box, state.FieldParameters)
+                                        : FieldBytes(box, image.Geometry, state.FieldParameters);
   std::ostringstream what;
   what.precision(3);
-  what << "The force field at sigma " << state.FieldParameters.Sigma << " over "
-       << mine.End[0] - mine.Begin[0] << "x" << mine.End[1] - mine.Begin[1] << "x"
-       << mine.End[2] - mine.Begin[2] << " voxels";
-  msg = MemoryShortfall(FieldBytes(mine, image.Geometry, state.FieldParameters), what.str());
-  if (this->Distributed ? this->Reduce.Max(msg.empty() ? 0.0 : 1.0) > 0.0 : !msg.empty())
+  what << "The force field at sigma " << state.FieldParameters.Sigma << " (world units) over "
+       << box.End[0] - box.Begin[0] << "x" << box.End[1] - box.Begin[1] << "x"
+       << box.End[2] - box.Begin[2] << " voxels"
+       << (this->Distributed ? " (this process's part)" : "");
+  msg = MemoryShortfall(need, what.str());
+  const double lacking =
+    this->Distributed ? this->Reduce.Max(msg.empty() ? 0.0 : need) : (msg.empty() ? 0.0 : need);
+  if (lacking > 0.0)
   {
-    *error =
-      msg.empty() ? std::string("another process's force field does not fit in memory") : msg;
+    std::ostringstream other;
+    other.precision(3);
+    other << "another process's part of the force field at sigma " << state.FieldParameters.Sigma
+          << " needs about " << lacking / (1024.0 * 1024.0 * 1024.0)
+          << " GiB, more than its memory can give: make the volume smaller first (crop it to the "
+             "object with Extract Subset / vtkExtractVOI, or resample it with vtkImageResample)";
+    *error = msg.empty() ? other.str() : msg;
     return false;
   }
   // On the image's own grid a field only where the surface is (dsFieldBricks.h), following it
@@ -914,7 +918,7 @@ bool MultilevelSolver::FollowSurface(
   std::string error;
   if (!this->MakeField(image, mesh, state, box, &error))
   {
-    // The same sigma and parameters as the level's first box, which was made: not expected.
+    // A box grown past what the memory can give (MakeField's check), or a field not finite.
     // Every process fails alike (MakeField), and the run ends with the error.
     state.FieldError = "level " + std::to_string(rec.Level) +
       ": the force field could not follow the surface: " + error;
@@ -1250,15 +1254,23 @@ bool MultilevelSolver::SolveLevelKeptApart(
   {
     return stop;
   }
-  // A few pairs on a mesh that resolves its sigma, or on the schedule's last level, are what the
-  // smoothing after the level (EndSweeps) or after the front levels that follow opens: solved
-  // again only if it would not. Solved again, the KmeansTest click's last level (57 pairs on
-  // 7 300 vertices) took 4.5 times as long for a surface 0.013 mm nearer its mask.
-  if (rec.MeanEdgeLength <= rec.Sigma || this->ScheduleEndsAt(state, rec.Level))
+  // A few pairs on a mesh that resolves its sigma are what the smoothing after the level
+  // (EndSweeps) opens: solved again only if it would not. So on the schedule's last level, whose
+  // pairs are smoothed now (front levels may follow, refining them first): solved again, the
+  // KmeansTest click's last level (57 pairs on 7 300 vertices) took about five times as long
+  // for a surface 0.013 mm nearer its mask.
+  const bool resolves = rec.MeanEdgeLength <= rec.Sigma;
+  if (resolves || this->ScheduleEndsAt(state, rec.Level))
   {
     TriangleMesh trial = mesh;
-    if (Untangle(trial).After <= crossingBefore)
+    const UntangleResult folds = Untangle(trial);
+    if (folds.After <= crossingBefore)
     {
+      if (!resolves)
+      {
+        mesh.Points = trial.Points;
+        rec.Folds = folds;
+      }
       return stop;
     }
   }

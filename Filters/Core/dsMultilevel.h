@@ -463,7 +463,7 @@ private:
   bool SolveLevelKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The schedule's last level (before any front levels): sigma at its floor with the
-  /// hierarchical sigma, or level MaxLevels. The delivered surface's folds are smoothed after it.
+  /// hierarchical sigma, or level MaxLevels.
   bool ScheduleEndsAt(const RunState& state, int level) const;
   /// With the hierarchical sigma: the level's sigma is at its floor (SigmaFloorVoxels).
   bool AtSigmaFloor(const RunState& state) const;

@@ -283,6 +283,18 @@ bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
   return true;
 }
 
+/// The cut and the block size as ComputeForceAtScale chooses them.
+int CutOf(const ImagePiece& piece, const VoxelBox& box, double sigma, VoxelBox& cut)
+{
+  cut = FieldCut(box, piece.Whole, sigma);
+  ImageGeometry cutGeometry = piece.Whole;
+  for (int a = 0; a < 3; ++a)
+  {
+    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
+  }
+  return DecimationFactor(sigma, cutGeometry);
+}
+
 /// The owned voxels of `cut` and their ghosts, or an empty box (with `error`) when the piece
 /// does not hold them all.
 VoxelBox FineRegion(const ImagePiece& piece, const VoxelBox& cut, double sigma, std::string& error)
@@ -415,14 +427,8 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
     }
     return false;
   }
-  // The cut and the block size as ComputeForceAtScale chooses them.
-  const VoxelBox cut = FieldCut(box, piece.Whole, parameters.Sigma);
-  ImageGeometry cutGeometry = piece.Whole;
-  for (int a = 0; a < 3; ++a)
-  {
-    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
-  }
-  const int f = DecimationFactor(parameters.Sigma, cutGeometry);
+  VoxelBox cut;
+  const int f = CutOf(piece, box, parameters.Sigma, cut);
   std::string message;
   const bool ok = f > 1 ? CoarsePieceForce(piece, cut, f, parameters, reduce, out, &message)
                         : FinePieceForce(piece, cut, parameters, reduce, out, &message, surface);
@@ -431,6 +437,27 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
     *error = message;
   }
   return ok;
+}
+
+double PieceFieldBytes(
+  const ImagePiece& piece, const VoxelBox& box, const ScaleSpaceParameters& parameters)
+{
+  VoxelBox cut;
+  const int f = CutOf(piece, box, parameters.Sigma, cut);
+  if (f > 1)
+  {
+    // Every process holds the whole cut's coarse grid, and the block means' sums in double
+    // (PieceBlockMeans).
+    double coarse = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      coarse *= (cut.End[a] - cut.Begin[a]) / f + 1;
+    }
+    return coarse * (FieldBytesPerVoxel(false) + sizeof(double));
+  }
+  std::string ignored;
+  return static_cast<double>(FineRegion(piece, cut, parameters.Sigma, ignored).NumberOfVoxels()) *
+    FieldBytesPerVoxel(FieldInBricks(box, piece.Whole, parameters));
 }
 
 std::string PieceProblem(const ImagePiece& piece)

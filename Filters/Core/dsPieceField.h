@@ -99,6 +99,12 @@ DEFORMABLESURFACEFILTERS_EXPORT bool PieceBlockMeans(const ImagePiece& piece, co
   int f, int numberOfThreads, const PieceReductions& reduce, std::vector<float>& coarse,
   ImageGeometry& coarseGeometry, std::string* error);
 
+/// The bytes ComputePieceForce(piece, box, parameters) holds at most on this process (FieldBytes
+/// for a piece): the whole cut's coarse grid with the sums of its block means, or the piece's
+/// part of a fine field with its ghosts.
+DEFORMABLESURFACEFILTERS_EXPORT double PieceFieldBytes(
+  const ImagePiece& piece, const VoxelBox& box, const ScaleSpaceParameters& parameters);
+
 /// The field of ComputeForceAtScale(whole image, box, parameters) on this piece (see above):
 /// on coarse scales the whole coarse grid, on fine scales the owned voxels of the box and the
 /// ghosts around them (out's geometry says which); with a `surface`, the fine scales keep P and

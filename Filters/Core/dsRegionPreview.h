@@ -14,9 +14,11 @@
 
 namespace dsurf
 {
-/// Bytes per voxel of the image the preview holds: the labels, and one object's mask at a time
-/// while its surface is made (dsVTKRegionPreview.h); checked before anything is allocated.
-constexpr double PreviewBytesPerVoxel = sizeof(unsigned short) + 1;
+/// Bytes per voxel of the image the preview holds at most: the labels, one object's mask at a
+/// time while its surface is made (dsVTKRegionPreview.h) and the contour's edge cases (a byte a
+/// voxel), and the seeds and a ring of voxel ids, each at most every voxel (a start enclosing
+/// most of the image); checked before anything is allocated.
+constexpr double PreviewBytesPerVoxel = sizeof(unsigned short) + 1 + 1 + 2 * sizeof(long long);
 
 /// Per voxel of `image` (x fastest): 0, or 1 + the index of the object whose region reaches it.
 /// An object's region: the voxels whose value lies in its range (regions[o], when On) and that

@@ -154,6 +154,7 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks
   std::vector<double> diff(nRanks, 0.0), force(nRanks, 0.0);
   std::vector<int> missing(nRanks, 0), ok(nRanks, 0);
   std::vector<long long> heldVoxels(nRanks, 0);
+  std::vector<double> fieldBytes(nRanks, 0.0), boundBytes(nRanks, 0.0);
   ranks.Run(
     [&](int r)
     {
@@ -162,6 +163,10 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks
       const ImagePiece piece =
         PieceField(g, image, r, nRanks, box, parameters, ranks, held, field, ok[r]);
       heldVoxels[r] = piece.Held.NumberOfVoxels();
+      // What MultilevelSolver::MakeField checks before making it.
+      fieldBytes[r] =
+        sizeof(float) * static_cast<double>(field.Potential.size() + field.Force.size());
+      boundBytes[r] = PieceFieldBytes(piece, box, parameters);
       CompareOnOwned(whole, field, piece, box, diff[r], force[r], missing[r]);
     });
   const double relative = *std::max_element(diff.begin(), diff.end()) /
@@ -172,6 +177,10 @@ void FieldsAgree(const ImageGeometry& g, const std::vector<T>& image, int nRanks
     std::cout << " " << h;
   }
   std::cout << " of " << g.NumberOfVoxels() << std::endl;
+  for (int r = 0; r < nRanks; ++r)
+  {
+    DS_CHECK_LE(fieldBytes[r], boundBytes[r], label + ": the piece's field within PieceFieldBytes");
+  }
   DS_CHECK(
     std::count(ok.begin(), ok.end(), 1) == nRanks, label + ": every rank computed its field");
   DS_CHECK_LE(relative, 1e-12, label + ": max |F_piece - F_whole| / max |F| on the owned voxels");

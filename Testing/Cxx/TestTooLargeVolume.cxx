@@ -104,8 +104,9 @@ int TestTooLargeVolume(int, char*[])
   }
   // uint8 input, read in place: the Scale-Space Gradient's field is 16 bytes a voxel, so
   // available / 8 voxels need 2x what is available. A sphere reaching 0.45 of the image from its
-  // centre, at sigma 8 voxels (given: no probe), has its first field over about 0.9^3 of the
-  // image on the image's own grid, 20 bytes a voxel with the smoothed box of its bricks: 1.8x.
+  // centre, at sigma 8 voxels (given: no probe), has its first field over the sphere and 6 sigma
+  // around it (about 0.85 of the image) on the image's own grid, 27 bytes a voxel in bricks with
+  // their smoothed box: about 2.9x.
   const int n = static_cast<int>(std::ceil(std::cbrt(available / 8.0)));
   const std::size_t voxels = static_cast<std::size_t>(n) * n * n;
   unsigned char* zeros = MapZeros(voxels);
@@ -148,8 +149,8 @@ int TestTooLargeVolume(int, char*[])
   }
   munmap(zeros, voxels);
 
-  // The preview holds 3 bytes a voxel of the whole image: available / 1.5 voxels need 2x.
-  const int m = static_cast<int>(std::ceil(std::cbrt(available / 1.5)));
+  // The preview is counted at 20 bytes a voxel of the whole image: available / 10 voxels, 2x.
+  const int m = static_cast<int>(std::ceil(std::cbrt(available / 10.0)));
   const std::size_t previewVoxels = static_cast<std::size_t>(m) * m * m;
   unsigned char* previewZeros = MapZeros(previewVoxels);
   DS_CHECK(previewZeros != nullptr, "the lazily mapped preview volume");
@@ -170,7 +171,6 @@ int TestTooLargeVolume(int, char*[])
     DS_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0, "an empty preview");
     munmap(previewZeros, previewVoxels);
   }
-  munmap(zeros, voxels);
   return dstest::Result("TestTooLargeVolume");
 }
 
