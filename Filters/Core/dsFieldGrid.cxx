@@ -212,27 +212,38 @@ VoxelBox SurfaceNeighbourhood(const TriangleMesh& mesh, const ImageGeometry& geo
   return box;
 }
 
-namespace
+int FieldCutFactor(const VoxelBox& box, const ImageGeometry& whole, double sigma, VoxelBox& cut)
 {
-/// The geometry (dimensions) of FieldCut's part of an image of geometry `whole`.
-ImageGeometry CutGeometry(const VoxelBox& cut, const ImageGeometry& whole)
-{
+  cut = FieldCut(box, whole, sigma);
   ImageGeometry g = whole;
   for (int a = 0; a < 3; ++a)
   {
     g.Dimensions[a] = cut.End[a] - cut.Begin[a];
   }
-  return g;
+  return DecimationFactor(sigma, g);
 }
-} // namespace
+
+double FieldGridVoxels(const VoxelBox& cut, int f)
+{
+  if (f <= 1)
+  {
+    return static_cast<double>(cut.NumberOfVoxels());
+  }
+  double coarse = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    coarse *= (cut.End[a] - cut.Begin[a]) / f + 1;
+  }
+  return coarse;
+}
 
 bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
-  const ImageGeometry cut = CutGeometry(FieldCut(box, whole, parameters.Sigma), whole);
+  VoxelBox cut;
   const bool local =
     parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
-  return !local && DecimationFactor(parameters.Sigma, cut) <= 1;
+  return !local && FieldCutFactor(box, whole, parameters.Sigma, cut) <= 1;
 }
 
 double FieldBytesPerVoxel(bool bricked)
@@ -244,19 +255,10 @@ double FieldBytesPerVoxel(bool bricked)
 double FieldBytes(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
-  const ImageGeometry cut = CutGeometry(FieldCut(box, whole, parameters.Sigma), whole);
-  const int f = DecimationFactor(parameters.Sigma, cut);
-  if (f <= 1)
-  {
-    return static_cast<double>(cut.NumberOfVoxels()) *
-      FieldBytesPerVoxel(FieldInBricks(box, whole, parameters));
-  }
-  double coarse = 1;
-  for (int a = 0; a < 3; ++a)
-  {
-    coarse *= cut.Dimensions[a] / f + 1;
-  }
-  return coarse * FieldBytesPerVoxel(false);
+  VoxelBox cut;
+  const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
+  return FieldGridVoxels(cut, f) *
+    FieldBytesPerVoxel(f <= 1 && FieldInBricks(box, whole, parameters));
 }
 
 double SolveBytesPerVoxel(long long voxels)
@@ -307,10 +309,10 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
     }
     return false;
   }
-  const VoxelBox part = FieldCut(box, image.Geometry, parameters.Sigma);
+  VoxelBox part;
+  const int f = FieldCutFactor(box, image.Geometry, parameters.Sigma, part);
   const ImageView cut =
     part.NumberOfVoxels() < image.Geometry.NumberOfVoxels() ? image.Box(part) : image;
-  const int f = DecimationFactor(parameters.Sigma, cut.Geometry);
   const bool local =
     parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
   if (f <= 1)

@@ -100,6 +100,16 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
   const VoxelBox& box, const ImageGeometry& whole, double sigma);
 
+/// FieldCut's part of an image of geometry `whole` for a field at `sigma` over `box` (into `cut`)
+/// and the block size of its grid there (DecimationFactor; 1: the image's own grid), as
+/// ComputeForceAtScale and ComputePieceForce choose them.
+DEFORMABLESURFACEFILTERS_EXPORT int FieldCutFactor(
+  const VoxelBox& box, const ImageGeometry& whole, double sigma, VoxelBox& cut);
+
+/// The voxels of a field's grid over `cut` with block size f (BlockMeans's blocks, at most one
+/// more per axis than whole blocks; the cut's own voxels for f = 1).
+DEFORMABLESURFACEFILTERS_EXPORT double FieldGridVoxels(const VoxelBox& cut, int f);
+
 /// Whether a field at `parameters` over `box` of an image of geometry `whole` is kept in bricks
 /// around a surface (ComputeForceAtScale, ComputePieceForce with a surface): on the image's own
 /// grid, unless with the local edge normalisation. The same on every process of a distributed

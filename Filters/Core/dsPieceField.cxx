@@ -283,18 +283,6 @@ bool CoarsePieceForce(const ImagePiece& piece, const VoxelBox& cut, int f,
   return true;
 }
 
-/// The cut and the block size as ComputeForceAtScale chooses them.
-int CutOf(const ImagePiece& piece, const VoxelBox& box, double sigma, VoxelBox& cut)
-{
-  cut = FieldCut(box, piece.Whole, sigma);
-  ImageGeometry cutGeometry = piece.Whole;
-  for (int a = 0; a < 3; ++a)
-  {
-    cutGeometry.Dimensions[a] = cut.End[a] - cut.Begin[a];
-  }
-  return DecimationFactor(sigma, cutGeometry);
-}
-
 /// The owned voxels of `cut` and their ghosts, or an empty box (with `error`) when the piece
 /// does not hold them all.
 VoxelBox FineRegion(const ImagePiece& piece, const VoxelBox& cut, double sigma, std::string& error)
@@ -428,7 +416,7 @@ bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
     return false;
   }
   VoxelBox cut;
-  const int f = CutOf(piece, box, parameters.Sigma, cut);
+  const int f = FieldCutFactor(box, piece.Whole, parameters.Sigma, cut);
   std::string message;
   const bool ok = f > 1 ? CoarsePieceForce(piece, cut, f, parameters, reduce, out, &message)
                         : FinePieceForce(piece, cut, parameters, reduce, out, &message, surface);
@@ -443,17 +431,12 @@ double PieceFieldBytes(
   const ImagePiece& piece, const VoxelBox& box, const ScaleSpaceParameters& parameters)
 {
   VoxelBox cut;
-  const int f = CutOf(piece, box, parameters.Sigma, cut);
+  const int f = FieldCutFactor(box, piece.Whole, parameters.Sigma, cut);
   if (f > 1)
   {
     // Every process holds the whole cut's coarse grid, and the block means' sums in double
     // (PieceBlockMeans).
-    double coarse = 1;
-    for (int a = 0; a < 3; ++a)
-    {
-      coarse *= (cut.End[a] - cut.Begin[a]) / f + 1;
-    }
-    return coarse * (FieldBytesPerVoxel(false) + sizeof(double));
+    return FieldGridVoxels(cut, f) * (FieldBytesPerVoxel(false) + sizeof(double));
   }
   std::string ignored;
   return static_cast<double>(FineRegion(piece, cut, parameters.Sigma, ignored).NumberOfVoxels()) *
