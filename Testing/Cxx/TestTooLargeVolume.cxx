@@ -7,9 +7,16 @@
 // would not fit. The volumes are real vtkImageData whose 8-bit voxels live in a lazily mapped
 // zero region: large enough to need about twice the machine's available memory, yet they cost
 // nothing until written.
+// Distributed (processes emulated by threads, EmulatedRanks.h), a field that fits on one
+// process but not on another fails both before either allocates it: the one names its need and
+// what is available, the other the size another process lacks, and neither waits for the other
+// (a hang would hit the ctest timeout).
+#include "CapsulePhantom.h"
 #include "DSTestHelpers.h"
+#include "PieceSlabs.h"
 
 #include "dsMemory.h"
+#include "dsMultilevel.h"
 #include "vtkDeformableSurfaceFilter.h"
 #include "vtkImageScaleSpaceGradient.h"
 
@@ -84,6 +91,71 @@ void CheckRefused(const ErrorText& errors, double rssBefore, const std::string& 
   DS_CHECK(errors.Text.find("Extract Subset") != std::string::npos, who + ": and what to do");
   DS_CHECK_LE(ResidentBytes() - rssBefore, 64.0 * 1024 * 1024,
     who + ": growth of the process while refusing (bytes)");
+}
+/// Two emulated processes, each holding its slab along z of an N x N x 2H image of 8-bit zeros
+/// (lazily mapped: each slab a view of it, no copy), with a flat box around z = 100 as the start
+/// at Sigma 8 voxels (given: no probe) and RegionWeight 0 (no range): the first field covers the
+/// box and 6 sigma around it on the image's own grid, all of it within rank 0's slab. N makes
+/// rank 0's part of it (27 bytes a voxel in bricks) about twice what is available; rank 1's slab
+/// holds none of it.
+void OneProcessShort(double available)
+{
+  constexpr int H = 260, boxSlices = 179; // the start's z from 60 to 140, 49 voxels of reach
+  const int n = static_cast<int>(std::ceil(std::sqrt(2.0 * available / (27.0 * boxSlices))));
+  dsurf::ImageGeometry g;
+  g.Dimensions[0] = g.Dimensions[1] = n;
+  g.Dimensions[2] = 2 * H;
+  const std::size_t voxels = static_cast<std::size_t>(g.NumberOfVoxels());
+  unsigned char* zeros = MapZeros(voxels);
+  DS_CHECK(zeros != nullptr, "the lazily mapped distributed volume");
+  if (!zeros)
+  {
+    return;
+  }
+  zeros[static_cast<std::size_t>(n) * n * 100 + 1] = 1;
+  std::cout << "distributed: " << n << " x " << n << " x " << 2 * H << " voxels of 8 bits"
+            << std::endl;
+  dsurf::MultilevelParameters p;
+  p.Sigma = 8.0;
+  p.RegionWeight = 0.0;
+  p.Solver.NumberOfThreads = 1;
+  const dsurf::TriangleMesh start =
+    dstest::CapsuleBox({ (n - 1) / 2.0, (n - 1) / 2.0, 100.0 }, { n / 2.0 - 60, n / 2.0 - 60, 40 });
+  dstest::EmulatedRanks emulated(2);
+  std::vector<std::string> errors(2);
+  std::vector<int> ok(2, 1);
+  const double before = ResidentBytes();
+  emulated.Run(
+    [&](int r)
+    {
+      dsurf::ImagePiece piece;
+      piece.Whole = g;
+      piece.Owned = dsurf::VoxelBox::Whole(g);
+      dstest::SplitAxis(piece.Owned, 2, r, 2);
+      piece.Held = piece.Owned;
+      const int ghost = dsurf::MultilevelSolver::DistributedGhostVoxels(p, g, 2);
+      piece.Held.Begin[2] = std::max(0, piece.Held.Begin[2] - ghost);
+      piece.Held.End[2] = std::min(g.Dimensions[2], piece.Held.End[2] + ghost);
+      piece.Image = dsurf::ImageView::Of(
+        zeros + static_cast<std::size_t>(n) * n * piece.Held.Begin[2], piece.HeldGeometry());
+      dsurf::MultilevelSolver solver;
+      solver.SetParameters(p);
+      solver.SetDistribution(piece, dstest::ReductionsOf(emulated, r));
+      dsurf::ImageView whole = piece.Image;
+      whole.Geometry = g;
+      dsurf::TriangleMesh mesh = start;
+      ok[r] = solver.Run(whole, mesh, &errors[r]);
+    });
+  std::cout << "rank 0: " << errors[0] << std::endl << "rank 1: " << errors[1] << std::endl;
+  DS_CHECK(!ok[0] && !ok[1], "distributed: both processes refuse");
+  DS_CHECK(errors[0].find("GiB of memory are available") != std::string::npos,
+    "distributed: the short process names its need and what is available");
+  DS_CHECK(errors[1].find("another process's part of the force field") != std::string::npos &&
+      errors[1].find("GiB") != std::string::npos,
+    "distributed: the other names the size another process lacks");
+  DS_CHECK_LE(ResidentBytes() - before, 64.0 * 1024 * 1024,
+    "distributed: growth of the process while refusing (bytes)");
+  munmap(zeros, voxels);
 }
 } // namespace
 
@@ -171,6 +243,7 @@ int TestTooLargeVolume(int, char*[])
     DS_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0, "an empty preview");
     munmap(previewZeros, previewVoxels);
   }
+  OneProcessShort(available);
   return dstest::Result("TestTooLargeVolume");
 }
 
