@@ -415,6 +415,37 @@ namespace
 constexpr int ContactBatchSweeps = 4;
 }
 
+namespace
+{
+/// Why the surface cannot go on: an object of a closed start whose enclosed volume fell below
+/// half a voxel or changed sign (it passed through a point and turned inside out); empty when
+/// none did. No force held it where it started: the region force pulled it in everywhere (a
+/// range that leaves out the voxels around it) or was too weak against the edges that dragged it
+/// off its object, and the internal force shrinks any surface nothing holds. Sweeps on would
+/// turn it inside out and grow it again, its normals inward (docs/METHOD.md §9.3).
+std::string CollapsedObject(
+  const TriangleMesh& mesh, const std::vector<double>& startVolumes, double voxelVolume)
+{
+  const std::vector<double> volumes = ObjectVolumes(mesh);
+  for (std::size_t o = 0; o < volumes.size() && o < startVolumes.size(); ++o)
+  {
+    const double v = volumes[o], v0 = startVolumes[o];
+    if (!(v * v0 > 0) || std::abs(v) < 0.5 * std::min(voxelVolume, std::abs(v0)))
+    {
+      const std::string which = mesh.ObjectIds.size() > o
+        ? "object " + std::to_string(mesh.ObjectIds[o]) + "'s surface"
+        : "the surface";
+      return which +
+        " collapsed (it enclosed less than half a voxel, or turned inside out): nothing held it "
+        "where it started. With a click, its intensity range may leave out the object's voxels "
+        "around it (Preview Region shows what the region force grows through), or the region "
+        "force may be too weak against the edges (raise Region Weight)";
+    }
+  }
+  return std::string();
+}
+} // namespace
+
 int MultilevelSolver::LimitSteps(const TriangleMesh& mesh, double lastStep)
 {
   // The budget follows the steps: eight times the last sweep's longest (a list made for long
@@ -468,6 +499,10 @@ struct MultilevelSolver::RunState
   bool CheckTopology = false; ///< CheckTopology, always on in Debug builds
   int EulerStart = 0;
   bool ClosedStart = false;
+  /// A closed start's enclosed volume per object (ObjectVolumes), and a voxel's: a surface that
+  /// collapses fails the run (CollapsedObject).
+  std::vector<double> StartVolumes;
+  double VoxelVolume = 0;
   bool BudgetWarned = false; ///< the MaxVertices warning is given once
   int SweepCounter = 0;
   /// Per vertex: a corner of a triangle the object lies beyond (FrontTriangles); after sigma's
@@ -638,6 +673,11 @@ bool MultilevelSolver::SolveLevel(
       }
       stall.Add(st);
     }
+    if (!stop && !state.StartVolumes.empty())
+    {
+      this->Collapse = CollapsedObject(mesh, state.StartVolumes, state.VoxelVolume);
+      stop = !this->Collapse.empty();
+    }
     // A front level has its own rest (its fastest vertex) and cap.
     if (!stop && !rec.Converged && rec.FrontRest <= 0 && rec.Level == 0 && stall.Rests(mesh, s))
     {
@@ -733,6 +773,7 @@ void MultilevelSolver::ClearResults()
   this->Bounds = ContactBounds();
   this->Crossings = 0;
   this->ProgressReached = 0.0;
+  this->Collapse.clear();
 }
 
 bool MultilevelSolver::Start(
@@ -799,6 +840,8 @@ bool MultilevelSolver::Start(
 #endif
   state.EulerStart = mesh.EulerCharacteristic();
   state.ClosedStart = mesh.IsClosed();
+  state.StartVolumes = state.ClosedStart ? ObjectVolumes(mesh) : std::vector<double>();
+  state.VoxelVolume = geometry.Spacing[0] * geometry.Spacing[1] * geometry.Spacing[2];
   state.LevelSolver.SetParameters(P.Solver);
   state.FieldParameters.EdgeWeight = P.EdgeWeight;
   state.FieldParameters.ImageWeight = P.ImageWeight;
@@ -1578,8 +1621,9 @@ bool MultilevelSolver::Run(const ImageView& image, TriangleMesh& mesh, std::stri
   std::string msg;
   RunState state;
   if (!this->Start(image, mesh, state, &msg) || !this->CheckStartsApart(mesh, &msg) ||
-    !this->RunLevels(image, mesh, state, &msg))
+    !this->RunLevels(image, mesh, state, &msg) || !(msg = this->Collapse).empty())
   {
+    this->Stop = StopReason::None;
     if (error)
     {
       *error = msg;

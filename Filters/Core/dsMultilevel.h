@@ -362,8 +362,9 @@ public:
 
   /// Deform `mesh` (any closed or open manifold triangle mesh, Points/Triangles set)
   /// toward the boundaries of the volume `image` (read in place, in its own type).
-  /// Returns false with a message on bad input or a broken invariant; the mesh is then
-  /// left as it was at the last valid state.
+  /// Returns false with a message on bad input, a broken invariant or a surface that collapsed
+  /// (docs/METHOD.md §9.3); the mesh is then left as it was at the last valid state (a
+  /// collapsed one as it collapsed).
   bool Run(const ImageView& image, TriangleMesh& mesh, std::string* error);
   /// The same for a float volume, one value per voxel of `geometry`, x fastest.
   bool Run(
@@ -573,7 +574,8 @@ private:
   int LimitSteps(const TriangleMesh& mesh, double lastStep);
   /// False (with a message) when the start surfaces of different objects cross.
   bool CheckStartsApart(const TriangleMesh& mesh, std::string* error);
-  double Voxel = 0; ///< the image's mean spacing (the contact's clearance and budget)
+  double Voxel = 0;     ///< the image's mean spacing (the contact's clearance and budget)
+  std::string Collapse; ///< why an object's surface collapsed (the run then fails); empty: none
 };
 } // namespace dsurf
 

@@ -72,4 +72,18 @@ bool AssignObjects(TriangleMesh& mesh, const std::vector<long long>& triangleLab
   std::replace(mesh.Objects.begin(), mesh.Objects.end(), -1, 0); // points of no triangle
   return true;
 }
+std::vector<double> ObjectVolumes(const TriangleMesh& mesh)
+{
+  std::vector<double> volumes(static_cast<std::size_t>(mesh.NumberOfObjects()), 0.0);
+  for (const auto& t : mesh.Triangles)
+  {
+    const std::size_t o = mesh.Objects.empty() ? 0 : static_cast<std::size_t>(mesh.Objects[t[0]]);
+    volumes[o] += Dot(mesh.Points[t[0]], Cross(mesh.Points[t[1]], mesh.Points[t[2]]));
+  }
+  for (double& v : volumes)
+  {
+    v /= 6.0;
+  }
+  return volumes;
+}
 } // namespace dsurf

@@ -15,6 +15,10 @@ namespace dsurf
 /// its points renumbered in their order, topology built. Empty when the object has none.
 DEFORMABLESURFACEFILTERS_EXPORT TriangleMesh ObjectSurface(const TriangleMesh& mesh, int object);
 
+/// The signed volume each object of `mesh` encloses (mesh.Objects per point; one object without
+/// them), as TriangleMesh::SignedVolume sums it: positive for outward normals.
+DEFORMABLESURFACEFILTERS_EXPORT std::vector<double> ObjectVolumes(const TriangleMesh& mesh);
+
 /// The most objects one run solves: each is extracted, probed for its sigma_0 and its range
 /// and contoured on its own, so the work grows with objects x triangles.
 constexpr int MaxObjects = 256;

@@ -11,6 +11,8 @@
 //   background);
 // - an IntensityRange that matches nothing: a warning, the force off, finite coordinates and
 //   the surface where the edge force alone puts it;
+// - a click whose IntensityRange leaves out its object (RegionWeight 1): its surface collapses,
+//   which fails the run with an error that says so and an empty output;
 // - sigma_0: the paper's extent / 6 for a box spanning the image, about the start's distance
 //   to the boundary for a sphere 3 voxels outside it.
 #include "DSSurfaceInvariants.h"
@@ -173,6 +175,7 @@ int TestRegionForce(int, char*[])
     DS_CHECK_LE(r.Max, 1.0, "click grown to the ball: max |d| (voxels)");
     DS_CHECK(r.RangeReported, "the estimated range is in the field data");
     DS_CHECK(r.SelfIntersections == 0, "click grown: no self-intersections");
+    DS_CHECK(r.Warnings == 0, "click grown: no warning");
   }
 
   std::cout << "one click inside a ridged ball (RegionWeight 1), grown to it:" << std::endl;
@@ -227,6 +230,30 @@ int TestRegionForce(int, char*[])
     DS_CHECK(!r.RangeReported, "range matching nothing: the force is off");
     DS_CHECK_LE(std::abs(r.Mean - off.Mean), 1e-9,
       "range matching nothing: same surface as without the force");
+  }
+
+  std::cout << "a click whose range leaves out its object: a collapse, refused:" << std::endl;
+  {
+    // The range takes the background (0) but not the ball (100): the region force pulls the
+    // click's sphere in everywhere, nothing holds it, and sweeps on would turn it inside out and
+    // grow it onto the ball with its normals inward (MultilevelSolver's CollapsedObject).
+    vtkNew<vtkSphereSource> click;
+    click->SetCenter(C + 2, C - 1, C + 1);
+    click->SetRadius(3.0);
+    vtkNew<vtkDeformableSurfaceFilter> filter;
+    vtkNew<dstest::MessageCounter> messages;
+    filter->AddObserver(vtkCommand::ErrorEvent, messages);
+    filter->AddObserver(vtkCommand::WarningEvent, messages);
+    filter->SetInputData(0, ball);
+    filter->SetInitialSurfaceConnection(click->GetOutputPort());
+    filter->SetRegionWeight(1.0);
+    filter->SetIntensityRange(-10.0, 10.0);
+    filter->Update();
+    DS_CHECK(messages->Errors == 1 && messages->Warnings == 0 &&
+        messages->ErrorText.find("collapsed") != std::string::npos &&
+        messages->ErrorText.find("Preview Region") != std::string::npos,
+      "a collapse: one error that says so and what to check");
+    DS_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0, "a collapse: an empty surface");
   }
 
   std::cout << "sigma_0 from the start:" << std::endl;
