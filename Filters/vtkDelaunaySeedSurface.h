@@ -15,7 +15,8 @@
  * - Alpha > 0 and its circumsphere radius exceeds Alpha (computed here on the full
  *   tetrahedrisation, so IDs stay stable when Alpha changes);
  * - UseIntensityRange is on, an image is connected to port 1, and the image value at the
- *   tetrahedron's centroid (trilinear, first component of the active scalars) lies outside
+ *   tetrahedron's centroid (trilinear; the active scalars, or the only point array, of one
+ *   component: otherwise the rule is skipped with a warning) lies outside
  *   IntensityRange, or the centroid lies outside the image. A seed of a dark cavity or a
  *   bright bone thus follows the object.
  *
