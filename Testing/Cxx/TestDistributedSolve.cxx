@@ -29,7 +29,8 @@
 //   sigma_0 probe along an axis 3.7 times finer than the mean spacing.
 // - Bad input: an empty piece on one rank fails every rank with a message (no rank waits in a
 //   reduction: a hang would hit the ctest timeout); one rank's progress callback asking to stop
-//   stops every rank after the same sweep, with the same surface.
+//   stops every rank after the same sweep, with the same surface; a click whose range leaves
+//   out the capsule collapses, and every rank fails with the serial message.
 #include "CapsulePhantom.h"
 #include "DSTestHelpers.h"
 #include "DistributedSolveCheck.h"
@@ -194,6 +195,34 @@ void BadInput(const TriangleMesh& box)
             << std::endl;
   DS_CHECK(failed == 3 && said == 3, "an empty piece on one rank fails every rank, saying why");
 }
+/// A click in the capsule whose range takes the background but not the capsule (RegionWeight 1):
+/// the surface collapses (MultilevelSolver's CollapsedObject), on the slabs' border. Every rank
+/// fails after the same batch with the serial message, none left waiting in a reduction.
+void Collapse()
+{
+  const ImageGeometry g = dstest::CapsuleGeometry();
+  const std::vector<float> image = dstest::CapsuleImage();
+  MultilevelParameters p;
+  p.Solver.NumberOfThreads = 1;
+  p.RegionWeight = 1.0;
+  p.IntensityRange[0] = -10.0;
+  p.IntensityRange[1] = 10.0;
+  const TriangleMesh click = dstest::MakeIcosphere(2, 3.0, { 15.5, 15.5, 119.5 });
+  MultilevelSolver serial;
+  serial.SetParameters(p);
+  TriangleMesh mesh = click;
+  std::string serialError;
+  const bool serialOk = serial.Run(image.data(), g, mesh, &serialError);
+  std::cout << "a collapse: " << serialError << std::endl;
+  DS_CHECK(!serialOk && serialError.find("collapsed") != std::string::npos,
+    "a collapse: the serial run fails, saying so");
+  std::vector<Outcome> ranks;
+  RankRuns(g, image, p, click, 2, -1, ranks);
+  DS_CHECK(
+    !ranks[0].Ok && !ranks[1].Ok && ranks[0].Error == serialError && ranks[1].Error == serialError,
+    "a collapse: every rank fails with the serial message");
+}
+
 /// Rank 1's progress callback asks to stop at its second call: every rank stops after the same
 /// sweep, with the same surface, none left waiting.
 void AgreedAbort(const TriangleMesh& near)
@@ -265,6 +294,7 @@ int TestDistributedSolve(int, char*[])
   GhostLayers(defaults);
   BadInput(around);
   AgreedAbort(near);
+  Collapse();
   return dstest::Result("TestDistributedSolve");
 }
 
