@@ -92,16 +92,18 @@ void CheckRefused(const ErrorText& errors, double rssBefore, const std::string& 
   DS_CHECK_LE(ResidentBytes() - rssBefore, 64.0 * 1024 * 1024,
     who + ": growth of the process while refusing (bytes)");
 }
-/// Two emulated processes, each holding its slab along z of an N x N x 2H image of 8-bit zeros
-/// (lazily mapped: each slab a view of it, no copy), with a flat box around z = 100 as the start
-/// at Sigma 8 voxels (given: no probe) and RegionWeight 0 (no range): the first field covers the
-/// box and 6 sigma around it on the image's own grid, all of it within rank 0's slab. N makes
-/// rank 0's part of it (27 bytes a voxel in bricks) about twice what is available; rank 1's slab
-/// holds none of it.
+/// Two emulated processes, each holding its slab along z of an n x n x 2H image of 8-bit zeros
+/// (lazily mapped: each slab a view of it, no copy), with a cube in the middle of rank 0's slab
+/// as the start at Sigma 8 voxels (given: no probe) and RegionWeight 0 (no range): the first
+/// field covers the cube and 6 sigma (49 voxels) around it on the image's own grid, within rank
+/// 0's slab. The cube's side makes that part (27 bytes a voxel in bricks) about twice what is
+/// available; rank 1's slab holds none of it. A cube, not a flat box: its start mesh is small
+/// (a flat box 3 000 voxels wide split to edges of 4 sigma held 120 000 triangles, which a
+/// sanitizer's quarantine kept resident).
 void OneProcessShort(double available)
 {
-  constexpr int H = 260, boxSlices = 179; // the start's z from 60 to 140, 49 voxels of reach
-  const int n = static_cast<int>(std::ceil(std::sqrt(2.0 * available / (27.0 * boxSlices))));
+  const int side = static_cast<int>(std::ceil(std::cbrt(2.0 * available / 27.0))) - 98;
+  const int n = side + 100, H = side + 140;
   dsurf::ImageGeometry g;
   g.Dimensions[0] = g.Dimensions[1] = n;
   g.Dimensions[2] = 2 * H;
@@ -112,15 +114,15 @@ void OneProcessShort(double available)
   {
     return;
   }
-  zeros[static_cast<std::size_t>(n) * n * 100 + 1] = 1;
+  zeros[static_cast<std::size_t>(n) * n * (H / 2) + 1] = 1;
   std::cout << "distributed: " << n << " x " << n << " x " << 2 * H << " voxels of 8 bits"
             << std::endl;
   dsurf::MultilevelParameters p;
   p.Sigma = 8.0;
   p.RegionWeight = 0.0;
   p.Solver.NumberOfThreads = 1;
-  const dsurf::TriangleMesh start =
-    dstest::CapsuleBox({ (n - 1) / 2.0, (n - 1) / 2.0, 100.0 }, { n / 2.0 - 60, n / 2.0 - 60, 40 });
+  const dsurf::TriangleMesh start = dstest::CapsuleBox(
+    { (n - 1) / 2.0, (n - 1) / 2.0, H / 2.0 }, { side / 2.0, side / 2.0, side / 2.0 });
   dstest::EmulatedRanks emulated(2);
   std::vector<std::string> errors(2);
   std::vector<int> ok(2, 1);
