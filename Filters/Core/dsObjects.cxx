@@ -72,6 +72,7 @@ bool AssignObjects(TriangleMesh& mesh, const std::vector<long long>& triangleLab
   std::replace(mesh.Objects.begin(), mesh.Objects.end(), -1, 0); // points of no triangle
   return true;
 }
+
 std::vector<double> ObjectVolumes(const TriangleMesh& mesh)
 {
   std::vector<double> volumes(static_cast<std::size_t>(mesh.NumberOfObjects()), 0.0);

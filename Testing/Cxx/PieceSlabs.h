@@ -34,11 +34,10 @@ inline dsurf::ImageGeometry AnisotropicGeometry(int nx, int ny, int nz)
 }
 
 /// The piece owning `owned` (whole-image indices) with ghost(a) ghost layers along axis a,
-/// holding a copy of its voxels; an empty piece (nothing owned or held) when `empty`.
-template <typename T>
-dsurf::ImagePiece PieceOf(const dsurf::ImageGeometry& g, const std::vector<T>& image,
-  const dsurf::VoxelBox& owned, const std::function<int(int)>& ghost, std::vector<T>& held,
-  bool empty = false)
+/// clipped to the image; its Image is left unset. An empty piece (nothing owned or held) when
+/// `empty`.
+inline dsurf::ImagePiece PieceBoxes(const dsurf::ImageGeometry& g, const dsurf::VoxelBox& owned,
+  const std::function<int(int)>& ghost, bool empty = false)
 {
   dsurf::ImagePiece piece;
   piece.Whole = g;
@@ -53,6 +52,17 @@ dsurf::ImagePiece PieceOf(const dsurf::ImageGeometry& g, const std::vector<T>& i
     piece.Held.Begin[a] = std::max(0, piece.Held.Begin[a] - ghost(a));
     piece.Held.End[a] = std::min(g.Dimensions[a], piece.Held.End[a] + ghost(a));
   }
+  return piece;
+}
+
+/// The piece owning `owned` (whole-image indices) with ghost(a) ghost layers along axis a,
+/// holding a copy of its voxels; an empty piece (nothing owned or held) when `empty`.
+template <typename T>
+dsurf::ImagePiece PieceOf(const dsurf::ImageGeometry& g, const std::vector<T>& image,
+  const dsurf::VoxelBox& owned, const std::function<int(int)>& ghost, std::vector<T>& held,
+  bool empty = false)
+{
+  dsurf::ImagePiece piece = PieceBoxes(g, owned, ghost, empty);
   held.clear();
   const int nx = g.Dimensions[0], ny = g.Dimensions[1];
   for (int k = piece.Held.Begin[2]; k < piece.Held.End[2]; ++k)
@@ -83,6 +93,21 @@ dsurf::ImagePiece Slab(const dsurf::ImageGeometry& g, const std::vector<T>& imag
   dsurf::VoxelBox owned = dsurf::VoxelBox::Whole(g);
   SplitAxis(owned, 2, r, ranks);
   return PieceOf(g, image, owned, ghost, held, empty);
+}
+
+/// Rank r's slab of `ranks` along z with ghost(a) ghost layers along axis a, a view of the
+/// whole image's `values` (x fastest; no copy): a slab's held voxels are one run of them.
+template <typename T>
+dsurf::ImagePiece SlabView(const dsurf::ImageGeometry& g, const T* values, int r, int ranks,
+  const std::function<int(int)>& ghost)
+{
+  dsurf::VoxelBox owned = dsurf::VoxelBox::Whole(g);
+  SplitAxis(owned, 2, r, ranks);
+  dsurf::ImagePiece piece = PieceBoxes(g, owned, ghost);
+  piece.Image = dsurf::ImageView::Of(
+    values + static_cast<std::size_t>(g.Dimensions[0]) * g.Dimensions[1] * piece.Held.Begin[2],
+    piece.HeldGeometry());
+  return piece;
 }
 
 /// Rank r's reductions among `ranks`.

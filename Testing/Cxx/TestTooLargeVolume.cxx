@@ -130,16 +130,8 @@ void OneProcessShort(double available)
   emulated.Run(
     [&](int r)
     {
-      dsurf::ImagePiece piece;
-      piece.Whole = g;
-      piece.Owned = dsurf::VoxelBox::Whole(g);
-      dstest::SplitAxis(piece.Owned, 2, r, 2);
-      piece.Held = piece.Owned;
-      const int ghost = dsurf::MultilevelSolver::DistributedGhostVoxels(p, g, 2);
-      piece.Held.Begin[2] = std::max(0, piece.Held.Begin[2] - ghost);
-      piece.Held.End[2] = std::min(g.Dimensions[2], piece.Held.End[2] + ghost);
-      piece.Image = dsurf::ImageView::Of(
-        zeros + static_cast<std::size_t>(n) * n * piece.Held.Begin[2], piece.HeldGeometry());
+      const dsurf::ImagePiece piece = dstest::SlabView(g, static_cast<const unsigned char*>(zeros),
+        r, 2, [&](int a) { return dsurf::MultilevelSolver::DistributedGhostVoxels(p, g, a); });
       dsurf::MultilevelSolver solver;
       solver.SetParameters(p);
       solver.SetDistribution(piece, dstest::ReductionsOf(emulated, r));
@@ -155,6 +147,13 @@ void OneProcessShort(double available)
   DS_CHECK(errors[1].find("another process's part of the force field") != std::string::npos &&
       errors[1].find("GiB") != std::string::npos,
     "distributed: the other names the size another process lacks");
+  const auto need = [](const std::string& e)
+  {
+    const std::size_t at = e.find("needs about ");
+    return at == std::string::npos ? std::string() : e.substr(at, e.find("GiB", at) - at);
+  };
+  DS_CHECK(!need(errors[0]).empty() && need(errors[0]) == need(errors[1]),
+    "distributed: both name the same need (" + need(errors[0]) + "GiB)");
   DS_CHECK_LE(ResidentBytes() - before, 64.0 * 1024 * 1024,
     "distributed: growth of the process while refusing (bytes)");
   munmap(zeros, voxels);
