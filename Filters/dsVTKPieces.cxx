@@ -127,13 +127,9 @@ bool ReadImagePiece(const PieceReductions& reduce, int rank, int ranks, vtkImage
   }
   else
   {
-    // As a whole image's solve (SolveBytesPerVoxel), over this process's piece.
-    long long wholeVoxels = 1;
-    for (int a = 0; a < 3; ++a)
-    {
-      wholeVoxels *= wholeExtent[2 * a + 1] - wholeExtent[2 * a] + 1;
-    }
-    GetImageVolume(image, array, SolveBytesPerVoxel(wholeVoxels), volume, problem);
+    // Only the piece's values (a float copy if one is needed): a solve's fields are checked as
+    // they are made (docs/METHOD.md §9.6).
+    GetImageVolume(image, array, 0.0, volume, problem);
   }
   if (reduce.Max(problem.empty() ? 0.0 : 1.0) > 0.0)
   {

@@ -692,11 +692,8 @@ bool vtkDeformableSurfaceFilter::ReadImage(
   vtkImageData* image, vtkDataArray* array, dsurf::ImageVolume& volume)
 {
   std::string error;
-  // The preview's labels, or a solve's first field when it may cover the whole image; a larger
-  // image's fields are checked as they are made (docs/METHOD.md §9.6).
-  const double workBytesPerVoxel = this->Preview->PreviewRegion
-    ? dsurf::PreviewBytesPerVoxel
-    : dsurf::SolveBytesPerVoxel(static_cast<long long>(image->GetNumberOfPoints()));
+  // The preview's labels; a solve's fields are checked as they are made (docs/METHOD.md §9.6).
+  const double workBytesPerVoxel = this->Preview->PreviewRegion ? dsurf::PreviewBytesPerVoxel : 0.0;
   if (!dsurf::GetImageVolume(image, array, workBytesPerVoxel, volume, error))
   {
     vtkErrorMacro(<< error << ".");

@@ -166,9 +166,9 @@ double RemainingSigma(double sigma, const ImageGeometry& geometry, int f)
 
 VoxelBox FieldCut(const VoxelBox& box, const ImageGeometry& whole, double sigma)
 {
-  const long long voxels = whole.NumberOfVoxels();
-  const bool large = voxels > WholeFieldVoxels && DecimationFactor(sigma, whole) <= 1;
-  return 2 * box.NumberOfVoxels() <= voxels || large ? box : VoxelBox::Whole(whole);
+  const bool ownGrid = DecimationFactor(sigma, whole) <= 1;
+  return ownGrid || 2 * box.NumberOfVoxels() <= whole.NumberOfVoxels() ? box
+                                                                       : VoxelBox::Whole(whole);
 }
 
 double FieldReach(EdgeNormalization normalization, double sigma)
@@ -259,11 +259,6 @@ double FieldBytes(
   const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
   return FieldGridVoxels(cut, f) *
     FieldBytesPerVoxel(f <= 1 && FieldInBricks(box, whole, parameters));
-}
-
-double SolveBytesPerVoxel(long long voxels)
-{
-  return voxels <= WholeFieldVoxels ? ForceFieldBytesPerVoxel : 0.0;
 }
 
 bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& parameters,

@@ -8,9 +8,8 @@
 //   to grids of 19^3-171^3);
 // - after the first level, only the surface's neighbourhood: the surface then lies near its
 //   object and moves a few sigma at most, so the field covers its bounding box grown by
-//   NeighbourhoodSigmas sigma (the reach and the Gaussian's support) and no more; on a large
-//   image the first level's too, made again as the surface travels (WholeFieldVoxels,
-//   FieldGrowthShare).
+//   NeighbourhoodSigmas sigma (the reach and the Gaussian's support) and no more; on the image's
+//   own grid the first level's too, made again as the surface travels (FieldGrowthShare).
 // Plain C++.
 #ifndef dsFieldGrid_h
 #define dsFieldGrid_h
@@ -72,20 +71,12 @@ constexpr double NeighbourhoodSigmasLocal = 10.0;
 /// sigma: how far a level's field reaches past the surface.
 DEFORMABLESURFACEFILTERS_EXPORT double FieldReach(EdgeNormalization normalization, double sigma);
 
-/// A first level on the image's own grid covers the whole image when it holds at most this many
-/// voxels (its G_sigma * f, a float per voxel: 64 MiB), and a box that follows the surface on a
-/// larger image. The whole image's field is small next to the rest of such a solve, and its
-/// strongest edge normalises the first level of every start measured in docs/RESULTS.md; the
-/// strongest edge of the surface's box instead moved the spine phantom's click from 7.6 to 8.5 %
-/// outside its vertebra.
-constexpr long long WholeFieldVoxels = 1LL << 24;
-
-/// A first level on the image's own grid of an image above WholeFieldVoxels, whose surface may
-/// travel far (a click grown by the region force), covers the surface's neighbourhood and, each
-/// time the surface nears its side, a new box grown by this share of the surface's largest extent
-/// on every side: a surface growing on all sides from a click r voxels wide to an object R wide is
-/// boxed again about log(R / r) / log(1.5) times (growing on one side, log(R / r) / log(1.25)), and
-/// the boxes' voxels sum to a small multiple of the last box's (MultilevelSolver::FollowSurface).
+/// A first level on the image's own grid, whose surface may travel far (a click grown by the region
+/// force), covers the surface's neighbourhood and, each time the surface nears its side, a new box
+/// grown by this share of the surface's largest extent on every side: a surface growing on all
+/// sides from a click r voxels wide to an object R wide is boxed again about log(R / r) / log(1.5)
+/// times (growing on one side, log(R / r) / log(1.25)), and the boxes' voxels sum to a small
+/// multiple of the last box's (MultilevelSolver::FollowSurface).
 constexpr double FieldGrowthShare = 0.25;
 
 /// The voxels within `reach` (world units, plus one voxel) of the mesh's bounding box in
@@ -94,9 +85,9 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
   const TriangleMesh& mesh, const ImageGeometry& geometry, double reach);
 
 /// The part of an image of geometry `whole` a field at `sigma` over `box` is computed on: the
-/// whole image when the box holds more than half of it (one field of the whole image at most),
-/// except on the image's own grid of an image above WholeFieldVoxels, where it is the box (a
-/// view: no copy), so that no float field of a large image is made whole.
+/// box (a view: no copy) on the image's own grid, so that no float field of the image is made
+/// whole; on a coarse grid, the whole image when the box holds more than half of it (one small
+/// field of the whole image at most).
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
   const VoxelBox& box, const ImageGeometry& whole, double sigma);
 
@@ -128,13 +119,6 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldBytesPerVoxel(bool bricked);
 /// MultilevelSolver::MakeField checks it before it makes the field (docs/METHOD.md §9.6).
 DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
-
-/// The bytes per voxel of the input a solve is checked for before anything is allocated: the
-/// first level's field over the whole image (ForceFieldBytesPerVoxel) when the image holds at
-/// most WholeFieldVoxels, where that field may be made on the image's own grid; none for a
-/// larger image, whose fields cover a box around the surface or a coarse grid, each checked as
-/// it is made (FieldBytes), so that a 1024^3 CT is not refused for 16 GiB it never needs.
-DEFORMABLESURFACEFILTERS_EXPORT double SolveBytesPerVoxel(long long voxels);
 
 /// The field at parameters.Sigma over all of `part` (a view of the image's values, placed in the
 /// image: the cut of ComputeForceAtScale, or a piece's region) but kept only in the bricks within

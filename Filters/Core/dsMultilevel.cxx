@@ -887,8 +887,8 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   state.FieldBox = box;
   std::string msg;
   // Checked before it is made, the last field released first (docs/METHOD.md §9.6): the check
-  // before the solve counts no field of an image above WholeFieldVoxels (SolveBytesPerVoxel).
-  // Distributed, each process checks what it would hold, and all agree.
+  // before the solve counts no field. Distributed, each process checks what it would hold, and
+  // all agree.
   state.Field = ForceField();
   const double need = this->Distributed ? PieceFieldBytes(this->Piece, box, state.FieldParameters)
                                         : FieldBytes(box, image.Geometry, state.FieldParameters);
@@ -983,11 +983,9 @@ bool MultilevelSolver::SetUpLevel(
   // Force field at this level's sigma over the surface's neighbourhood (dsFieldGrid.h), rebuilt
   // when sigma changed or the surface needs more than it covers. The first level, whose surface
   // may travel far (grown by the region force), covers the whole image on a coarse grid (block
-  // means: a small field) and on the image's own grid up to WholeFieldVoxels; beyond, its box
-  // follows the surface (FollowSurface): no float field of a large image is made whole
-  // (docs/METHOD.md §9.7).
-  state.FieldFollows = rec.Level == 0 && DecimationFactor(sigma, geometry) <= 1 &&
-    geometry.NumberOfVoxels() > WholeFieldVoxels;
+  // means: a small field); on the image's own grid its box follows the surface (FollowSurface):
+  // no float field of the image is made whole (docs/METHOD.md §9.7).
+  state.FieldFollows = rec.Level == 0 && DecimationFactor(sigma, geometry) <= 1;
   const VoxelBox box = rec.Level == 0 && !state.FieldFollows
     ? VoxelBox::Whole(geometry)
     : SurfaceNeighbourhood(mesh, geometry, FieldReach(P.EdgeNormalization, sigma));

@@ -542,9 +542,8 @@ private:
   /// A field in bricks (dsFieldBricks.h) gets the bricks the surface comes within reach of
   /// before each batch, and a batch ends early once its vertices may have moved half that reach
   /// (the sum of its sweeps' largest corrections).
-  /// A first level on the image's own grid of an image above WholeFieldVoxels also makes its field
-  /// again over a larger box when the surface nears its box's side (FollowSurface), and its
-  /// batches end as with bricks.
+  /// A first level on the image's own grid also makes its field again over a larger box when the
+  /// surface nears its box's side (FollowSurface), and its batches end as with bricks.
   bool SolveLevel(const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The field at state.FieldParameters over `box` (in bricks around `mesh` when FieldInBricks;
   /// distributed, this piece's part) into state.Field. Collective when distributed: false on

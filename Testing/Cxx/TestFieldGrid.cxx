@@ -233,17 +233,17 @@ void CheckFields()
   const VoxelBox all = SurfaceNeighbourhood(surface, g, 12.0);
   DS_CHECK(all.NumberOfVoxels() == g.NumberOfVoxels(), "a surface around the image: all of it");
 }
-/// FieldCut: a box of more than half the image is widened to the whole image (one field of the
-/// whole image at most), except on the image's own grid of an image above WholeFieldVoxels,
-/// where no float field is made whole; a smaller box is kept. FieldInBricks: on the image's own
-/// grid, not with the local edge normalisation nor on a coarse grid.
+/// FieldCut: on the image's own grid the box, whatever its size and the image's (no float field
+/// of the image is made whole); on a coarse grid a box of more than half the image is widened to
+/// the whole image (one small field of it at most), a smaller box kept. FieldInBricks: on the
+/// image's own grid, not with the local edge normalisation nor on a coarse grid.
 void CheckCutAndBricks()
 {
   ImageGeometry small, large;
   for (int a = 0; a < 3; ++a)
   {
     small.Dimensions[a] = 100;
-    large.Dimensions[a] = 300; // 27 million voxels, above WholeFieldVoxels
+    large.Dimensions[a] = 300;
   }
   const auto centred = [](const ImageGeometry& g, int side)
   {
@@ -257,9 +257,10 @@ void CheckCutAndBricks()
   };
   const VoxelBox smallHalf = centred(small, 90), largeHalf = centred(large, 270),
                  largeSmall = centred(large, 100);
-  DS_CHECK(large.NumberOfVoxels() > WholeFieldVoxels, "the large image is above the threshold");
-  DS_CHECK(FieldCut(smallHalf, small, 2.0).NumberOfVoxels() == small.NumberOfVoxels(),
-    "FieldCut: a small image's box of more than half of it: the whole image");
+  DS_CHECK(FieldCut(smallHalf, small, 2.0).NumberOfVoxels() == smallHalf.NumberOfVoxels(),
+    "FieldCut: a small image's box of more than half of it, on its own grid: the box");
+  DS_CHECK(FieldCut(smallHalf, small, 30.0).NumberOfVoxels() == small.NumberOfVoxels(),
+    "FieldCut: the same box on a coarse grid (sigma 30 voxels): the whole image");
   DS_CHECK(FieldCut(largeHalf, large, 2.0).NumberOfVoxels() == largeHalf.NumberOfVoxels(),
     "FieldCut: a large image's box of more than half of it, on its own grid: the box");
   DS_CHECK(FieldCut(largeHalf, large, 30.0).NumberOfVoxels() == large.NumberOfVoxels(),
@@ -277,8 +278,7 @@ void CheckCutAndBricks()
 }
 /// The bytes a field holds (the potential and force, its bricks and smoothed box) stay within
 /// FieldBytes, which the solve checks before making it: on a coarse grid, on the image's own
-/// grid whole, and in bricks around a sphere; and the solve's check before it starts counts a
-/// whole field only on an image of at most WholeFieldVoxels (SolveBytesPerVoxel).
+/// grid whole, and in bricks around a sphere.
 void CheckFieldBytes()
 {
   ImageGeometry g;
@@ -311,12 +311,6 @@ void CheckFieldBytes()
       DS_CHECK_GE(held(field), 0.4 * bound, "FieldBytes not far above the field's bytes");
     }
   }
-  ImageGeometry large;
-  large.Dimensions[0] = large.Dimensions[1] = large.Dimensions[2] = 300;
-  DS_CHECK(SolveBytesPerVoxel(g.NumberOfVoxels()) == ForceFieldBytesPerVoxel,
-    "a small image: its whole first field counted before the solve");
-  DS_CHECK(SolveBytesPerVoxel(large.NumberOfVoxels()) == 0.0,
-    "an image above WholeFieldVoxels: its fields checked as they are made");
 }
 } // namespace
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The first level's force field follows the surface on an image above WholeFieldVoxels
+// The first level's force field on the image's own grid follows the surface
 // (MultilevelSolver::FollowSurface, docs/METHOD.md §9.7): a click near one end of a capsule
 // (CapsulePhantom.h) padded into a 272 x 272 x 240 image (17.8 million voxels), Sigma 4 voxels,
 // RegionWeight 1, every other default. The first level is on the image's own grid and the
@@ -24,8 +24,8 @@ namespace
 /// How far WideCapsule moves the capsule along x and y (its axis at 128.5).
 constexpr int WideCapsuleShift = 113;
 
-/// The capsule padded with noisy background into a 272 x 272 x 240 image (17.8 million voxels,
-/// above WholeFieldVoxels), moved by WideCapsuleShift along x and y.
+/// The capsule padded with noisy background into a 272 x 272 x 240 image (17.8 million voxels),
+/// moved by WideCapsuleShift along x and y.
 Phantom WideCapsule()
 {
   Phantom phantom;
@@ -49,7 +49,7 @@ Phantom WideCapsule()
   return phantom;
 }
 
-/// A click near one end of the capsule in an image above WholeFieldVoxels (Sigma 4 voxels,
+/// A click near one end of the capsule in a large image (Sigma 4 voxels,
 /// RegionWeight 1, every other default): the first level is on the image's own grid, and the
 /// surface grows along the capsule far beyond its first box (from the click, sigma_0 would be
 /// 17 voxels, the capsule's length showing in its rays: block means).

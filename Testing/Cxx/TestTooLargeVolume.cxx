@@ -2,15 +2,14 @@
 // A volume too large for the memory left is refused before anything is allocated: a clear
 // error naming the need and what is available, an empty output, and no growth of the process
 // (never an out-of-memory kill part-way; docs/METHOD.md §9.6). The Scale-Space Gradient and the
-// region preview are refused before they start (their output is the whole image); a solve of
-// an image above 2^24 voxels when the force field of its first level, a box around the start,
-// would not fit. The volumes are real vtkImageData whose 8-bit voxels live in a lazily mapped
-// zero region: large enough to need about twice the machine's available memory, yet they cost
-// nothing until written.
-// Distributed (processes emulated by threads, EmulatedRanks.h), a field that fits on one
-// process but not on another fails both before either allocates it: the one names its need and
-// what is available, the other the size another process lacks, and neither waits for the other
-// (a hang would hit the ctest timeout).
+// region preview are refused before they start (their output is the whole image); a solve
+// when the force field of its first level, a box around the start, would not fit. The volumes are
+// real vtkImageData whose 8-bit voxels live in a lazily mapped zero region: large enough to need
+// about twice the machine's available memory, yet they cost nothing until written. Distributed
+// (processes emulated by threads, EmulatedRanks.h), a field that fits on one process but not on
+// another fails both before either allocates it: the one names its need and what is available, the
+// other the size another process lacks, and neither waits for the other (a hang would hit the ctest
+// timeout).
 #include "CapsulePhantom.h"
 #include "DSTestHelpers.h"
 #include "PieceSlabs.h"
