@@ -197,8 +197,8 @@ void FieldBricks::DropUnreachedOverBudget(const std::vector<char>& needed, std::
 {
   // A surface that travels far in a level (a seed the region force grows across the box) would
   // leave a trail of bricks behind it, and bricks hold their shared layers twice (9^3 values a
-  // brick of 8^3 voxels): more than the whole field, which the memory check counts on
-  // (ForceFieldBytesPerVoxel). Past that, the bricks no vertex can reach are dropped; a brick
+  // brick of 8^3 voxels): more than the box's field, which the memory check counts on
+  // (FieldBytesPerVoxel). Past that, the bricks no vertex can reach are dropped; a brick
   // computed again holds the same values, so nothing but time depends on it.
   const double brickVoxels = std::pow(BrickSize + 1.0, 3);
   const double live = static_cast<double>(this->Potential.size() - this->FreeSlots.size());

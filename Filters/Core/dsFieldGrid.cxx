@@ -289,9 +289,9 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
   const TriangleMesh* surface)
 {
-  // The last level's field is released first, and a box of more than half the image is mostly
-  // not cut out (FieldCut): the solve then never holds more than one field of the whole image
-  // (docs/METHOD.md §9.6).
+  // The last level's field is released first (docs/METHOD.md §9.6), and on the image's own grid
+  // the field covers its box only (FieldCut): the whole image only when the surface's
+  // neighbourhood spans it.
   out = ForceField();
   // Checked on the image itself, so that a sigma too large is named as the user gave it.
   const std::string problem =

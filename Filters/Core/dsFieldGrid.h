@@ -85,8 +85,9 @@ DEFORMABLESURFACEFILTERS_EXPORT VoxelBox SurfaceNeighbourhood(
   const TriangleMesh& mesh, const ImageGeometry& geometry, double reach);
 
 /// The part of an image of geometry `whole` a field at `sigma` over `box` is computed on: the
-/// box (a view: no copy) on the image's own grid, so that no float field of the image is made
-/// whole; on a coarse grid, the whole image when the box holds more than half of it (one small
+/// box (a view: no copy) on the image's own grid, whatever its share of the image, so that a field
+/// there covers the surface's neighbourhood and no more (the whole image only when that spans
+/// it); on a coarse grid, the whole image when the box holds more than half of it (one small
 /// field of the whole image at most).
 DEFORMABLESURFACEFILTERS_EXPORT VoxelBox FieldCut(
   const VoxelBox& box, const ImageGeometry& whole, double sigma);

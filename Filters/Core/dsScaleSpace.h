@@ -40,8 +40,9 @@ namespace dsurf
 /// How the edge strength g = |grad(G_sigma * f)| is made unit-free before it enters P.
 enum class EdgeNormalization
 {
-  /// g / max g: the strongest edge of the volume sets the scale for all (skin/air in a
-  /// head mutes the brain's own boundary).
+  /// g / max g: the strongest edge of the field's part of the volume (all of it, or the box
+  /// around the surface) sets the scale for all (skin/air in a head mutes the brain's own
+  /// boundary).
   GlobalMaximum = 0,
   /// g / (G_2sigma * g + LocalEdgeFloor * max g): each edge against the edge strength around
   /// it, so a weak boundary far (> ~2 sigma) from a strong one is as strong as the strong one;

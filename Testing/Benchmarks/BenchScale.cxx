@@ -52,7 +52,7 @@ int main(int argc, char* argv[])
     sizes = { 128, 256, 512, 1024 };
   PrintHeader(" input GiB | estimate GiB |");
   // Priors of the peak per voxel, input included, until a smaller size was measured: ours
-  // holds at most one field of the whole image, Potential and Force (4 floats), beside the
+  // at most one level's field as large as the image, Potential and Force (4 floats), beside the
   // uint16 input, read in place (docs/METHOD.md §9.6); the iso-surface the input and a byte of
   // edge cases per voxel.
   CaseRunner runner(reserve, timeLimit);
