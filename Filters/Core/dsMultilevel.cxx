@@ -983,8 +983,8 @@ bool MultilevelSolver::SetUpLevel(
   // Force field at this level's sigma over the surface's neighbourhood (dsFieldGrid.h), rebuilt
   // when sigma changed or the surface needs more than it covers. The first level, whose surface
   // may travel far (grown by the region force), covers the whole image on a coarse grid (block
-  // means: a small field); on the image's own grid its box follows the surface (FollowSurface):
-  // no float field of the image is made whole (docs/METHOD.md §9.7).
+  // means: a small field); on the image's own grid its box follows the surface (FollowSurface),
+  // covering the surface's neighbourhood and no more (docs/METHOD.md §9.7).
   state.FieldFollows = rec.Level == 0 && DecimationFactor(sigma, geometry) <= 1;
   const VoxelBox box = rec.Level == 0 && !state.FieldFollows
     ? VoxelBox::Whole(geometry)
@@ -1298,8 +1298,8 @@ bool MultilevelSolver::SolveLevelKeptApart(
   // A few pairs on a mesh that resolves its sigma are what the smoothing after the level
   // (EndSweeps) opens: solved again only if it would not. So on the schedule's last level, whose
   // pairs are smoothed now (front levels may follow, refining them first): solved again, the
-  // KmeansTest click's last level (57 pairs on 7 300 vertices) took about five times as long
-  // for a surface 0.013 mm nearer its mask.
+  // KmeansTest click's last level (tens of pairs on ~7 300 vertices) took about five times as
+  // long for a surface 0.01-0.02 mm nearer its mask.
   const bool resolves = rec.MeanEdgeLength <= rec.Sigma;
   if (resolves || this->ScheduleEndsAt(state, rec.Level))
   {

@@ -233,10 +233,11 @@ void CheckFields()
   const VoxelBox all = SurfaceNeighbourhood(surface, g, 12.0);
   DS_CHECK(all.NumberOfVoxels() == g.NumberOfVoxels(), "a surface around the image: all of it");
 }
-/// FieldCut: on the image's own grid the box, whatever its size and the image's (no float field
-/// of the image is made whole); on a coarse grid a box of more than half the image is widened to
-/// the whole image (one small field of it at most), a smaller box kept. FieldInBricks: on the
-/// image's own grid, not with the local edge normalisation nor on a coarse grid.
+/// FieldCut: on the image's own grid the box, whatever its size and the image's (the field
+/// covers the surface's neighbourhood and no more); on a coarse grid a box of more than half the
+/// image is widened to the whole image (one small field of it at most), a smaller box kept.
+/// FieldInBricks: on the image's own grid, not with the local edge normalisation nor on a coarse
+/// grid.
 void CheckCutAndBricks()
 {
   ImageGeometry small, large;
