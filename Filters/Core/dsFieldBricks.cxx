@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dsFieldBricks.h"
 
+#include "dsSmoothSlabs.h"
 #include "dsThreads.h"
 
 #include "vtkSMPTools.h"
@@ -13,7 +14,35 @@ namespace dsurf
 bool FieldBricks::Initialize(
   const ImageView& image, const ScaleSpaceParameters& parameters, double reach, std::string* error)
 {
-  this->Grid = image.Geometry;
+  this->Reset(image.Geometry, parameters, reach);
+  this->Smooth.reset(new float[static_cast<std::size_t>(image.Geometry.NumberOfVoxels())]);
+  if (!SmoothForPotential(image, parameters, this->Smooth.get(), this->Gains, error))
+  {
+    this->Smooth.reset();
+    return false;
+  }
+  return true;
+}
+
+bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
+  double reach, const TriangleMesh& surface, int coreSlices, std::string* error)
+{
+  this->Reset(image.Geometry, parameters, reach);
+  this->Source = image;
+  this->SlabCore = coreSlices;
+  this->Tiles.assign(this->Slots.size(), std::vector<float>());
+  // The tiles the bricks within reach read (a brick's values read its neighbours' voxels: one
+  // brick more), and as far again: a level moves a vertex about its reach (BrickReachSigmas).
+  this->TileMargin = reach;
+  std::vector<char> keep;
+  this->MarkNearSurface(surface, reach + this->TileMargin, keep);
+  return this->SmoothTiles(keep, error);
+}
+
+void FieldBricks::Reset(
+  const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach)
+{
+  this->Grid = grid;
   this->Parameters = parameters;
   // A piece's hooks (dsPieceField.h) capture its caller's locals and are used here only:
   // the bricks computed later must not reach them.
@@ -25,12 +54,10 @@ bool FieldBricks::Initialize(
   this->BrickFinite.clear();
   this->FreeSlots.clear();
   this->MissCount = 0;
-  this->Smooth.reset(new float[static_cast<std::size_t>(image.Geometry.NumberOfVoxels())]);
-  if (!SmoothForPotential(image, parameters, this->Smooth.get(), this->Gains, error))
-  {
-    this->Smooth.reset();
-    return false;
-  }
+  this->Smooth.reset();
+  this->Source = ImageView();
+  this->Tiles.clear();
+  this->Smoothings = 0;
   // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
   for (int a = 0; a < 3; ++a)
   {
@@ -38,7 +65,200 @@ bool FieldBricks::Initialize(
   }
   this->Slots.assign(
     static_cast<std::size_t>(this->Bricks[0]) * this->Bricks[1] * this->Bricks[2], -1);
-  return true;
+}
+
+VoxelBox FieldBricks::TileBox(const int b[3]) const
+{
+  VoxelBox box;
+  for (int a = 0; a < 3; ++a)
+  {
+    box.Begin[a] = b[a] * BrickSize;
+    box.End[a] = b[a] + 1 < this->Bricks[a] ? box.Begin[a] + BrickSize : this->Grid.Dimensions[a];
+  }
+  return box;
+}
+
+bool FieldBricks::SmoothTiles(const std::vector<char>& keep, std::string* error)
+{
+  for (std::size_t id = 0; id < keep.size(); ++id)
+  {
+    std::vector<float>().swap(this->Tiles[id]);
+  }
+  // The kept bricks of each layer along z, so that a slab visits only the ones it holds.
+  std::vector<std::vector<int>> layers(this->Bricks[2]);
+  for (std::size_t id = 0; id < keep.size(); ++id)
+  {
+    if (keep[id])
+    {
+      layers[id / (static_cast<std::size_t>(this->Bricks[0]) * this->Bricks[1])].push_back(
+        static_cast<int>(id));
+    }
+  }
+  const std::ptrdiff_t nx = this->Grid.Dimensions[0];
+  const std::ptrdiff_t slice = nx * this->Grid.Dimensions[1];
+  const auto store = [&](const SmoothSlab& slab)
+  {
+    const int lastLayer = this->Bricks[2] - 1;
+    for (int z = std::min(lastLayer, slab.Core0 / BrickSize);
+         z <= std::min(lastLayer, (slab.Core1 - 1) / BrickSize); ++z)
+    {
+      const std::vector<int>& ids = layers[z];
+      vtkSMPTools::For(0, static_cast<int>(ids.size()),
+        [&](int begin, int end)
+        {
+          for (int t = begin; t < end; ++t)
+          {
+            const int id = ids[t];
+            const int b[3] = { id % this->Bricks[0], (id / this->Bricks[0]) % this->Bricks[1], z };
+            const VoxelBox tile = this->TileBox(b);
+            std::vector<float>& values = this->Tiles[id];
+            values.resize(static_cast<std::size_t>(tile.NumberOfVoxels()));
+            const std::ptrdiff_t tx = tile.End[0] - tile.Begin[0];
+            const std::ptrdiff_t ty = tile.End[1] - tile.Begin[1];
+            for (int k = std::max(tile.Begin[2], slab.Core0); k < std::min(tile.End[2], slab.Core1);
+                 ++k)
+              for (int j = tile.Begin[1]; j < tile.End[1]; ++j)
+              {
+                const float* from = slab.Values + (k - slab.First) * slice + j * nx + tile.Begin[0];
+                std::copy(from, from + tx,
+                  values.data() + (j - tile.Begin[1]) * tx + (k - tile.Begin[2]) * tx * ty);
+              }
+          }
+        });
+    }
+  };
+  ++this->Smoothings;
+  // store runs in the SMP scope SmoothForPotentialInSlabs sets (the parameters' threads).
+  return SmoothForPotentialInSlabs(
+    this->Source, this->Parameters, this->SlabCore, store, this->Gains, error);
+}
+
+void FieldBricks::MarkNear(
+  const std::vector<Vec3>& points, double reach, int grow, std::vector<char>& mark) const
+{
+  mark.assign(this->Slots.size(), 0);
+  for (const Vec3& p : points)
+  {
+    double ijk[3];
+    this->Grid.WorldToIndex(p.data(), ijk);
+    int lo[3], hi[3];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double r = reach / this->Grid.Spacing[a] + 1.0;
+      const double last = this->Grid.Dimensions[a] - 2;
+      const double from = std::max(0.0, std::floor(ijk[a] - r));
+      const double to = std::min(last, std::floor(ijk[a] + r));
+      inside = inside && from <= to; // also false for NaN
+      lo[a] = inside ? std::max(0, static_cast<int>(from) / BrickSize - grow) : 0;
+      hi[a] = inside ? std::min(this->Bricks[a] - 1, static_cast<int>(to) / BrickSize + grow) : -1;
+    }
+    for (int k = lo[2]; inside && k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          mark[(static_cast<std::size_t>(k) * this->Bricks[1] + j) * this->Bricks[0] + i] = 1;
+        }
+  }
+}
+
+void FieldBricks::MarkNearSurface(
+  const TriangleMesh& mesh, double reach, std::vector<char>& mark) const
+{
+  // Points on every triangle, a grid of spacing at most h along its edges: every point of the
+  // triangle lies within h of one. A coarse start's vertices lie far apart (a sphere of radius
+  // 219 voxels with 48 x 48 vertices: 29 voxels), and its refined surface between them.
+  const double h = 0.5 * BrickSize *
+    std::min({ this->Grid.Spacing[0], this->Grid.Spacing[1], this->Grid.Spacing[2] });
+  std::vector<Vec3> points = mesh.Points;
+  for (const auto& t : mesh.Triangles)
+  {
+    const Vec3 &a = mesh.Points[t[0]], &b = mesh.Points[t[1]], &c = mesh.Points[t[2]];
+    const double longest = std::max({ Norm(b - a), Norm(c - b), Norm(a - c) });
+    const int n = static_cast<int>(std::min(1e4, std::ceil(longest / h)));
+    for (int i = 0; n > 1 && i <= n; ++i)
+      for (int j = 0; j <= n - i; ++j)
+      {
+        points.push_back(
+          a + (static_cast<double>(i) / n) * (b - a) + (static_cast<double>(j) / n) * (c - a));
+      }
+  }
+  this->MarkNear(points, reach + h, 1, mark);
+}
+
+bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& fresh)
+{
+  if (this->Smooth || fresh.empty())
+  {
+    return true;
+  }
+  bool held = true;
+  for (std::size_t f = 0; held && f < fresh.size(); ++f)
+  {
+    const int id = fresh[f];
+    const int b[3] = { id % this->Bricks[0], (id / this->Bricks[0]) % this->Bricks[1],
+      id / (this->Bricks[0] * this->Bricks[1]) };
+    for (int k = std::max(0, b[2] - 1); held && k <= std::min(this->Bricks[2] - 1, b[2] + 1); ++k)
+      for (int j = std::max(0, b[1] - 1); held && j <= std::min(this->Bricks[1] - 1, b[1] + 1); ++j)
+        for (int i = std::max(0, b[0] - 1); held && i <= std::min(this->Bricks[0] - 1, b[0] + 1);
+             ++i)
+        {
+          held =
+            !this->Tiles[(static_cast<std::size_t>(k) * this->Bricks[1] + j) * this->Bricks[0] + i]
+               .empty();
+        }
+  }
+  if (held)
+  {
+    return true;
+  }
+  // The surface went past the tiles kept: smoothed again, the margin doubled, so that a surface
+  // growing across the box (a click's seed) smooths it a logarithmic number of times.
+  this->TileMargin *= 2.0;
+  std::vector<char> keep;
+  this->MarkNearSurface(mesh, this->Reach + this->TileMargin, keep);
+  return this->SmoothTiles(keep, nullptr);
+}
+
+const float* FieldBricks::SmoothAround(
+  const int b[3], std::vector<float>& values, VoxelBox& over) const
+{
+  if (this->Smooth)
+  {
+    over = VoxelBox::Whole(this->Grid);
+    return this->Smooth.get();
+  }
+  const VoxelBox box = this->BrickBox(b);
+  for (int a = 0; a < 3; ++a)
+  {
+    over.Begin[a] = std::max(0, box.Begin[a] - 1);
+    over.End[a] = std::min(this->Grid.Dimensions[a], box.End[a] + 1);
+  }
+  const std::ptrdiff_t ox = over.End[0] - over.Begin[0], oy = over.End[1] - over.Begin[1];
+  values.assign(static_cast<std::size_t>(over.NumberOfVoxels()), 0.0f);
+  for (int tk = std::max(0, b[2] - 1); tk <= std::min(this->Bricks[2] - 1, b[2] + 1); ++tk)
+    for (int tj = std::max(0, b[1] - 1); tj <= std::min(this->Bricks[1] - 1, b[1] + 1); ++tj)
+      for (int ti = std::max(0, b[0] - 1); ti <= std::min(this->Bricks[0] - 1, b[0] + 1); ++ti)
+      {
+        const int t[3] = { ti, tj, tk };
+        const std::vector<float>& tile =
+          this->Tiles[(static_cast<std::size_t>(tk) * this->Bricks[1] + tj) * this->Bricks[0] + ti];
+        const VoxelBox tb = this->TileBox(t);
+        const std::ptrdiff_t tx = tb.End[0] - tb.Begin[0], ty = tb.End[1] - tb.Begin[1];
+        const int i0 = std::max(tb.Begin[0], over.Begin[0]), i1 = std::min(tb.End[0], over.End[0]);
+        for (int k = std::max(tb.Begin[2], over.Begin[2]);
+             !tile.empty() && k < std::min(tb.End[2], over.End[2]); ++k)
+          for (int j = std::max(tb.Begin[1], over.Begin[1]); j < std::min(tb.End[1], over.End[1]);
+               ++j)
+          {
+            const float* from = tile.data() + (i0 - tb.Begin[0]) + (j - tb.Begin[1]) * tx +
+              (k - tb.Begin[2]) * tx * ty;
+            std::copy(from, from + (i1 - i0),
+              values.data() + (i0 - over.Begin[0]) + (j - over.Begin[1]) * ox +
+                (k - over.Begin[2]) * ox * oy);
+          }
+      }
+  return values.data();
 }
 
 VoxelBox FieldBricks::BrickBox(const int b[3]) const
@@ -68,7 +288,10 @@ void FieldBricks::ComputeBrick(const int b[3], int slot)
   const std::size_t n = static_cast<std::size_t>(box.NumberOfVoxels());
   this->Potential[slot].resize(n);
   this->Force[slot].resize(3 * n);
-  PotentialAndForceInBox(this->Smooth.get(), this->Grid, box, this->OwnBox(b), this->Gains,
+  std::vector<float> around;
+  VoxelBox over;
+  const float* smooth = this->SmoothAround(b, around, over);
+  PotentialAndForceInBox(smooth, over, this->Grid, box, this->OwnBox(b), this->Gains,
     this->Potential[slot].data(), this->Force[slot].data());
 }
 
@@ -77,6 +300,9 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
   const VoxelBox box = this->BrickBox(b), own = this->OwnBox(b);
   float* potential = this->Potential[slot].data();
   float* force = this->Force[slot].data();
+  std::vector<float> around; // gathered when a voxel is computed here
+  VoxelBox over;
+  const float* smooth = nullptr;
   const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
   for (int k = box.Begin[2]; k < box.End[2]; ++k)
     for (int j = box.Begin[1]; j < box.End[1]; ++j)
@@ -99,8 +325,9 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
         if (from < 0)
         {
           const VoxelBox voxel{ { i, j, k }, { i + 1, j + 1, k + 1 } };
+          smooth = smooth ? smooth : this->SmoothAround(b, around, over);
           PotentialAndForceInBox(
-            this->Smooth.get(), this->Grid, box, voxel, this->Gains, potential, force);
+            smooth, over, this->Grid, box, voxel, this->Gains, potential, force);
           continue;
         }
         const VoxelBox ob = this->BrickBox(owner);
@@ -119,30 +346,8 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
 int FieldBricks::Cover(const TriangleMesh& mesh)
 {
   // The bricks holding a cell within the reach of a vertex (index space, a voxel more).
-  std::vector<char> needed(this->Slots.size(), 0);
-  for (const Vec3& p : mesh.Points)
-  {
-    double ijk[3];
-    this->Grid.WorldToIndex(p.data(), ijk);
-    int lo[3], hi[3];
-    bool inside = true;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double r = this->Reach / this->Grid.Spacing[a] + 1.0;
-      const double last = this->Grid.Dimensions[a] - 2;
-      const double from = std::max(0.0, std::floor(ijk[a] - r));
-      const double to = std::min(last, std::floor(ijk[a] + r));
-      inside = inside && from <= to; // also false for NaN
-      lo[a] = inside ? static_cast<int>(from) / BrickSize : 0;
-      hi[a] = inside ? static_cast<int>(to) / BrickSize : -1;
-    }
-    for (int k = lo[2]; inside && k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i)
-        {
-          needed[(static_cast<std::size_t>(k) * this->Bricks[1] + j) * this->Bricks[0] + i] = 1;
-        }
-  }
+  std::vector<char> needed;
+  this->MarkNear(mesh.Points, this->Reach, 0, needed);
   std::vector<int> fresh; // brick ids to compute
   for (std::size_t id = 0; id < needed.size(); ++id)
   {
@@ -150,6 +355,10 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
     {
       fresh.push_back(static_cast<int>(id));
     }
+  }
+  if (!this->EnsureTiles(mesh, fresh))
+  {
+    fresh.clear(); // not computed: their samples count as misses
   }
   this->DropUnreachedOverBudget(needed, fresh.size());
   for (int id : fresh)
@@ -301,6 +510,10 @@ double FieldBricks::Bytes() const
   for (const auto& p : this->Potential)
   {
     bytes += 4.0 * sizeof(float) * static_cast<double>(p.size());
+  }
+  for (const auto& t : this->Tiles)
+  {
+    bytes += sizeof(float) * static_cast<double>(t.size());
   }
   return bytes;
 }

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A fine level's force field only where the surface is (docs/METHOD.md §9.7). The surface of an
-// object fills a thin shell of its bounding box, so P and -grad P
-// (16 bytes a voxel) are kept only in bricks of BrickSize^3 voxels within the surface's reach;
-// G_sigma * f (4 bytes a voxel) stays over the level's whole box, because the recursive
-// Gaussian runs along whole lines and the potential is normalised by the strongest edge in the
-// box. A brick's values are computed from it exactly as the whole box's would be
-// (PotentialAndForceInBox), so a vertex in a brick samples bit for bit today's whole-box field;
-// a voxel two bricks share is computed once and copied.
-// Bricks are computed when the surface first comes within reach of them and kept for the
-// level. Plain C++.
+// object fills a thin shell of its bounding box, so P and -grad P (16 bytes a voxel) are kept
+// only in bricks of BrickSize^3 voxels within the surface's reach. G_sigma * f (4 bytes a voxel)
+// is computed over the level's whole box, because the recursive Gaussian runs along whole lines
+// and the potential is normalised by the strongest edge in the box; it is held over the box
+// (Initialize) or, for a box of more than half the image, smoothed slab by slab and held only in
+// tiles near the surface (InitializeInSlabs, dsSmoothSlabs.h, SlabSmoothingShare of
+// dsFieldGrid.h). A brick's values are computed from it exactly as the whole box's would be
+// (PotentialAndForceInBox), so a vertex in a brick samples the whole-box field bit for bit; a
+// voxel two bricks share is computed once and copied. Bricks are computed when the surface
+// first comes within reach of them and kept for the level. Plain C++.
 #ifndef dsFieldBricks_h
 #define dsFieldBricks_h
 
@@ -41,6 +42,14 @@ public:
   /// distance from a vertex that Cover computes bricks within.
   bool Initialize(const ImageView& image, const ScaleSpaceParameters& parameters, double reach,
     std::string* error);
+  /// The same without G_sigma * f over the box: it is smoothed in slabs along z (coreSlices
+  /// slices each, 0: dsSmoothSlabs.h's default) and kept in tiles (a brick's own voxels) only
+  /// near `surface`; when the surface later comes within reach of a brick whose tiles were not
+  /// kept, the box is smoothed again in slabs, keeping the tiles near it then, with a margin twice
+  /// as wide each time. The values equal Initialize's bit for bit. `image` must outlive the
+  /// bricks. Not for a piece's hooks (dsPieceField.h).
+  bool InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
+    double reach, const TriangleMesh& surface, int coreSlices, std::string* error);
   /// Computes the bricks within the reach of a vertex of `mesh` that are not computed yet (in
   /// parallel, NumberOfThreads of the parameters); returns how many. Between sweeps only.
   int Cover(const TriangleMesh& mesh);
@@ -65,8 +74,11 @@ public:
   }
   /// Every computed value is finite (huge weights can overflow single precision).
   bool Finite() const;
-  /// Bytes held: G_sigma * f and the computed bricks.
+  /// Bytes held: G_sigma * f (over the box, or its tiles) and the computed bricks.
   double Bytes() const;
+  /// Times the box was smoothed in slabs (InitializeInSlabs: 1, and 1 more a refill); 0 for
+  /// Initialize.
+  int SlabSmoothings() const { return this->Smoothings; }
 
 private:
   /// The brick of the trilinear cell of world point x and the cell within it; false outside
@@ -77,6 +89,26 @@ private:
   /// The voxels brick b computes itself: all but the layer it shares with the next brick
   /// along each axis (that brick's first), which the last brick along the axis has alone.
   VoxelBox OwnBox(const int b[3]) const;
+  /// Forgets every brick and tile, for a box of `grid`.
+  void Reset(const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach);
+  /// The voxels whose G_sigma * f brick b's tile holds in slabs: its own, and the last voxel
+  /// along an axis for the last brick along it (the tiles partition the box).
+  VoxelBox TileBox(const int b[3]) const;
+  /// Marks (1) the bricks holding a cell within `reach` (world) of one of the points, and a
+  /// voxel more; `grow` bricks more along each axis.
+  void MarkNear(
+    const std::vector<Vec3>& points, double reach, int grow, std::vector<char>& mark) const;
+  /// Marks the bricks within `reach` of any point of the surface (not only its vertices), and a
+  /// brick more along each axis: the tiles the bricks near it read.
+  void MarkNearSurface(const TriangleMesh& mesh, double reach, std::vector<char>& mark) const;
+  /// G_sigma * f smoothed in slabs, the tiles of the `keep` bricks (and no other) stored.
+  bool SmoothTiles(const std::vector<char>& keep, std::string* error);
+  /// Before the `fresh` bricks are computed: smooths again (SmoothTiles) unless every tile they
+  /// read is held. False only when that fails.
+  bool EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& fresh);
+  /// G_sigma * f over brick b's voxels and their neighbours within the box, into `values`
+  /// (x fastest over the returned box): a pointer into Smooth, or gathered from the tiles.
+  const float* SmoothAround(const int b[3], std::vector<float>& values, VoxelBox& over) const;
   /// Computes brick b's own voxels (OwnBox) into its slot.
   void ComputeBrick(const int b[3], int slot);
   /// Frees the computed bricks not `needed` when keeping them and computing `fresh` more would
@@ -93,6 +125,13 @@ private:
   /// G_sigma * f over the box; new float[] leaves it unset (SmoothForPotential writes every
   /// voxel: a zero fill first would be a pass over the box for nothing).
   std::unique_ptr<float[]> Smooth;
+  /// In slabs (InitializeInSlabs): the image, G_sigma * f per brick's TileBox (empty where not
+  /// kept), the margin past the reach the tiles were kept within, and the smoothings.
+  ImageView Source;
+  int SlabCore = 0;
+  std::vector<std::vector<float>> Tiles;
+  double TileMargin = 0;
+  int Smoothings = 0;
   int Bricks[3] = { 0, 0, 0 }; ///< bricks along each axis
   std::vector<int> Slots;      ///< per brick (x fastest): its index in Potential, or -1
   std::vector<std::vector<float>> Potential, Force; ///< per computed brick, x fastest

@@ -2,6 +2,7 @@
 #include "dsFieldGrid.h"
 
 #include "dsFieldBricks.h"
+#include "dsSmoothSlabs.h"
 
 #include "dsThreads.h"
 
@@ -252,20 +253,40 @@ double FieldBytesPerVoxel(bool bricked)
   return (bricked ? shared : 1.0) * ForceFieldBytesPerVoxel + sizeof(float);
 }
 
+bool FieldInSlabs(const VoxelBox& cut, const ImageGeometry& whole)
+{
+  return static_cast<double>(cut.NumberOfVoxels()) >
+    SlabSmoothingShare * static_cast<double>(whole.NumberOfVoxels());
+}
+
 double FieldBytes(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
   VoxelBox cut;
   const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
-  return FieldGridVoxels(cut, f) *
-    FieldBytesPerVoxel(f <= 1 && FieldInBricks(box, whole, parameters));
+  const bool bricked = f <= 1 && FieldInBricks(box, whole, parameters);
+  double slabs = 0;
+  if (bricked && FieldInSlabs(cut, whole))
+  {
+    const int dims[3] = { cut.End[0] - cut.Begin[0], cut.End[1] - cut.Begin[1],
+      cut.End[2] - cut.Begin[2] };
+    double sv[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      sv[a] = parameters.Sigma / whole.Spacing[a];
+    }
+    slabs = SmoothInSlabsBytes(dims, sv, 0);
+  }
+  return FieldGridVoxels(cut, f) * FieldBytesPerVoxel(bricked) + slabs;
 }
 
 bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& parameters,
-  const TriangleMesh& surface, ForceField& out, std::string* error)
+  const TriangleMesh& surface, ForceField& out, std::string* error, bool inSlabs)
 {
   auto bricks = std::make_shared<FieldBricks>();
-  if (!bricks->Initialize(part, parameters, BrickReachSigmas * parameters.Sigma, error))
+  const double reach = BrickReachSigmas * parameters.Sigma;
+  if (!(inSlabs ? bricks->InitializeInSlabs(part, parameters, reach, surface, 0, error)
+                : bricks->Initialize(part, parameters, reach, error)))
   {
     return false;
   }
@@ -312,8 +333,10 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
     parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
   if (f <= 1)
   {
-    const bool ok = surface && !local ? ComputeBrickedForce(cut, parameters, *surface, out, error)
-                                      : ComputeScaleSpaceForce(cut, parameters, out, error);
+    const bool inSlabs = FieldInSlabs(part, image.Geometry);
+    const bool ok = surface && !local
+      ? ComputeBrickedForce(cut, parameters, *surface, out, error, inSlabs)
+      : ComputeScaleSpaceForce(cut, parameters, out, error);
     out.Image = image.Geometry;
     return ok;
   }

@@ -116,7 +116,9 @@ DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
 DEFORMABLESURFACEFILTERS_EXPORT double FieldBytesPerVoxel(bool bricked);
 
 /// The bytes a field at `parameters` over `box` of an image of geometry `whole` holds at most
-/// (ComputeForceAtScale): FieldBytesPerVoxel over FieldCut's part on its grid.
+/// (ComputeForceAtScale): FieldBytesPerVoxel over FieldCut's part on its grid (for a field
+/// smoothed in slabs, its tiles at most the part's voxels) and, in slabs, what the smoothing
+/// holds besides (SmoothInSlabsBytes).
 /// MultilevelSolver::MakeField checks it before it makes the field (docs/METHOD.md §9.6).
 DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
@@ -126,9 +128,21 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
 /// BrickReachSigmas sigma of `surface`'s vertices (dsFieldBricks.h; not the local edge
 /// normalisation). With parameters.Smooth and GradientMaximum, a piece's part of the field
 /// (dsPieceField.h).
+/// `inSlabs`: G_sigma * f is smoothed in slabs and kept near the surface only
+/// (FieldBricks::InitializeInSlabs; not with a piece's hooks), else over all of `part`.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,
   const ScaleSpaceParameters& parameters, const TriangleMesh& surface, ForceField& out,
-  std::string* error);
+  std::string* error, bool inSlabs = false);
+
+/// A bricked field smooths its cut in slabs (ComputeBrickedForce's inSlabs) when the cut holds
+/// more than this share of the image's voxels, so that no float field of the whole image is made
+/// (docs/METHOD.md §9.7). A smaller cut is smoothed whole: its x and y passes run once, not twice
+/// as with the recursive filter along z in slabs, and it holds less than half the image.
+constexpr double SlabSmoothingShare = 0.5;
+
+/// Whether a bricked field over FieldCut's part `cut` of an image of geometry `whole` is
+/// smoothed in slabs (SlabSmoothingShare).
+DEFORMABLESURFACEFILTERS_EXPORT bool FieldInSlabs(const VoxelBox& cut, const ImageGeometry& whole);
 
 /// The force field at parameters.Sigma over `box` of the image (over FieldCut), on a grid decimated
 /// by DecimationFactor when that is above 1, else on the image's own grid (ComputeScaleSpaceForce).

@@ -433,6 +433,51 @@ void SmoothRows(float* dst, const AxisSmoother& s, long long count, int N, std::
 }
 } // namespace
 
+int GaussianAxisReach(double sigmaVoxels)
+{
+  const AxisSmoother s = MakeSmoother(sigmaVoxels);
+  return s.Type == AxisSmoother::IIR ? -1 : s.Type == AxisSmoother::FIR ? s.Radius : 0;
+}
+
+void SampledAxisZ(
+  const float* src, float* dst, const int dims[3], double sigmaVoxels, int k0, int k1)
+{
+  const AxisSmoother s = MakeSmoother(sigmaVoxels);
+  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const int last = dims[2] - 1;
+  const auto source = [&](int k) { return src + std::min(std::max(k, 0), last) * slice; };
+  vtkSMPTools::For(k0, k1,
+    [&](int begin, int end)
+    {
+      for (int k = begin; k < end; ++k)
+      {
+        // FIRRows's arithmetic for every line through this slice.
+        float* out = dst + (k - k0) * slice;
+        const float* centre = source(k);
+        if (s.Type != AxisSmoother::FIR)
+        {
+          std::copy(centre, centre + slice, out);
+          continue;
+        }
+        const float w0 = static_cast<float>(s.Taps[0]);
+        for (std::ptrdiff_t i = 0; i < slice; ++i)
+        {
+          out[i] = w0 * centre[i];
+        }
+        for (int t = 1; t <= s.Radius; ++t)
+        {
+          const float* below = source(k - t);
+          const float* above = source(k + t);
+          const float w = static_cast<float>(s.Taps[t]);
+          for (std::ptrdiff_t i = 0; i < slice; ++i)
+          {
+            out[i] += w * (below[i] + above[i]);
+          }
+        }
+      }
+    });
+}
+
 void SmoothGaussianAxis(float* volume, const int dims[3], int a, double sigmaVoxels)
 {
   const int nx = dims[0], ny = dims[1], nz = dims[2];

@@ -33,6 +33,17 @@ constexpr double GaussianRecursiveFromSigmaVoxels = 3.0;
 void SmoothGaussianSeparable(
   const float* src, float* dst, const int dims[3], const double sigmaVoxels[3]);
 
+/// Voxels on either side that the pass along an axis of sigmaVoxels reads for one output: the
+/// sampled Gaussian's radius, 0 when the axis is left alone, -1 for the recursive filter (the
+/// whole line).
+int GaussianAxisReach(double sigmaVoxels);
+
+/// The sampled Gaussian's pass along z (sigmaVoxels below GaussianRecursiveFromSigmaVoxels)
+/// of a volume of dims voxels, out of place and only at slices [k0, k1): dst holds those slices,
+/// each bit for bit SmoothGaussianAxis's there (the same sums in the same order).
+void SampledAxisZ(
+  const float* src, float* dst, const int dims[3], double sigmaVoxels, int k0, int k1);
+
 /// The pass of SmoothGaussianSeparable along axis a alone, in place (the same code).
 void SmoothGaussianAxis(float* volume, const int dims[3], int a, double sigmaVoxels);
 

@@ -4,6 +4,7 @@
 #include "dsFieldBricks.h"
 
 #include "dsGaussianSmoother.h"
+#include "dsSmoothSlabs.h"
 #include "dsThreads.h"
 #include "dsTrilinear.h"
 #include "dsVoxelSet.h"
@@ -373,33 +374,44 @@ void InnerRowSquares(const float* __restrict row, std::ptrdiff_t sy, std::ptrdif
   }
 }
 
-/// Calls visit(row, squares) for every row of slice k, squares[i] the squared world gradient
-/// of `values` at voxel i of the row (WorldGradientAt's arithmetic: InnerRowSquares inside,
-/// WorldGradientAt at the border).
+/// Calls visit(row, squares) for every row of slice k of a grid of dims voxels, squares[i] the
+/// squared world gradient at voxel i of the row (WorldGradientAt's arithmetic: InnerRowSquares
+/// inside, WorldGradientAt at the border); `slice` points at the slice's first value, its
+/// neighbour slices a slice away (they need not be more of a volume: a slab of one,
+/// dsSmoothSlabs.h). row: the row's offset in the whole grid.
 template <typename Visit>
-void ForEachRowSquares(
-  const float* values, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
+void ForEachRowSquaresOfSlice(
+  const float* slice, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
 {
   const int nx = dims[0], ny = dims[1];
   const std::ptrdiff_t step[3] = { 1, nx, static_cast<std::ptrdiff_t>(nx) * ny };
   std::vector<double> squares(nx);
   for (int j = 0; j < ny; ++j)
   {
-    const std::ptrdiff_t row = k * step[2] + j * step[1];
+    const float* values = slice + j * step[1];
     const bool inner = nx > 2 && j > 0 && j < ny - 1 && k > 0 && k < dims[2] - 1;
     for (int i = 0; i < nx; i += inner && i == 0 ? nx - 1 : 1)
     {
       const int p[3] = { i, j, k };
       double gw[3];
-      WorldGradientAt(values + row + i, p, dims, step, toWorld, gw);
+      WorldGradientAt(values + i, p, dims, step, toWorld, gw);
       squares[i] = gw[0] * gw[0] + gw[1] * gw[1] + gw[2] * gw[2];
     }
     if (inner)
     {
-      InnerRowSquares(values + row, step[1], step[2], nx, toWorld, squares.data());
+      InnerRowSquares(values, step[1], step[2], nx, toWorld, squares.data());
     }
-    visit(row, squares.data());
+    visit(k * step[2] + j * step[1], squares.data());
   }
+}
+
+/// ForEachRowSquaresOfSlice of slice k of the volume `values`.
+template <typename Visit>
+void ForEachRowSquares(
+  const float* values, const int dims[3], const GradientToWorld& toWorld, int k, Visit&& visit)
+{
+  ForEachRowSquaresOfSlice(values + k * (static_cast<std::ptrdiff_t>(dims[0]) * dims[1]), dims,
+    toWorld, k, std::forward<Visit>(visit));
 }
 
 /// g = |grad smooth| into `edges` (unless nullptr), with the extrema the normalisation needs.
@@ -1125,6 +1137,29 @@ bool ComputeScaleSpaceForceInto(const ImageView& image, const ScaleSpaceParamete
   return true;
 }
 
+namespace
+{
+/// Whether `problem` is empty; else it goes to *error (when given).
+bool Unproblematic(const std::string& problem, std::string* error)
+{
+  if (!problem.empty() && error)
+  {
+    *error = problem;
+  }
+  return problem.empty();
+}
+
+/// Whether the potential's gains are finite (huge weights overflow them); else a message.
+bool GainsFinite(const PotentialGains& gains, std::string* error)
+{
+  return Unproblematic(
+    std::isfinite(gains.Edge) && std::isfinite(gains.Image) && std::isfinite(gains.Offset)
+      ? std::string()
+      : "the potential's normalisation is not finite: the weights are too large",
+    error);
+}
+} // namespace
+
 bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& parameters,
   float* smooth, PotentialGains& gains, std::string* error)
 {
@@ -1134,12 +1169,8 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
   {
     problem = "the local edge normalisation is not computed in pieces";
   }
-  if (!problem.empty())
+  if (!Unproblematic(problem, error))
   {
-    if (error)
-    {
-      *error = problem;
-    }
     return false;
   }
   double sv[3];
@@ -1153,25 +1184,84 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
         EdgeStatisticsOf(smooth, image.Geometry.Dimensions, toWorld, nullptr, parameters);
       gains = GainsOf(stats, stats.GradientMax, parameters);
     });
-  if (!std::isfinite(gains.Edge) || !std::isfinite(gains.Image) || !std::isfinite(gains.Offset))
-  {
-    if (error)
-    {
-      *error = "the potential's normalisation is not finite: the weights are too large";
-    }
-    return false;
-  }
-  return true;
+  return GainsFinite(gains, error);
 }
 
-void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
-  const VoxelBox& part, const PotentialGains& gains, float* potential, float* force)
+bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
+  int coreSlices, const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains,
+  std::string* error)
+{
+  float probe = 0.0f;
+  std::string problem = CheckForceInputs(image, parameters, &probe, &probe);
+  if (problem.empty() &&
+    ((parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local) ||
+      parameters.Smooth || parameters.GradientMaximum))
+  {
+    problem = "only the globally normalised field of a whole image is smoothed in slabs";
+  }
+  if (!Unproblematic(problem, error))
+  {
+    return false;
+  }
+  double sv[3];
+  SigmaVoxels(parameters.Sigma, image.Geometry, sv);
+  const GradientToWorld toWorld(image.Geometry);
+  const int* dims = image.Geometry.Dimensions;
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  // Per slice, as EdgeMagnitude takes them: the largest g (rooted once) and the range of s.
+  std::vector<double> gMax(dims[2], 0.0), sMin(dims[2], std::numeric_limits<double>::max()),
+    sMax(dims[2], std::numeric_limits<double>::lowest());
+  WithThreads(parameters.NumberOfThreads,
+    [&]()
+    {
+      SmoothInSlabs(image, sv, coreSlices,
+        [&](const SmoothSlab& slab)
+        {
+          vtkSMPTools::For(slab.Core0, slab.Core1,
+            [&](int kb, int ke)
+            {
+              for (int k = kb; k < ke; ++k)
+              {
+                const float* slice = slab.Values + (k - slab.First) * sz;
+                double gm2 = 0.0, lo = sMin[k], hi = sMax[k];
+                ForEachRowSquaresOfSlice(slice, dims, toWorld, k,
+                  [&](std::ptrdiff_t row, const double* squares)
+                  {
+                    const float* values = slice + (row - k * sz);
+                    for (int i = 0; i < dims[0]; ++i)
+                    {
+                      gm2 = std::max(gm2, squares[i]);
+                      lo = std::min(lo, static_cast<double>(values[i]));
+                      hi = std::max(hi, static_cast<double>(values[i]));
+                    }
+                  });
+                gMax[k] = std::sqrt(gm2);
+                sMin[k] = lo;
+                sMax[k] = hi;
+              }
+            });
+          keep(slab);
+        });
+    });
+  EdgeStatistics stats;
+  stats.GradientMax = *std::max_element(gMax.begin(), gMax.end());
+  stats.SmoothMin = *std::min_element(sMin.begin(), sMin.end());
+  stats.SmoothMax = *std::max_element(sMax.begin(), sMax.end());
+  gains = GainsOf(stats, stats.GradientMax, parameters);
+  return GainsFinite(gains, error);
+}
+
+void PotentialAndForceInBox(const float* smooth, const VoxelBox& smoothBox,
+  const ImageGeometry& geometry, const VoxelBox& box, const VoxelBox& part,
+  const PotentialGains& gains, float* potential, float* force)
 {
   // Each value as ComputeScaleSpaceForceInto computes it (PotentialAndForceAt on the image's
-  // grid), so the box's values equal the whole field's bit for bit.
+  // grid: its border where the grid's is), so the box's values equal the whole field's bit for
+  // bit.
   const int* n = geometry.Dimensions;
   const GradientToWorld toWorld(geometry);
-  const std::ptrdiff_t step[3] = { 1, n[0], static_cast<std::ptrdiff_t>(n[0]) * n[1] };
+  const std::ptrdiff_t sx = smoothBox.End[0] - smoothBox.Begin[0];
+  const std::ptrdiff_t step[3] = { 1, sx, sx * (smoothBox.End[1] - smoothBox.Begin[1]) };
   const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
   for (int k = part.Begin[2]; k < part.End[2]; ++k)
     for (int j = part.Begin[1]; j < part.End[1]; ++j)
@@ -1180,9 +1270,17 @@ void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, 
         const int p[3] = { i, j, k };
         const std::ptrdiff_t o =
           (i - box.Begin[0]) + (j - box.Begin[1]) * bx + (k - box.Begin[2]) * bx * by;
-        PotentialAndForceAt(smooth + i + j * step[1] + k * step[2], p, n, step, toWorld, gains,
-          potential[o], force + 3 * o);
+        const std::ptrdiff_t v = (i - smoothBox.Begin[0]) + (j - smoothBox.Begin[1]) * step[1] +
+          (k - smoothBox.Begin[2]) * step[2];
+        PotentialAndForceAt(smooth + v, p, n, step, toWorld, gains, potential[o], force + 3 * o);
       }
+}
+
+void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
+  const VoxelBox& part, const PotentialGains& gains, float* potential, float* force)
+{
+  PotentialAndForceInBox(
+    smooth, VoxelBox::Whole(geometry), geometry, box, part, gains, potential, force);
 }
 
 std::string ScaleSpaceProblem(const ImageGeometry& geometry, double sigma)

@@ -81,6 +81,7 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
 
 class FieldBricks;
 class VoxelSet;
+struct SmoothSlab;
 
 /// P and -grad P on the voxel grid.
 struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
@@ -158,6 +159,13 @@ struct DEFORMABLESURFACEFILTERS_EXPORT PotentialGains
 /// image, parameters.Smooth and GradientMaximum make the same reductions as there.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
   const ScaleSpaceParameters& parameters, float* smooth, PotentialGains& gains, std::string* error);
+/// SmoothForPotential without G_sigma * f over the whole image: the image is smoothed slab by
+/// slab along z (dsSmoothSlabs.h, coreSlices slices each, 0: the default) and keep(slab) is
+/// called with each slab's values, which are gone after the call; the gains are the same bit for
+/// bit. Neither the local edge normalisation nor a piece's hooks (Smooth, GradientMaximum).
+DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotentialInSlabs(const ImageView& image,
+  const ScaleSpaceParameters& parameters, int coreSlices,
+  const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains, std::string* error);
 /// Then P and -grad P at the voxels of `part` (a box within `box`) of the image of `geometry`
 /// whose G_sigma * f is `smooth`, stored where they lie in `box` (x fastest): bit for bit what
 /// ComputeScaleSpaceForceInto gives there. potential holds box.NumberOfVoxels() floats, force
@@ -165,6 +173,11 @@ DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
 DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
   const ImageGeometry& geometry, const VoxelBox& box, const VoxelBox& part,
   const PotentialGains& gains, float* potential, float* force);
+/// The same with G_sigma * f known over `smoothBox` only (x fastest), which holds `part` and its
+/// neighbours within the image.
+DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
+  const VoxelBox& smoothBox, const ImageGeometry& geometry, const VoxelBox& box,
+  const VoxelBox& part, const PotentialGains& gains, float* potential, float* force);
 
 /// P of ComputeScaleSpaceForce with the local edge normalisation (EdgeNormalization::Local)
 /// at the voxels of `wanted` only (ids of the voxels of `image`, x fastest; the set finished):

@@ -11,7 +11,9 @@
 // a sphere of radius 0.3 n around the ball, and one click at its centre (vtkDelaunaySeedSurface,
 // RegionWeight 1), and a sphere 4 voxels around the ball (every default: sigma_0 a few voxels,
 // so the first level is on the image's own grid), on two threads, beside vtkFlyingEdges3D at
-// the ball's mid value.
+// the ball's mid value. Last a ball filling most of the volume (radius 0.42 n, as the first
+// ball otherwise) from a sphere 4 voxels around it: its fine levels' boxes hold more than half the
+// image, so their G_sigma * f is smoothed in slabs and kept near the surface (docs/METHOD.md §9.7).
 // Usage: BenchScale [--time-limit CPU seconds (default 600)] [--reserve-gib G (default 2)]
 //                   [--only TEXT (only the rows whose "phantom method" contains TEXT; repeat it
 //                   to ask for every TEXT: --only ball --only "2 threads")]
@@ -88,6 +90,24 @@ int main(int argc, char* argv[])
         [&](vtkImageData* im) { return RunOursNear(im, ph, 2); } },
       { "ours one click, 2 threads", 18,
         [&](vtkImageData* im) { return RunOursClick(im, ph, 2); } },
+      { "ours tight sphere, 2 threads", 18,
+        [&](vtkImageData* im) { return RunOursTightSphere(im, ph, 2, 4.0); } },
+      { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },
+    };
+    for (const auto& m : methods)
+      runner.Run(ph, m, true);
+  }
+  for (int n : sizes)
+  {
+    Phantom ph;
+    ph.N = n;
+    ph.Form = Shape::Sphere;
+    ph.Size = 0.42 * n;
+    ph.Noise = 0.1;
+    ph.CT = true;
+    ph.Name =
+      "large ball r" + std::to_string(static_cast<int>(ph.Size)) + " " + std::to_string(n) + "^3";
+    const std::vector<Method> methods = {
       { "ours tight sphere, 2 threads", 18,
         [&](vtkImageData* im) { return RunOursTightSphere(im, ph, 2, 4.0); } },
       { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },

@@ -8,7 +8,9 @@
 // point outside the level's box but inside the image is not outside the image; a whole solve
 // of a phantom never samples a missing brick, nor does a seed that the region force grows far
 // on a first level in bricks; the bricks a travelling surface left behind are dropped once the
-// whole field's size is reached, and equal it when computed again.
+// whole field's size is reached, and equal it when computed again; G_sigma * f smoothed in slabs
+// and kept in tiles near the surface equals the whole field's bit for bit, and is smoothed again
+// when the surface moves past its tiles.
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
@@ -43,9 +45,10 @@ double LargestDifference(const ForceField& a, const ForceField& b, const std::ve
   return worst;
 }
 
-/// The vertices of `surface` moved by -reach .. +reach along the radius from c, and a line
-/// through several brick seams.
-std::vector<Vec3> PointsWithinReach(const TriangleMesh& surface, const Vec3& c, double reach)
+/// The vertices of `surface` moved by -reach .. +reach along the radius from c, and (seams) a
+/// line through several brick seams.
+std::vector<Vec3> PointsWithinReach(
+  const TriangleMesh& surface, const Vec3& c, double reach, bool seams = true)
 {
   std::vector<Vec3> points;
   for (const Vec3& p : surface.Points)
@@ -56,7 +59,7 @@ std::vector<Vec3> PointsWithinReach(const TriangleMesh& surface, const Vec3& c, 
       points.push_back(p + t * u);
     }
   }
-  for (double x = c[0] - 30.0; x <= c[0] + 30.0; x += 0.1)
+  for (double x = c[0] - 30.0; seams && x <= c[0] + 30.0; x += 0.1)
   {
     points.push_back(Vec3{ x, c[1] + 21.0, c[2] + 0.3 }); // crosses x = 48, 64, ... seams
   }
@@ -110,6 +113,93 @@ void TurnedGrid()
   DS_CHECK(bricked.Bricks && LargestDifference(bricked, whole, points) == 0.0 &&
       bricked.Bricks->Misses() == 0,
     "a turned anisotropic grid: bricked = whole-box field bit for bit within the reach");
+}
+/// The field at sigma (two threads) over the whole image, and in bricks whose G_sigma * f is
+/// smoothed in slabs of coreSlices and kept in tiles near `surface`; returns the bricks.
+std::shared_ptr<FieldBricks> WholeAndInSlabs(const ImageView& view, double sigma,
+  const TriangleMesh& surface, int coreSlices, ForceField& whole, ForceField& slabs)
+{
+  ScaleSpaceParameters p;
+  p.Sigma = sigma;
+  p.NumberOfThreads = 2;
+  std::string error;
+  DS_CHECK(ComputeScaleSpaceForce(view, p, whole, &error), error);
+  auto bricks = std::make_shared<FieldBricks>();
+  DS_CHECK(
+    bricks->InitializeInSlabs(view, p, BrickReachSigmas * sigma, surface, coreSlices, &error),
+    error);
+  bricks->Cover(surface);
+  slabs.Geometry = view.Geometry;
+  slabs.Sigma = sigma;
+  slabs.Bricks = bricks;
+  return bricks;
+}
+
+/// G_sigma * f smoothed in slabs and kept in tiles near the surface (FieldBricks::
+/// InitializeInSlabs) against the whole image's field: bit for bit within the reach, with the
+/// sampled and the recursive Gaussian along z, slabs of a few slices and the default, a float and
+/// a uint16 image, an anisotropic grid; less memory than the box's G_sigma * f alone; a surface
+/// moved past the tiles smooths the image again and still equals the whole field.
+void InSlabs()
+{
+  ImageGeometry g;
+  g.Dimensions[0] = 90;
+  g.Dimensions[1] = 84;
+  g.Dimensions[2] = 70;
+  g.Spacing[2] = 1.4;
+  const Vec3 c{ 44.0, 41.5, 48.0 };
+  const std::vector<float> ball = sstest::SoftBall(g, c.data(), 25.0);
+  std::vector<unsigned short> counts(ball.size());
+  for (std::size_t v = 0; v < ball.size(); ++v)
+  {
+    counts[v] = static_cast<unsigned short>(std::lround(1000.0 + 800.0 * ball[v]));
+  }
+  const TriangleMesh surface = dstest::MakeIcosphere(3, 26.5, c);
+  // sigma 2: sampled along every axis; 3.5: recursive along x and y, sampled along z (2.5
+  // voxels); 5: recursive along every axis.
+  for (const double sigma : { 2.0, 3.5, 5.0 })
+    for (const int core : { 5, 0 })
+      for (const bool integers : { false, true })
+      {
+        const ImageView view =
+          integers ? ImageView::Of(counts.data(), g) : ImageView::Of(ball.data(), g);
+        ForceField whole, slabs;
+        const auto bricks = WholeAndInSlabs(view, sigma, surface, core, whole, slabs);
+        const double reach = BrickReachSigmas * sigma;
+        const std::string what = "sigma " + std::to_string(sigma) + ", slabs of " +
+          std::to_string(core) + (integers ? " slices, uint16" : " slices, float");
+        DS_CHECK(LargestDifference(slabs, whole, PointsWithinReach(surface, c, reach)) == 0.0 &&
+            bricks->Misses() == 0,
+          what + ": in slabs = the whole field bit for bit within the reach");
+      }
+
+  // A larger ball against its image, sigma 1.5 voxels (reach 3): the tiles kept (within two
+  // reaches, a voxel and half a brick of the surface, and a brick more) hold 0.69 of the image's
+  // G_sigma * f; the surface moved 20 voxels, past them, smooths the image again and still equals
+  // the whole field.
+  ImageGeometry big;
+  big.Dimensions[0] = big.Dimensions[1] = big.Dimensions[2] = 150;
+  const Vec3 m{ 70.0, 74.5, 74.5 };
+  const std::vector<float> image = sstest::SoftBall(big, m.data(), 50.0);
+  const ImageView view = ImageView::Of(image.data(), big);
+  const TriangleMesh sphere = dstest::MakeIcosphere(4, 50.5, m);
+  ForceField whole, slabs;
+  const double sigma = 1.5, reach = BrickReachSigmas * sigma;
+  const auto bricks = WholeAndInSlabs(view, sigma, sphere, 0, whole, slabs);
+  const double tiles = bricks->Bytes() -
+    4.0 * sizeof(float) * std::pow(FieldBricks::BrickSize + 1.0, 3) * bricks->ComputedBricks();
+  DS_CHECK_LE(tiles / (sizeof(float) * big.NumberOfVoxels()), 0.75,
+    "G_sigma * f held in tiles near a ball of radius 50, against the image's");
+  DS_CHECK(LargestDifference(slabs, whole, PointsWithinReach(sphere, m, reach)) == 0.0,
+    "in slabs = the whole field bit for bit within the reach of a larger ball");
+  const long long misses = bricks->Misses(); // the seams' line crosses the ball's inside
+  const Vec3 moved = m + Vec3{ 20.0, 0.0, 0.0 };
+  const TriangleMesh away = dstest::MakeIcosphere(4, 50.5, moved);
+  bricks->Cover(away);
+  DS_CHECK(bricks->SlabSmoothings() == 2 &&
+      LargestDifference(slabs, whole, PointsWithinReach(away, moved, reach, false)) == 0.0 &&
+      bricks->Misses() == misses,
+    "a surface moved past the tiles smooths again, and equals the whole field");
 }
 } // namespace
 
@@ -226,6 +316,7 @@ int TestFieldBricks(int, char*[])
     "a seed grown far on a bricked first level: no missed brick");
   DS_CHECK(std::abs(radius - 30.0) < 1.0, "and it reaches the ball (mean radius within 1 voxel)");
   TurnedGrid();
+  InSlabs();
   return dstest::Result("TestFieldBricks");
 }
 

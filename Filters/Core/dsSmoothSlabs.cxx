@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "dsSmoothSlabs.h"
+
+#include "dsGaussianSmoother.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dsurf
+{
+namespace
+{
+constexpr int StateDoubles = RecursiveAxisPass::States;
+
+/// The slab core count and the first slice of each core (cores[s] .. cores[s + 1]): as equal
+/// as integers allow, so that no core is a single slice after longer ones.
+std::vector<int> SlabCores(int nz, int core)
+{
+  // Several cores have two slices or more (RecursiveSlabs records the state after a core's
+  // last but one).
+  const int slabs = std::max(1, std::min((nz + core - 1) / core, nz / 2));
+  std::vector<int> first(slabs + 1);
+  for (int s = 0; s <= slabs; ++s)
+  {
+    first[s] = static_cast<int>(static_cast<long long>(nz) * s / slabs);
+  }
+  return first;
+}
+
+/// The most slices a core has.
+int LongestCore(const std::vector<int>& cores)
+{
+  int longest = 0;
+  for (std::size_t s = 0; s + 1 < cores.size(); ++s)
+  {
+    longest = std::max(longest, cores[s + 1] - cores[s]);
+  }
+  return longest;
+}
+
+/// Slices [z0, z1) of `image` smoothed along x and y (each slice alone, as the whole image's
+/// passes smooth it) into `out`. As the whole image's SmoothImage does: a contiguous float view
+/// is read in place, any other converted first.
+void SmoothSlicesXY(const ImageView& image, int z0, int z1, const double sigmaVoxels[3], float* out)
+{
+  VoxelBox slab = VoxelBox::Whole(image.Geometry);
+  slab.Begin[2] = z0;
+  slab.End[2] = z1;
+  const ImageView part = image.Box(slab);
+  const int* dims = part.Geometry.Dimensions;
+  const double sv[3] = { sigmaVoxels[0], sigmaVoxels[1], 0.0 };
+  if (part.IsContiguousFloat())
+  {
+    SmoothGaussianSeparable(static_cast<const float*>(part.Data), out, dims, sv);
+  }
+  else
+  {
+    CopyToFloat(part, out);
+    SmoothGaussianSeparable(out, out, dims, sv);
+  }
+}
+
+/// The sampled Gaussian (or none) along z. Each slice is smoothed along x and y once, into a
+/// window of the slices the slab's z pass reads (its radius on either side of the slab; the
+/// window's later slices move to its front for the next slab), and the z pass computes the
+/// slab's slices alone.
+void SampledSlabs(const ImageView& image, const double sv[3], int core,
+  const std::function<void(const SmoothSlab&)>& visit)
+{
+  const int* dims = image.Geometry.Dimensions;
+  const int nz = dims[2];
+  const int radius = std::max(0, GaussianAxisReach(sv[2]));
+  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const std::vector<int> cores = SlabCores(nz, core);
+  const int longest = LongestCore(cores);
+  std::vector<float> window(
+    static_cast<std::size_t>(std::min(nz, longest + 2 + 2 * radius) * slice));
+  std::vector<float> out(static_cast<std::size_t>(std::min(nz, longest + 2) * slice));
+  int w0 = 0, w1 = 0; // the window holds slices [w0, w1)
+  for (std::size_t s = 0; s + 1 < cores.size(); ++s)
+  {
+    const int f0 = std::max(0, cores[s] - 1), f1 = std::min(nz, cores[s + 1] + 1);
+    const int i0 = std::max(0, f0 - radius), i1 = std::min(nz, f1 + radius);
+    // The window's slices from i0 on move to its front (i0 only grows); the rest are smoothed.
+    const int kept = std::max(0, w1 - i0);
+    if (kept > 0 && i0 > w0)
+    {
+      std::copy_n(window.data() + (i0 - w0) * slice, kept * slice, window.data());
+    }
+    SmoothSlicesXY(image, i0 + kept, i1, sv, window.data() + kept * slice);
+    w0 = i0;
+    w1 = i1;
+    const int wdims[3] = { dims[0], dims[1], w1 - w0 };
+    SampledAxisZ(window.data(), out.data(), wdims, sv[2], f0 - w0, f1 - w0);
+    visit(SmoothSlab{ out.data(), f0, f1 - f0, cores[s], cores[s + 1] });
+  }
+}
+
+/// The recursive filter along z, in two passes (the header's comment). Slab s covers slices
+/// [f0, f1) = its core and one slice on either side within the image; its forward recursion
+/// starts from the state after slice f0 - 1 (recorded by the first pass) and its backward one
+/// from the state after slice f1 (recorded by the slab above it, whose slices include f1).
+void RecursiveSlabs(const ImageView& image, const double sv[3], int core,
+  const std::function<void(const SmoothSlab&)>& visit)
+{
+  const int nx = image.Geometry.Dimensions[0], ny = image.Geometry.Dimensions[1];
+  const int nz = image.Geometry.Dimensions[2];
+  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(nx) * ny;
+  const std::vector<int> cores = SlabCores(nz, core);
+  const int slabs = static_cast<int>(cores.size()) - 1;
+  std::vector<float> buffer;
+  std::vector<std::vector<double>> starts(slabs), recorded;
+  std::vector<double> carry; // the forward state after the previous core's last slice
+  for (int s = 0; s < slabs; ++s)
+  {
+    const int n = cores[s + 1] - cores[s];
+    buffer.resize(static_cast<std::size_t>(n * slice));
+    SmoothSlicesXY(image, cores[s], cores[s + 1], sv, buffer.data());
+    const int dims[3] = { nx, ny, n };
+    RecursiveAxisPass pass(buffer.data(), dims, 2, sv[2]);
+    // After the core's last slice (the next core's start) and after its last but one (the
+    // start of the next slab, which begins a slice before its core; cores have 2 or more
+    // slices when there are several).
+    pass.Forward(s > 0 ? carry.data() : nullptr, { n - 1, n - 2 }, recorded);
+    carry = std::move(recorded[0]);
+    if (s + 1 < slabs)
+    {
+      starts[s + 1] = std::move(recorded[1]);
+    }
+  }
+  std::vector<double>().swap(carry);
+  std::vector<double> ahead; // the backward state after slice f1 of the slab below
+  for (int s = slabs - 1; s >= 0; --s)
+  {
+    const int f0 = std::max(0, cores[s] - 1), f1 = std::min(nz, cores[s + 1] + 1);
+    buffer.resize(static_cast<std::size_t>((f1 - f0) * slice));
+    SmoothSlicesXY(image, f0, f1, sv, buffer.data());
+    const int dims[3] = { nx, ny, f1 - f0 };
+    RecursiveAxisPass pass(buffer.data(), dims, 2, sv[2]);
+    pass.Forward(s > 0 ? starts[s].data() : nullptr, {}, recorded);
+    std::vector<double>().swap(starts[s]);
+    // The slab below ends at slice cores[s] + 1 (exclusive): its backward recursion starts
+    // from the state after that slice, unless it reaches the image's end.
+    std::vector<int> record;
+    if (s > 0 && cores[s] + 1 < nz)
+    {
+      record.push_back(cores[s] + 1 - f0);
+    }
+    pass.Backward(f1 < nz ? ahead.data() : nullptr, record, recorded);
+    ahead = record.empty() ? std::vector<double>() : std::move(recorded[0]);
+    visit(SmoothSlab{ buffer.data(), f0, f1 - f0, cores[s], cores[s + 1] });
+  }
+}
+} // namespace
+
+int DefaultSlabCore(const int dims[3], double sigmaVoxelsZ)
+{
+  const int reach = GaussianAxisReach(sigmaVoxelsZ);
+  if (reach < 0)
+  {
+    return std::max(4, static_cast<int>(std::lround(std::sqrt(10.0 * dims[2]))));
+  }
+  return std::max(32, 4 * reach);
+}
+
+void SmoothInSlabs(const ImageView& image, const double sigmaVoxels[3], int coreSlices,
+  const std::function<void(const SmoothSlab&)>& visit)
+{
+  const int* dims = image.Geometry.Dimensions;
+  const int core = std::max(2, coreSlices > 0 ? coreSlices : DefaultSlabCore(dims, sigmaVoxels[2]));
+  if (GaussianAxisReach(sigmaVoxels[2]) < 0)
+  {
+    RecursiveSlabs(image, sigmaVoxels, core, visit);
+  }
+  else
+  {
+    SampledSlabs(image, sigmaVoxels, core, visit);
+  }
+}
+
+double SmoothInSlabsBytes(const int dims[3], const double sigmaVoxels[3], int coreSlices)
+{
+  const int core = std::max(2, coreSlices > 0 ? coreSlices : DefaultSlabCore(dims, sigmaVoxels[2]));
+  const int longest = LongestCore(SlabCores(dims[2], core));
+  const double slice = static_cast<double>(dims[0]) * dims[1];
+  const int reach = GaussianAxisReach(sigmaVoxels[2]);
+  if (reach >= 0)
+  {
+    // The window of slices smoothed along x and y, and the slab's output.
+    return sizeof(float) * slice *
+      (std::min(dims[2], longest + 2 + 2 * reach) + std::min(dims[2], longest + 2));
+  }
+  // A slab's floats, the recorded starts of the slabs, and a pass's own states (its saved end
+  // state and last input, two recorded states and the state carried between slabs).
+  const double slabs = static_cast<double>(SlabCores(dims[2], core).size() - 1);
+  return sizeof(float) * slice * std::min(dims[2], longest + 2) +
+    sizeof(double) * slice * (StateDoubles * (slabs - 1) + (StateDoubles + 1) + 3 * StateDoubles);
+}
+} // namespace dsurf
