@@ -1,16 +1,46 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "dsFieldBricks.h"
 
+#include "dsMemory.h"
 #include "dsSmoothSlabs.h"
 #include "dsThreads.h"
 
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <sstream>
 
 namespace dsurf
 {
+namespace
+{
+/// Marks every brick within `grow` bricks along axis `a` of a marked one (bricks: the grid's
+/// bricks along each axis, x fastest), by a running count along each line of bricks.
+void GrowMarks(std::vector<char>& mark, const int bricks[3], int a, int grow)
+{
+  const std::ptrdiff_t step[3] = { 1, bricks[0],
+    static_cast<std::ptrdiff_t>(bricks[0]) * bricks[1] };
+  const int n = bricks[a];
+  const int u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2; // the other two axes
+  std::vector<int> before(n + 1);
+  for (int q = 0; q < bricks[v]; ++q)
+    for (int p = 0; p < bricks[u]; ++p)
+    {
+      char* line = mark.data() + p * step[u] + q * step[v];
+      for (int i = 0; i < n; ++i)
+      {
+        before[i + 1] = before[i] + (line[i * step[a]] ? 1 : 0);
+      }
+      for (int i = 0; i < n; ++i)
+      {
+        line[i * step[a]] = before[std::min(n, i + grow + 1)] > before[std::max(0, i - grow)];
+      }
+    }
+}
+} // namespace
+
 bool FieldBricks::Initialize(
   const ImageView& image, const ScaleSpaceParameters& parameters, double reach, std::string* error)
 {
@@ -27,6 +57,17 @@ bool FieldBricks::Initialize(
 bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
   double reach, const TriangleMesh& surface, int coreSlices, std::string* error)
 {
+  // A piece's part of a distributed image needs the other pieces' states and maximum (its
+  // hooks), which Reset drops: refused here, not smoothed without them.
+  if (parameters.Smooth || parameters.GradientMaximum ||
+    (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local))
+  {
+    if (error)
+    {
+      *error = "only the globally normalised field of a whole image is smoothed in slabs";
+    }
+    return false;
+  }
   this->Reset(image.Geometry, parameters, reach);
   this->Source = image;
   this->SlabCore = coreSlices;
@@ -58,6 +99,9 @@ void FieldBricks::Reset(
   this->Source = ImageView();
   this->Tiles.clear();
   this->Smoothings = 0;
+  this->CheckGrowth = false;
+  this->Available = -1.0;
+  this->ShortfallMessage.clear();
   // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
   for (int a = 0; a < 3; ++a)
   {
@@ -165,12 +209,37 @@ void FieldBricks::MarkNear(
 void FieldBricks::MarkNearSurface(
   const TriangleMesh& mesh, double reach, std::vector<char>& mark) const
 {
-  // Points on every triangle, a grid of spacing at most h along its edges: every point of the
-  // triangle lies within h of one. A coarse start's vertices lie far apart (a sphere of radius
-  // 219 voxels with 48 x 48 vertices: 29 voxels), and its refined surface between them.
+  // The bricks holding a point of the surface (its vertices, and on every triangle a grid of
+  // spacing at most h along its edges, so every point of the triangle lies within h of one: a
+  // coarse start's vertices lie far apart, a sphere of radius 219 voxels with 48 x 48 vertices
+  // 29 voxels, and its refined surface between them), then grown along each axis by the bricks
+  // reach + h and a voxel span, and one more: a superset of MarkNear's bricks for those points,
+  // in time that grows with the bricks, not with the points times the reach's volume.
   const double h = 0.5 * BrickSize *
     std::min({ this->Grid.Spacing[0], this->Grid.Spacing[1], this->Grid.Spacing[2] });
-  std::vector<Vec3> points = mesh.Points;
+  const double r = reach + h;
+  mark.assign(this->Slots.size(), 0);
+  const auto markPoint = [&](const Vec3& p)
+  {
+    double ijk[3];
+    this->Grid.WorldToIndex(p.data(), ijk);
+    int b[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double last = this->Grid.Dimensions[a] - 2;
+      const double within = r / this->Grid.Spacing[a] + 1.0;
+      if (!(ijk[a] >= -within && ijk[a] <= last + within)) // also false for NaN
+      {
+        return;
+      }
+      b[a] = static_cast<int>(std::min(last, std::max(0.0, std::floor(ijk[a])))) / BrickSize;
+    }
+    mark[(static_cast<std::size_t>(b[2]) * this->Bricks[1] + b[1]) * this->Bricks[0] + b[0]] = 1;
+  };
+  for (const Vec3& p : mesh.Points)
+  {
+    markPoint(p);
+  }
   for (const auto& t : mesh.Triangles)
   {
     const Vec3 &a = mesh.Points[t[0]], &b = mesh.Points[t[1]], &c = mesh.Points[t[2]];
@@ -179,11 +248,15 @@ void FieldBricks::MarkNearSurface(
     for (int i = 0; n > 1 && i <= n; ++i)
       for (int j = 0; j <= n - i; ++j)
       {
-        points.push_back(
+        markPoint(
           a + (static_cast<double>(i) / n) * (b - a) + (static_cast<double>(j) / n) * (c - a));
       }
   }
-  this->MarkNear(points, reach + h, 1, mark);
+  for (int a = 0; a < 3; ++a)
+  {
+    const int grow = static_cast<int>(std::ceil((r / this->Grid.Spacing[a] + 1.0) / BrickSize)) + 1;
+    GrowMarks(mark, this->Bricks, a, grow);
+  }
 }
 
 bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& fresh)
@@ -217,7 +290,56 @@ bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& 
   this->TileMargin *= 2.0;
   std::vector<char> keep;
   this->MarkNearSurface(mesh, this->Reach + this->TileMargin, keep);
+  // The tiles held now are freed first; counted as if not, to be safe.
+  double sv[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    sv[a] = this->Parameters.Sigma / this->Grid.Spacing[a];
+  }
+  const double more =
+    static_cast<double>(std::count(keep.begin(), keep.end(), char(1))) * TileBytes +
+    SmoothInSlabsBytes(this->Grid.Dimensions, sv, this->SlabCore);
+  if (!this->Affords(more, "G_sigma * f near the surface, smoothed again"))
+  {
+    return false;
+  }
   return this->SmoothTiles(keep, nullptr);
+}
+
+bool FieldBricks::Affords(double bytes, const char* what)
+{
+  if (!this->CheckGrowth)
+  {
+    return true;
+  }
+  std::ostringstream text;
+  text.precision(3);
+  text << what << " at sigma " << this->Parameters.Sigma << " (world units), as the surface moved";
+  this->ShortfallMessage = MemoryShortfall(bytes, text.str(), this->Available);
+  return this->ShortfallMessage.empty();
+}
+
+double FieldBricks::InitialBytes(const ImageGeometry& grid, const ScaleSpaceParameters& parameters,
+  double reach, const TriangleMesh& surface, bool inSlabs, int coreSlices)
+{
+  FieldBricks counter;
+  counter.Reset(grid, parameters, reach);
+  std::vector<char> mark;
+  counter.MarkNear(surface.Points, reach, 0, mark);
+  double bytes = static_cast<double>(std::count(mark.begin(), mark.end(), char(1))) * BrickBytes;
+  if (!inSlabs)
+  {
+    return bytes + sizeof(float) * static_cast<double>(grid.NumberOfVoxels());
+  }
+  // InitializeInSlabs's tiles, and the slabs while they are smoothed.
+  counter.MarkNearSurface(surface, 2.0 * reach, mark);
+  double sv[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    sv[a] = parameters.Sigma / grid.Spacing[a];
+  }
+  return bytes + static_cast<double>(std::count(mark.begin(), mark.end(), char(1))) * TileBytes +
+    SmoothInSlabsBytes(grid.Dimensions, sv, coreSlices);
 }
 
 const float* FieldBricks::SmoothAround(
@@ -243,6 +365,7 @@ const float* FieldBricks::SmoothAround(
         const int t[3] = { ti, tj, tk };
         const std::vector<float>& tile =
           this->Tiles[(static_cast<std::size_t>(tk) * this->Bricks[1] + tj) * this->Bricks[0] + ti];
+        assert(!tile.empty()); // EnsureTiles smooths again before a brick reads a tile not held
         const VoxelBox tb = this->TileBox(t);
         const std::ptrdiff_t tx = tb.End[0] - tb.Begin[0], ty = tb.End[1] - tb.Begin[1];
         const int i0 = std::max(tb.Begin[0], over.Begin[0]), i1 = std::min(tb.End[0], over.End[0]);
@@ -361,6 +484,12 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
     fresh.clear(); // not computed: their samples count as misses
   }
   this->DropUnreachedOverBudget(needed, fresh.size());
+  if (!fresh.empty() &&
+    !this->Affords(
+      static_cast<double>(fresh.size()) * BrickBytes, "more bricks of the force field"))
+  {
+    return 0; // the caller ends the solve (Shortfall)
+  }
   for (int id : fresh)
   {
     if (this->FreeSlots.empty())

@@ -26,8 +26,8 @@
 namespace dsurf
 {
 /// How far, in sigmas, the bricks reach past the surface's vertices: the 2 sigma a surface may
-/// move in a level (NeighbourhoodSigmas less the Gaussian's support, which G_sigma * f over the
-/// box already holds).
+/// move in a level (NeighbourhoodSigmas less the Gaussian's support, which the level's box
+/// leaves around it for G_sigma * f).
 constexpr double BrickReachSigmas = 2.0;
 
 class DEFORMABLESURFACEFILTERS_EXPORT FieldBricks
@@ -51,8 +51,27 @@ public:
   bool InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
     double reach, const TriangleMesh& surface, int coreSlices, std::string* error);
   /// Computes the bricks within the reach of a vertex of `mesh` that are not computed yet (in
-  /// parallel, NumberOfThreads of the parameters); returns how many. Between sweeps only.
+  /// parallel, NumberOfThreads of the parameters); returns how many. Between sweeps only. With
+  /// CheckMemoryAsAdded, bricks (or tiles smoothed again) that the memory available cannot hold
+  /// are not made: Shortfall says so, and the caller ends the solve.
   int Cover(const TriangleMesh& mesh);
+  /// From now on Cover checks what it adds against the memory available (`available` bytes;
+  /// negative: the machine's, dsMemory.h), for a field whose first check counted only the bricks
+  /// and tiles near its first surface (InitialBytes).
+  void CheckMemoryAsAdded(double available = -1.0)
+  {
+    this->CheckGrowth = true;
+    this->Available = available;
+  }
+  /// Why Cover made no more bricks (the memory available), empty while it could.
+  const std::string& Shortfall() const { return this->ShortfallMessage; }
+  /// The bytes a field in bricks over `grid` (a level's box of an image) holds once made and
+  /// covering `surface`: G_sigma * f over the box or (inSlabs) the tiles near the surface and
+  /// what the slabs hold while smoothing (coreSlices: InitializeInSlabs's), and the bricks
+  /// within `reach` of its vertices. MultilevelSolver::MakeField checks it; Cover checks the rest
+  /// as it is added.
+  static double InitialBytes(const ImageGeometry& grid, const ScaleSpaceParameters& parameters,
+    double reach, const TriangleMesh& surface, bool inSlabs, int coreSlices = 0);
 
   /// The grid of the box the bricks divide.
   const ImageGeometry& Geometry() const { return this->Grid; }
@@ -89,6 +108,15 @@ private:
   /// The voxels brick b computes itself: all but the layer it shares with the next brick
   /// along each axis (that brick's first), which the last brick along the axis has alone.
   VoxelBox OwnBox(const int b[3]) const;
+  /// Bytes a computed brick holds at most (P and -grad P over (BrickSize + 1)^3 voxels), and a
+  /// tile (G_sigma * f over at most (BrickSize + 1)^3).
+  static constexpr double BrickBytes =
+    4.0 * sizeof(float) * (BrickSize + 1) * (BrickSize + 1) * (BrickSize + 1);
+  static constexpr double TileBytes =
+    sizeof(float) * (BrickSize + 1) * (BrickSize + 1) * (BrickSize + 1);
+  /// Empty when `bytes` more fit in the memory available (CheckMemoryAsAdded), else the message,
+  /// kept in ShortfallMessage.
+  bool Affords(double bytes, const char* what);
   /// Forgets every brick and tile, for a box of `grid`.
   void Reset(const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach);
   /// The voxels whose G_sigma * f brick b's tile holds in slabs: its own, and the last voxel
@@ -132,6 +160,11 @@ private:
   std::vector<std::vector<float>> Tiles;
   double TileMargin = 0;
   int Smoothings = 0;
+  /// CheckMemoryAsAdded: its switch, the bytes available (negative: the machine's), and why
+  /// bricks were not made.
+  bool CheckGrowth = false;
+  double Available = -1.0;
+  std::string ShortfallMessage;
   int Bricks[3] = { 0, 0, 0 }; ///< bricks along each axis
   std::vector<int> Slots;      ///< per brick (x fastest): its index in Potential, or -1
   std::vector<std::vector<float>> Potential, Force; ///< per computed brick, x fastest

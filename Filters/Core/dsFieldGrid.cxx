@@ -259,12 +259,26 @@ bool FieldInSlabs(const VoxelBox& cut, const ImageGeometry& whole)
     SlabSmoothingShare * static_cast<double>(whole.NumberOfVoxels());
 }
 
-double FieldBytes(
-  const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
+double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
+  const ScaleSpaceParameters& parameters, const TriangleMesh* surface)
 {
   VoxelBox cut;
   const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
   const bool bricked = f <= 1 && FieldInBricks(box, whole, parameters);
+  if (bricked && surface)
+  {
+    // The field's first bricks and G_sigma * f; Cover checks the bricks added later.
+    ImageGeometry grid = whole;
+    const double first[3] = { static_cast<double>(cut.Begin[0]), static_cast<double>(cut.Begin[1]),
+      static_cast<double>(cut.Begin[2]) };
+    whole.IndexToWorld(first, grid.Origin);
+    for (int a = 0; a < 3; ++a)
+    {
+      grid.Dimensions[a] = cut.End[a] - cut.Begin[a];
+    }
+    return FieldBricks::InitialBytes(
+      grid, parameters, BrickReachSigmas * parameters.Sigma, *surface, FieldInSlabs(cut, whole));
+  }
   double slabs = 0;
   if (bricked && FieldInSlabs(cut, whole))
   {
@@ -281,7 +295,7 @@ double FieldBytes(
 }
 
 bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& parameters,
-  const TriangleMesh& surface, ForceField& out, std::string* error, bool inSlabs)
+  const TriangleMesh& surface, ForceField& out, std::string* error, bool inSlabs, bool checkAsAdded)
 {
   auto bricks = std::make_shared<FieldBricks>();
   const double reach = BrickReachSigmas * parameters.Sigma;
@@ -290,7 +304,19 @@ bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& para
   {
     return false;
   }
+  if (checkAsAdded)
+  {
+    bricks->CheckMemoryAsAdded();
+  }
   bricks->Cover(surface);
+  if (!bricks->Shortfall().empty())
+  {
+    if (error)
+    {
+      *error = bricks->Shortfall();
+    }
+    return false;
+  }
   if (!bricks->Finite())
   {
     if (error)
@@ -335,7 +361,7 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
   {
     const bool inSlabs = FieldInSlabs(part, image.Geometry);
     const bool ok = surface && !local
-      ? ComputeBrickedForce(cut, parameters, *surface, out, error, inSlabs)
+      ? ComputeBrickedForce(cut, parameters, *surface, out, error, inSlabs, true)
       : ComputeScaleSpaceForce(cut, parameters, out, error);
     out.Image = image.Geometry;
     return ok;

@@ -115,13 +115,15 @@ DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
 /// FieldBricks::DropUnreachedOverBudget drops the bricks no vertex needs beyond the part's voxels).
 DEFORMABLESURFACEFILTERS_EXPORT double FieldBytesPerVoxel(bool bricked);
 
-/// The bytes a field at `parameters` over `box` of an image of geometry `whole` holds at most
-/// (ComputeForceAtScale): FieldBytesPerVoxel over FieldCut's part on its grid (for a field
-/// smoothed in slabs, its tiles at most the part's voxels) and, in slabs, what the smoothing
-/// holds besides (SmoothInSlabsBytes).
+/// The bytes a field at `parameters` over `box` of an image of geometry `whole` holds
+/// (ComputeForceAtScale): at most FieldBytesPerVoxel over FieldCut's part on its grid (for a
+/// field smoothed in slabs, its tiles at most the part's voxels) and, in slabs, what the
+/// smoothing holds besides (SmoothInSlabsBytes). With the `surface` it is made around, a field in
+/// bricks counts what it holds once made (FieldBricks::InitialBytes): the bricks it adds as the
+/// surface moves are checked as they are added (FieldBricks::CheckMemoryAsAdded).
 /// MultilevelSolver::MakeField checks it before it makes the field (docs/METHOD.md §9.6).
-DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
-  const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
+DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
+  const ScaleSpaceParameters& parameters, const TriangleMesh* surface = nullptr);
 
 /// The field at parameters.Sigma over all of `part` (a view of the image's values, placed in the
 /// image: the cut of ComputeForceAtScale, or a piece's region) but kept only in the bricks within
@@ -130,9 +132,11 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(
 /// (dsPieceField.h).
 /// `inSlabs`: G_sigma * f is smoothed in slabs and kept near the surface only
 /// (FieldBricks::InitializeInSlabs; not with a piece's hooks), else over all of `part`.
+/// `checkAsAdded`: the bricks added as the surface moves are checked against the memory
+/// available (FieldBricks::CheckMemoryAsAdded; the first ones too, false with its message).
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,
   const ScaleSpaceParameters& parameters, const TriangleMesh& surface, ForceField& out,
-  std::string* error, bool inSlabs = false);
+  std::string* error, bool inSlabs = false, bool checkAsAdded = false);
 
 /// A bricked field smooths its cut in slabs (ComputeBrickedForce's inSlabs) when the cut holds
 /// more than this share of the image's voxels, so that no float field of the whole image is made

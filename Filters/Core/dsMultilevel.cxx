@@ -615,6 +615,13 @@ bool MultilevelSolver::SolveLevel(
     if (field.Bricks)
     {
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
+      if (!field.Bricks->Shortfall().empty())
+      {
+        // Serial only (a piece's bricks were counted whole before: PieceFieldBytes).
+        state.FieldError = "level " + std::to_string(rec.Level) + ": " + field.Bricks->Shortfall();
+        stop = true;
+        break;
+      }
     }
     int sweepsNow = batchSize;
     if (contact)
@@ -890,8 +897,9 @@ bool MultilevelSolver::MakeField(const ImageView& image, const TriangleMesh& mes
   // before the solve counts no field. Distributed, each process checks what it would hold, and
   // all agree.
   state.Field = ForceField();
-  const double need = this->Distributed ? PieceFieldBytes(this->Piece, box, state.FieldParameters)
-                                        : FieldBytes(box, image.Geometry, state.FieldParameters);
+  const double need = this->Distributed
+    ? PieceFieldBytes(this->Piece, box, state.FieldParameters)
+    : FieldBytes(box, image.Geometry, state.FieldParameters, &mesh);
   std::ostringstream what;
   what.precision(3);
   what << "The force field at sigma " << state.FieldParameters.Sigma << " (world units) over "

@@ -138,7 +138,7 @@ double Quantile(const SharedValues& all, double q, const PieceReductions& reduce
 /// 16 MiB, and their quantiles are those of all voxels to well within a voxel's noise (the
 /// standard error of a 1 % quantile of 4 million values is about 0.2 % of the class's s.d.).
 /// Reading every value of a start enclosing millions of voxels costs the solve a tenth of its
-/// time and tells nothing more (BENCHMARKS.md, issue 28's near start).
+/// time and tells nothing more (BENCHMARKS.md, BenchScale's near start).
 constexpr long long SampledValues = 1LL << 22;
 
 /// The n of SampledValues for `voxels` voxels: 1 up to SampledValues, else odd, so that at most

@@ -121,7 +121,7 @@ inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
 }
 
 /// Our filter from a sphere near the object: ParaView's Sphere (24 x 24) of radius 0.3 n at
-/// the volume's centre, around the ball of radius n/4 (issue 28's near start).
+/// the volume's centre, around the ball of radius n/4 (BenchScale's near start).
 inline std::string RunOursNear(vtkImageData* image, const Phantom& ph, int threads)
 {
   const double c = 0.5 * (ph.N - 1);
@@ -135,7 +135,7 @@ inline std::string RunOursNear(vtkImageData* image, const Phantom& ph, int threa
 }
 
 /// Our filter from one click at the volume's centre (inside the ball): vtkDelaunaySeedSurface
-/// of that point, every default, then RegionWeight 1 (issue 28's one-click start).
+/// of that point, every default, then RegionWeight 1 (BenchScale's one-click start).
 inline std::string RunOursClick(vtkImageData* image, const Phantom& ph, int threads)
 {
   const double c = 0.5 * (ph.N - 1);

@@ -7,7 +7,7 @@
 // high-water mark, phantom included. Before a case starts its peak is estimated from the
 // largest size of the same method measured in this run (or a prior per voxel); a case whose
 // estimate exceeds the memory available minus a reserve is skipped with the estimate printed.
-// Then issue 28's starts near the object on the ball+block scene (BenchVolumes.h NearScene):
+// Then starts near the object on the ball+block scene (BenchVolumes.h NearScene):
 // a sphere of radius 0.3 n around the ball, and one click at its centre (vtkDelaunaySeedSurface,
 // RegionWeight 1), and a sphere 4 voxels around the ball (every default: sigma_0 a few voxels,
 // so the first level is on the image's own grid), on two threads, beside vtkFlyingEdges3D at

@@ -5,7 +5,7 @@
 // (background 0, object 1) or as a CT-like uint16 volume (background 1000, object 2000); either
 // with optional Gaussian noise. The noise is a hash of the voxel index (no generator state),
 // so the volume is the same for any thread count and run; filled in parallel (1024^3 in seconds).
-// The near-start scene of issue 28 (NearScene) is a CT-like ball (value 1100) beside a darker
+// The near-start scene (NearScene) is a CT-like ball (value 1100) beside a darker
 // block (700, half side n/10 at (c + 0.36 n, c + 0.36 n, c)) on background 100, noise s.d. 60.
 #ifndef BenchVolumes_h
 #define BenchVolumes_h
