@@ -244,6 +244,10 @@ void FieldBricks::MarkNearSurface(
   {
     const Vec3 &a = mesh.Points[t[0]], &b = mesh.Points[t[1]], &c = mesh.Points[t[2]];
     const double longest = std::max({ Norm(b - a), Norm(c - b), Norm(a - c) });
+    if (!std::isfinite(longest))
+    {
+      continue; // its points mark nothing (markPoint)
+    }
     const int n = static_cast<int>(std::min(1e4, std::ceil(longest / h)));
     for (int i = 0; n > 1 && i <= n; ++i)
       for (int j = 0; j <= n - i; ++j)
@@ -299,7 +303,7 @@ bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& 
   const double more =
     static_cast<double>(std::count(keep.begin(), keep.end(), char(1))) * TileBytes +
     SmoothInSlabsBytes(this->Grid.Dimensions, sv, this->SlabCore);
-  if (!this->Affords(more, "G_sigma * f near the surface, smoothed again"))
+  if (!this->Affords(more, "the force field's smoothed image near the surface, smoothed again"))
   {
     return false;
   }
@@ -314,8 +318,12 @@ bool FieldBricks::Affords(double bytes, const char* what)
   }
   std::ostringstream text;
   text.precision(3);
-  text << what << " at sigma " << this->Parameters.Sigma << " (world units), as the surface moved";
+  text << what << " at sigma " << this->Parameters.Sigma << " (world units)";
   this->ShortfallMessage = MemoryShortfall(bytes, text.str(), this->Available);
+  if (this->ShortfallMessage.empty() && this->Available >= 0.0)
+  {
+    this->Available -= bytes; // a given budget is used up (the machine's is read each time)
+  }
   return this->ShortfallMessage.empty();
 }
 
@@ -326,7 +334,10 @@ double FieldBricks::InitialBytes(const ImageGeometry& grid, const ScaleSpacePara
   counter.Reset(grid, parameters, reach);
   std::vector<char> mark;
   counter.MarkNear(surface.Points, reach, 0, mark);
-  double bytes = static_cast<double>(std::count(mark.begin(), mark.end(), char(1))) * BrickBytes;
+  // The bricks near the surface, and the bookkeeping of every brick of the box (its slot, its
+  // tile's vector, the marks of Cover).
+  double bytes = static_cast<double>(std::count(mark.begin(), mark.end(), char(1))) * BrickBytes +
+    static_cast<double>(mark.size()) * (sizeof(int) + sizeof(std::vector<float>) + 2);
   if (!inSlabs)
   {
     return bytes + sizeof(float) * static_cast<double>(grid.NumberOfVoxels());
@@ -485,8 +496,8 @@ int FieldBricks::Cover(const TriangleMesh& mesh)
   }
   this->DropUnreachedOverBudget(needed, fresh.size());
   if (!fresh.empty() &&
-    !this->Affords(
-      static_cast<double>(fresh.size()) * BrickBytes, "more bricks of the force field"))
+    !this->Affords(static_cast<double>(fresh.size()) * BrickBytes,
+      "the bricks of the force field the surface came near"))
   {
     return 0; // the caller ends the solve (Shortfall)
   }
@@ -535,9 +546,10 @@ void FieldBricks::DropUnreachedOverBudget(const std::vector<char>& needed, std::
 {
   // A surface that travels far in a level (a seed the region force grows across the box) would
   // leave a trail of bricks behind it, and bricks hold their shared layers twice (9^3 values a
-  // brick of 8^3 voxels): more than the box's field, which the memory check counts on
-  // (FieldBytesPerVoxel). Past that, the bricks no vertex can reach are dropped; a brick
-  // computed again holds the same values, so nothing but time depends on it.
+  // brick of 8^3 voxels): more than the box's field, which a piece's memory check counts on
+  // (FieldBytesPerVoxel; a serial field checks its bricks as they are added, CheckMemoryAsAdded).
+  // Past that, the bricks no vertex can reach are dropped; a brick computed again holds the same
+  // values, so nothing but time depends on it.
   const double brickVoxels = std::pow(BrickSize + 1.0, 3);
   const double live = static_cast<double>(this->Potential.size() - this->FreeSlots.size());
   if ((live + static_cast<double>(fresh)) * brickVoxels <=

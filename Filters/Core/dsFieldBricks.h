@@ -37,6 +37,12 @@ public:
   /// trilinear cell lies in one brick).
   static constexpr int BrickSize = 8;
 
+  /// Bytes a computed brick holds at most (P and -grad P over (BrickSize + 1)^3 voxels), and a
+  /// tile (G_sigma * f over at most (BrickSize + 1)^3).
+  static constexpr double BrickBytes =
+    4.0 * sizeof(float) * (BrickSize + 1) * (BrickSize + 1) * (BrickSize + 1);
+  static constexpr double TileBytes =
+    sizeof(float) * (BrickSize + 1) * (BrickSize + 1) * (BrickSize + 1);
   /// G_sigma * f over `image` (a level's box of the image) and the potential's gains
   /// (SmoothForPotential; global edge normalisation only); no brick yet. `reach`: world
   /// distance from a vertex that Cover computes bricks within.
@@ -55,9 +61,10 @@ public:
   /// CheckMemoryAsAdded, bricks (or tiles smoothed again) that the memory available cannot hold
   /// are not made: Shortfall says so, and the caller ends the solve.
   int Cover(const TriangleMesh& mesh);
-  /// From now on Cover checks what it adds against the memory available (`available` bytes;
-  /// negative: the machine's, dsMemory.h), for a field whose first check counted only the bricks
-  /// and tiles near its first surface (InitialBytes).
+  /// From now on Cover checks what it adds against the memory available, for a field whose first
+  /// check counted only the bricks and tiles near its first surface (InitialBytes): the
+  /// machine's, read at each check (dsMemory.h), or (`available` >= 0, for tests) a budget of
+  /// that many bytes, used up by what is added.
   void CheckMemoryAsAdded(double available = -1.0)
   {
     this->CheckGrowth = true;
@@ -108,12 +115,6 @@ private:
   /// The voxels brick b computes itself: all but the layer it shares with the next brick
   /// along each axis (that brick's first), which the last brick along the axis has alone.
   VoxelBox OwnBox(const int b[3]) const;
-  /// Bytes a computed brick holds at most (P and -grad P over (BrickSize + 1)^3 voxels), and a
-  /// tile (G_sigma * f over at most (BrickSize + 1)^3).
-  static constexpr double BrickBytes =
-    4.0 * sizeof(float) * (BrickSize + 1) * (BrickSize + 1) * (BrickSize + 1);
-  static constexpr double TileBytes =
-    sizeof(float) * (BrickSize + 1) * (BrickSize + 1) * (BrickSize + 1);
   /// Empty when `bytes` more fit in the memory available (CheckMemoryAsAdded), else the message,
   /// kept in ShortfallMessage.
   bool Affords(double bytes, const char* what);

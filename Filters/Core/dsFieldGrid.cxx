@@ -265,7 +265,8 @@ double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
   VoxelBox cut;
   const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
   const bool bricked = f <= 1 && FieldInBricks(box, whole, parameters);
-  if (bricked && surface)
+  // (A geometry the scale space refuses is refused when the field is made: counted plainly.)
+  if (bricked && surface && ScaleSpaceProblem(whole, parameters.Sigma).empty())
   {
     // The field's first bricks and G_sigma * f; Cover checks the bricks added later.
     ImageGeometry grid = whole;

@@ -16,6 +16,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <sstream>
 #include <unordered_set>
@@ -617,8 +618,11 @@ bool MultilevelSolver::SolveLevel(
       field.Bricks->Cover(mesh); // the bricks the surface has come within reach of
       if (!field.Bricks->Shortfall().empty())
       {
-        // Serial only (a piece's bricks were counted whole before: PieceFieldBytes).
-        state.FieldError = "level " + std::to_string(rec.Level) + ": " + field.Bricks->Shortfall();
+        // Serial only: a piece's bricks were counted whole before (PieceFieldBytes) and never
+        // checked here, so no process leaves the others' reductions.
+        assert(!this->Distributed);
+        state.FieldError = "level " + std::to_string(rec.Level) +
+          ": the force field could not follow the surface: " + field.Bricks->Shortfall();
         stop = true;
         break;
       }

@@ -300,6 +300,14 @@ int TestFieldBricks(int, char*[])
   DS_CHECK(starved.Cover(surface) == 0 && starved.ComputedBricks() == 0 &&
       starved.Shortfall().find("GiB") != std::string::npos,
     "bricks the memory cannot hold are not made, and Shortfall says why: " + starved.Shortfall());
+  FieldBricks budgeted; // a budget for the first bricks alone is used up by them
+  DS_CHECK(budgeted.Initialize(view.Box(box), p, reach, &error), error);
+  budgeted.CheckMemoryAsAdded(bricked.Bricks->ComputedBricks() * FieldBricks::BrickBytes + 1.0);
+  DS_CHECK(budgeted.Cover(surface) == bricked.Bricks->ComputedBricks() &&
+      budgeted.Shortfall().empty() &&
+      budgeted.Cover(dstest::MakeIcosphere(3, 31.5, c + Vec3{ 6, 0, 0 })) == 0 &&
+      !budgeted.Shortfall().empty(),
+    "a budget given for the first bricks: they are made, the next ones not");
 
   // The centre of the ball is far from the surface: its brick is not computed.
   double f[3] = { 1, 1, 1 };

@@ -178,9 +178,9 @@ int TestTooLargeVolume(int, char*[])
   // uint8 input, read in place: the Scale-Space Gradient's field is 16 bytes a voxel, so
   // available / 8 voxels need 2x what is available. A sphere reaching 0.45 of the image from its
   // centre, at sigma 8 voxels (given: no probe), has its first field over the sphere and 10 sigma
-  // around it (about 0.9 of the image) on the image's own grid; with the local edge
-  // normalisation that field is whole over its box, 16 bytes a voxel: about 1.8x. (With the
-  // default normalisation it would be counted as made around the sphere, bricks and tiles near
+  // around it (the whole image, or nearly) on the image's own grid; with the local edge
+  // normalisation that field is whole over its box, counted at 20 bytes a voxel: about 2.5x. (With
+  // the default normalisation it would be counted as made around the sphere, bricks and tiles near
   // it, and fit: TestFieldBricks checks that count and the bricks added later.)
   const int n = static_cast<int>(std::ceil(std::cbrt(available / 8.0)));
   const std::size_t voxels = static_cast<std::size_t>(n) * n * n;
