@@ -295,14 +295,9 @@ bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& 
   std::vector<char> keep;
   this->MarkNearSurface(mesh, this->Reach + this->TileMargin, keep);
   // The tiles held now are freed first; counted as if not, to be safe.
-  double sv[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    sv[a] = this->Parameters.Sigma / this->Grid.Spacing[a];
-  }
   const double more =
     static_cast<double>(std::count(keep.begin(), keep.end(), char(1))) * TileBytes +
-    SmoothInSlabsBytes(this->Grid.Dimensions, sv, this->SlabCore);
+    SmoothInSlabsBytes(this->Grid, this->Parameters.Sigma, this->SlabCore);
   if (!this->Affords(more, "the force field's smoothed image near the surface, smoothed again"))
   {
     return false;
@@ -344,13 +339,8 @@ double FieldBricks::InitialBytes(const ImageGeometry& grid, const ScaleSpacePara
   }
   // InitializeInSlabs's tiles, and the slabs while they are smoothed.
   counter.MarkNearSurface(surface, 2.0 * reach, mark);
-  double sv[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    sv[a] = parameters.Sigma / grid.Spacing[a];
-  }
   return bytes + static_cast<double>(std::count(mark.begin(), mark.end(), char(1))) * TileBytes +
-    SmoothInSlabsBytes(grid.Dimensions, sv, coreSlices);
+    SmoothInSlabsBytes(grid, parameters.Sigma, coreSlices);
 }
 
 const float* FieldBricks::SmoothAround(

@@ -265,33 +265,16 @@ double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
   VoxelBox cut;
   const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
   const bool bricked = f <= 1 && FieldInBricks(box, whole, parameters);
+  const bool inSlabs = bricked && FieldInSlabs(cut, whole);
   // (A geometry the scale space refuses is refused when the field is made: counted plainly.)
   if (bricked && surface && ScaleSpaceProblem(whole, parameters.Sigma).empty())
   {
     // The field's first bricks and G_sigma * f; Cover checks the bricks added later.
-    ImageGeometry grid = whole;
-    const double first[3] = { static_cast<double>(cut.Begin[0]), static_cast<double>(cut.Begin[1]),
-      static_cast<double>(cut.Begin[2]) };
-    whole.IndexToWorld(first, grid.Origin);
-    for (int a = 0; a < 3; ++a)
-    {
-      grid.Dimensions[a] = cut.End[a] - cut.Begin[a];
-    }
     return FieldBricks::InitialBytes(
-      grid, parameters, BrickReachSigmas * parameters.Sigma, *surface, FieldInSlabs(cut, whole));
+      BoxGeometry(whole, cut), parameters, BrickReachSigmas * parameters.Sigma, *surface, inSlabs);
   }
-  double slabs = 0;
-  if (bricked && FieldInSlabs(cut, whole))
-  {
-    const int dims[3] = { cut.End[0] - cut.Begin[0], cut.End[1] - cut.Begin[1],
-      cut.End[2] - cut.Begin[2] };
-    double sv[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      sv[a] = parameters.Sigma / whole.Spacing[a];
-    }
-    slabs = SmoothInSlabsBytes(dims, sv, 0);
-  }
+  const double slabs =
+    inSlabs ? SmoothInSlabsBytes(BoxGeometry(whole, cut), parameters.Sigma, 0) : 0.0;
   return FieldGridVoxels(cut, f) * FieldBytesPerVoxel(bricked) + slabs;
 }
 

@@ -36,6 +36,19 @@ VoxelBox VoxelBox::Whole(const ImageGeometry& geometry)
   return box;
 }
 
+ImageGeometry BoxGeometry(const ImageGeometry& image, const VoxelBox& box)
+{
+  ImageGeometry g = image;
+  double first[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    g.Dimensions[a] = box.End[a] - box.Begin[a];
+    first[a] = box.Begin[a];
+  }
+  image.IndexToWorld(first, g.Origin);
+  return g;
+}
+
 bool VoxelBox::Contains(const VoxelBox& other) const
 {
   for (int a = 0; a < 3; ++a)
@@ -62,13 +75,7 @@ long long VoxelBox::NumberOfVoxels() const
 ImageView ImageView::Box(const VoxelBox& box) const
 {
   ImageView view = *this;
-  double first[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    view.Geometry.Dimensions[a] = box.End[a] - box.Begin[a];
-    first[a] = box.Begin[a];
-  }
-  this->Geometry.IndexToWorld(first, view.Geometry.Origin);
+  view.Geometry = BoxGeometry(this->Geometry, box);
   std::ptrdiff_t offset = this->RowOffset(box.Begin[1], box.Begin[2]) + box.Begin[0];
   VisitValues(*this, [&](const auto* values) { view.Data = values + offset; });
   return view;

@@ -65,6 +65,11 @@ struct DEFORMABLESURFACEFILTERS_EXPORT VoxelBox
   long long NumberOfVoxels() const;
 };
 
+/// The geometry of the voxels of `box` of an image of geometry `image`: their dimensions, and the
+/// origin at the box's first voxel.
+DEFORMABLESURFACEFILTERS_EXPORT ImageGeometry BoxGeometry(
+  const ImageGeometry& image, const VoxelBox& box);
+
 /// The value types an image can hold.
 enum class ScalarType
 {

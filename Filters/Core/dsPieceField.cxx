@@ -12,15 +12,7 @@ namespace dsurf
 {
 ImageGeometry ImagePiece::HeldGeometry() const
 {
-  ImageGeometry g = this->Whole;
-  double first[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    g.Dimensions[a] = this->Held.End[a] - this->Held.Begin[a];
-    first[a] = this->Held.Begin[a];
-  }
-  this->Whole.IndexToWorld(first, g.Origin);
-  return g;
+  return BoxGeometry(this->Whole, this->Held);
 }
 
 bool ImagePiece::OwnsCell(const double x[3]) const

@@ -414,43 +414,65 @@ void ForEachRowSquares(
     toWorld, k, std::forward<Visit>(visit));
 }
 
+/// Per slice of a grid, the largest g and the range of the smoothed values: EdgeMagnitude's
+/// reduction, slice by slice (a volume's, or the slabs' of SmoothForPotentialInSlabs).
+struct SliceStatistics
+{
+  std::vector<double> GradientMax, SmoothMin, SmoothMax;
+  explicit SliceStatistics(int slices)
+    : GradientMax(slices, 0.0)
+    , SmoothMin(slices, std::numeric_limits<double>::max())
+    , SmoothMax(slices, std::numeric_limits<double>::lowest())
+  {
+  }
+  /// Slice k, whose values start at `slice` (its neighbours a slice away); g into `edges` (the
+  /// whole grid's, unless nullptr).
+  void Add(
+    const float* slice, const int dims[3], const GradientToWorld& toWorld, int k, float* edges)
+  {
+    // The largest g^2, rooted once: the root is correctly rounded and monotonic, so the root
+    // of the largest square is the largest root bit for bit.
+    const std::ptrdiff_t first = k * (static_cast<std::ptrdiff_t>(dims[0]) * dims[1]);
+    double gm2 = 0.0, lo = this->SmoothMin[k], hi = this->SmoothMax[k];
+    ForEachRowSquaresOfSlice(slice, dims, toWorld, k,
+      [&](std::ptrdiff_t row, const double* squares)
+      {
+        const float* values = slice + (row - first);
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const double g2 = squares[i];
+          if (edges)
+          {
+            edges[row + i] = static_cast<float>(std::sqrt(g2));
+          }
+          gm2 = std::max(gm2, g2);
+          lo = std::min(lo, static_cast<double>(values[i]));
+          hi = std::max(hi, static_cast<double>(values[i]));
+        }
+      });
+    this->GradientMax[k] = std::sqrt(gm2);
+    this->SmoothMin[k] = lo;
+    this->SmoothMax[k] = hi;
+  }
+  /// Over every slice.
+  EdgeStatistics Total() const
+  {
+    EdgeStatistics s;
+    s.GradientMax = *std::max_element(this->GradientMax.begin(), this->GradientMax.end());
+    s.SmoothMin = *std::min_element(this->SmoothMin.begin(), this->SmoothMin.end());
+    s.SmoothMax = *std::max_element(this->SmoothMax.begin(), this->SmoothMax.end());
+    return s;
+  }
+};
+
 /// g = |grad smooth| into `edges` (unless nullptr), with the extrema the normalisation needs.
 EdgeStatistics EdgeMagnitude(
   const float* smooth, const int dims[3], const GradientToWorld& toWorld, float* edges)
 {
-  const int nz = dims[2];
-  std::vector<double> gMax(nz, 0.0), sMin(nz, std::numeric_limits<double>::max()),
-    sMax(nz, std::numeric_limits<double>::lowest());
-  ForEachVoxelSlice(dims,
-    [&](int k)
-    {
-      // The largest g^2, rooted once: the root is correctly rounded and monotonic, so the root
-      // of the largest square is the largest root bit for bit.
-      double gm2 = 0.0, lo = sMin[k], hi = sMax[k];
-      ForEachRowSquares(smooth, dims, toWorld, k,
-        [&](std::ptrdiff_t row, const double* squares)
-        {
-          for (int i = 0; i < dims[0]; ++i)
-          {
-            const double g2 = squares[i];
-            if (edges)
-            {
-              edges[row + i] = static_cast<float>(std::sqrt(g2));
-            }
-            gm2 = std::max(gm2, g2);
-            lo = std::min(lo, static_cast<double>(smooth[row + i]));
-            hi = std::max(hi, static_cast<double>(smooth[row + i]));
-          }
-        });
-      gMax[k] = std::sqrt(gm2);
-      sMin[k] = lo;
-      sMax[k] = hi;
-    });
-  EdgeStatistics s;
-  s.GradientMax = *std::max_element(gMax.begin(), gMax.end());
-  s.SmoothMin = *std::min_element(sMin.begin(), sMin.end());
-  s.SmoothMax = *std::max_element(sMax.begin(), sMax.end());
-  return s;
+  SliceStatistics slices(dims[2]);
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  ForEachVoxelSlice(dims, [&](int k) { slices.Add(smooth + k * sz, dims, toWorld, k, edges); });
+  return slices.Total();
 }
 
 /// The largest g over the voxels [MaximumBegin, MaximumEnd) of `parameters` (a piece's own,
@@ -1208,9 +1230,7 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
   const GradientToWorld toWorld(image.Geometry);
   const int* dims = image.Geometry.Dimensions;
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
-  // Per slice, as EdgeMagnitude takes them: the largest g (rooted once) and the range of s.
-  std::vector<double> gMax(dims[2], 0.0), sMin(dims[2], std::numeric_limits<double>::max()),
-    sMax(dims[2], std::numeric_limits<double>::lowest());
+  SliceStatistics slices(dims[2]); // as EdgeMagnitude takes them
   WithThreads(parameters.NumberOfThreads,
     [&]()
     {
@@ -1222,31 +1242,13 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
             {
               for (int k = kb; k < ke; ++k)
               {
-                const float* slice = slab.Values + (k - slab.First) * sz;
-                double gm2 = 0.0, lo = sMin[k], hi = sMax[k];
-                ForEachRowSquaresOfSlice(slice, dims, toWorld, k,
-                  [&](std::ptrdiff_t row, const double* squares)
-                  {
-                    const float* values = slice + (row - k * sz);
-                    for (int i = 0; i < dims[0]; ++i)
-                    {
-                      gm2 = std::max(gm2, squares[i]);
-                      lo = std::min(lo, static_cast<double>(values[i]));
-                      hi = std::max(hi, static_cast<double>(values[i]));
-                    }
-                  });
-                gMax[k] = std::sqrt(gm2);
-                sMin[k] = lo;
-                sMax[k] = hi;
+                slices.Add(slab.Values + (k - slab.First) * sz, dims, toWorld, k, nullptr);
               }
             });
           keep(slab);
         });
     });
-  EdgeStatistics stats;
-  stats.GradientMax = *std::max_element(gMax.begin(), gMax.end());
-  stats.SmoothMin = *std::min_element(sMin.begin(), sMin.end());
-  stats.SmoothMax = *std::max_element(sMax.begin(), sMax.end());
+  const EdgeStatistics stats = slices.Total();
   gains = GainsOf(stats, stats.GradientMax, parameters);
   return GainsFinite(gains, error);
 }

@@ -179,8 +179,11 @@ void SmoothInSlabs(const ImageView& image, const double sigmaVoxels[3], int core
   }
 }
 
-double SmoothInSlabsBytes(const int dims[3], const double sigmaVoxels[3], int coreSlices)
+double SmoothInSlabsBytes(const ImageGeometry& geometry, double sigma, int coreSlices)
 {
+  const int* dims = geometry.Dimensions;
+  const double sigmaVoxels[3] = { sigma / geometry.Spacing[0], sigma / geometry.Spacing[1],
+    sigma / geometry.Spacing[2] };
   const int core = std::max(2, coreSlices > 0 ? coreSlices : DefaultSlabCore(dims, sigmaVoxels[2]));
   const int longest = LongestCore(SlabCores(dims[2], core));
   const double slice = static_cast<double>(dims[0]) * dims[1];

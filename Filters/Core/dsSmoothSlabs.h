@@ -45,9 +45,9 @@ DEFORMABLESURFACEFILTERS_EXPORT int DefaultSlabCore(const int dims[3], double si
 DEFORMABLESURFACEFILTERS_EXPORT void SmoothInSlabs(const ImageView& image,
   const double sigmaVoxels[3], int coreSlices, const std::function<void(const SmoothSlab&)>& visit);
 
-/// Bytes SmoothInSlabs holds at most for an image of dims voxels.
+/// Bytes SmoothInSlabs holds at most for an image of `geometry` at `sigma` (world units).
 DEFORMABLESURFACEFILTERS_EXPORT double SmoothInSlabsBytes(
-  const int dims[3], const double sigmaVoxels[3], int coreSlices);
+  const ImageGeometry& geometry, double sigma, int coreSlices);
 } // namespace dsurf
 
 #endif
