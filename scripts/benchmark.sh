@@ -12,10 +12,11 @@
 #   the issue's goals; about 25 minutes, 30 s a white-matter click; BENCH_ARGS="spine horned"
 #   runs the cases named, "--wm-clicks 10 wm" the first 10 clicks) and SeveralObjects (issue 25:
 #   several objects in one run with ObjectIds on the spine, assembly and engine phantoms and
-#   Colin27's caudates and putamina, beside the same seeds as one object; about a minute) run
-#   when named. Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when
-#   it is missing; ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that
-#   its column is skipped and why).
+#   Colin27's caudates and putamina, beside the same seeds as one object; about a minute;
+#   BENCH_ARGS=ranges: the putamina again over a grid of typed ranges, 40 s) run when named.
+#   Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when it is missing;
+#   ACCURACY_WITHOUT_ITK=1 does not install it (without ITK the table says that its column is
+#   skipped and why).
 # Arguments for one program: BENCH_ARGS, e.g. BENCH_ARGS="128 256" scripts/benchmark.sh Scale
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

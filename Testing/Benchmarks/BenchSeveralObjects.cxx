@@ -12,6 +12,8 @@
 //   nuclei    Colin27 (mricron-data ch2.nii.gz), the four clicks of
 //             Examples/colin27_nuclei_clicks.csv (caudates and putamina); AAL (aal.nii.gz)
 //             labels 71-74 without their voxels darker than 60 in ch2 (CSF)
+//   ranges    (only when named) the nuclei run again with the putamina's range typed, over a
+//             grid of ranges: how close any one range brings them to their AAL labels
 //
 //   BenchSeveralObjects [CASE ...]    (CASE: a part of a case's name; none: every case)
 #include "../Cxx/ObjectPhantoms.h"
@@ -20,6 +22,7 @@
 
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -153,6 +156,55 @@ bool Nuclei(Case& c)
   return true;
 }
 
+/// Dice of the connected threshold [lo, hi] from `click` (ThresholdComponent) against `label`'s
+/// voxels that count (Case::Keep).
+double ThresholdDice(const Case& c, double lo, double hi, const Point3& click, int label)
+{
+  const ThresholdResult t = ThresholdComponent(c.Phantom.Phantom.Image, lo, hi, click);
+  vtkDataArray* labels = c.Phantom.Phantom.Label->GetPointData()->GetScalars();
+  long long in = 0, ref = 0, both = 0;
+  for (vtkIdType v = 0; v < labels->GetNumberOfTuples(); ++v)
+  {
+    const double l = labels->GetComponent(v, 0);
+    const bool r = l == label && c.Keep(l, v);
+    in += t.Inside[v];
+    ref += r ? 1 : 0;
+    both += r && t.Inside[v] ? 1 : 0;
+  }
+  return in + ref > 0 ? 2.0 * both / static_cast<double>(in + ref) : 0.0;
+}
+
+/// The nuclei with the putamina's range typed (ObjectIntensityRanges, the same for both; the
+/// caudates' estimated), over a grid around the putamina's intensities (AAL 73/74 without CSF:
+/// 5-95 % 88-112, median 98, in ch2): what the best single range gives.
+void PutaminaRanges(const Case& c)
+{
+  const std::vector<int> objects = Distinct(c.Ids);
+  vtkSmartPointer<vtkPolyData> seed = SeedObjects(LabelledPoints(c.Points, c.Ids), c.Removed);
+  std::printf("\n| putamina's range | object | vertices | surface -> AAL mean / 95 %% (mm) | "
+              "AAL -> surface mean / 95 %% (mm) | Dice | volume ratio | connected threshold: Dice "
+              "|\n|---|---|---|---|---|---|---|---|\n");
+  for (double lo : { 88.0, 90.0, 92.0, 94.0 })
+    for (double hi : { 102.0, 104.0, 106.0, 108.0 })
+    {
+      const SeveralResult r =
+        RunSeveral(c.Phantom.Phantom.Image, seed, { 73.0, lo, hi, 74.0, lo, hi });
+      for (std::size_t i = 0; i < objects.size(); ++i)
+      {
+        if (objects[i] != 73 && objects[i] != 74)
+          continue;
+        std::vector<unsigned char> interior;
+        const ObjectScore s = ScoreObject(ObjectPart(r.Surface, objects[i]), c.Phantom.Phantom,
+          c.Phantom.Labels[i], interior, c.Keep);
+        std::printf(
+          "| [%.0f, %.0f] | %d | %lld | %.2f / %.2f | %.2f / %.2f | %.3f | %.2f | %.3f |\n", lo, hi,
+          objects[i], s.Vertices, s.SurfaceMean, s.SurfaceP95, s.ReferenceMean, s.ReferenceP95,
+          s.Dice, s.VolumeRatio, ThresholdDice(c, lo, hi, c.Points[i], c.Phantom.Labels[i]));
+        std::fflush(stdout);
+      }
+    }
+}
+
 /// One object with an ObjectId against none: the same solve, timed (fastest of three each).
 void OneObject()
 {
@@ -193,12 +245,15 @@ int main(int argc, char* argv[])
   if (Wanted(filters, "one"))
     OneObject();
   Case nuclei;
-  if (Wanted(filters, "nuclei"))
+  const bool ranges = std::find(filters.begin(), filters.end(), "ranges") != filters.end();
+  if (Wanted(filters, "nuclei") || ranges)
   {
-    if (Nuclei(nuclei))
-      Run(nuclei);
-    else
+    if (!Nuclei(nuclei))
       std::printf("| nuclei | missing ch2.nii.gz / aal.nii.gz (mricron-data) | | | | | | | | |\n");
+    else if (Wanted(filters, "nuclei"))
+      Run(nuclei);
+    if (ranges && nuclei.Points.size() > 0)
+      PutaminaRanges(nuclei);
   }
   return EXIT_SUCCESS;
 }

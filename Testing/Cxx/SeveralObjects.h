@@ -65,12 +65,16 @@ struct SeveralResult
   double Seconds = 0;
 };
 
-/// Deformable Surface from `seed` on `image`, every default.
-inline SeveralResult RunSeveral(vtkImageData* image, vtkPolyData* seed)
+/// Deformable Surface from `seed` on `image`, every default but the ranges given per object
+/// (`objectRanges`: ObjectId, low, high, ...; the filter's ObjectIntensityRanges).
+inline SeveralResult RunSeveral(
+  vtkImageData* image, vtkPolyData* seed, const std::vector<double>& objectRanges = {})
 {
   vtkNew<vtkDeformableSurfaceFilter> filter;
   filter->SetInputData(0, image);
   filter->SetInitialSurfaceData(seed);
+  for (std::size_t i = 0; i + 2 < objectRanges.size(); i += 3)
+    filter->AddObjectIntensityRange(objectRanges[i], objectRanges[i + 1], objectRanges[i + 2]);
   const auto t0 = std::chrono::steady_clock::now();
   filter->Update();
   SeveralResult r;
