@@ -510,6 +510,9 @@ struct MultilevelSolver::RunState
   /// floor the levels go on there (a front level).
   std::vector<char> Front;
   bool FrontLevel = false; ///< this level follows the front at sigma's floor
+  /// This level rests a click's surface at the local midpoint (after the schedule and the front
+  /// levels; MidpointLevelWanted).
+  bool MidpointLevel = false;
   /// Per object, on a front level: whether its front is followed (FrontOf).
   std::vector<char> FrontObjects;
   /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
@@ -886,6 +889,7 @@ std::vector<Solver::RegionModel> MultilevelSolver::LevelRegionModels(
     // sigma nothing fades and the rule never applies (docs/METHOD.md §9.3).
     m.DropInwardEdgePull =
       r.FollowsFront && !state.FrontLevel && this->Parameters.HierarchicalSigma && fade >= 1.0;
+    m.MidpointVoxel = state.MidpointLevel && r.FollowsFront ? state.Voxel : 0.0;
     models.push_back(m);
   }
   return models;
@@ -1338,6 +1342,13 @@ bool MultilevelSolver::SolveLevelKeptApart(
   return again;
 }
 
+bool MultilevelSolver::MidpointLevelWanted(const RunState& state) const
+{
+  return state.Region &&
+    std::any_of(this->ObjectRegions.begin(), this->ObjectRegions.end(),
+      [](const ObjectRegion& o) { return o.On && o.FollowsFront; });
+}
+
 bool MultilevelSolver::AtSigmaFloor(const RunState& state) const
 {
   return this->Parameters.HierarchicalSigma &&
@@ -1415,7 +1426,7 @@ bool MultilevelSolver::RunLevels(
     // MaxLevels, at most MaxFrontLevels.
     state.Front.clear();
     state.FrontObjects.clear();
-    if (atFloor && !stop && frontLevels < MaxFrontLevels && state.Region &&
+    if (atFloor && !stop && !state.MidpointLevel && frontLevels < MaxFrontLevels && state.Region &&
       std::any_of(this->ObjectRegions.begin(), this->ObjectRegions.end(),
         [](const ObjectRegion& o) { return o.On && o.FollowsFront; }))
     {
@@ -1425,14 +1436,25 @@ bool MultilevelSolver::RunLevels(
     }
     state.FrontLevel = !state.Front.empty();
     frontLevels += state.FrontLevel ? 1 : 0;
-    const bool lastLevel =
+    const bool scheduleEnds =
       stop || (!state.FrontLevel && (level - frontLevels >= maxLevels || atFloor));
+    // A click's surface rests once more at the floor, at the local midpoint (docs/METHOD.md
+    // §9.3, "A click's last level"): the same mesh and sigma, one level beyond the schedule.
+    const bool midpointNext =
+      scheduleEnds && !stop && atFloor && !state.MidpointLevel && this->MidpointLevelWanted(state);
+    const bool lastLevel = scheduleEnds && !midpointNext;
     this->EndSweeps(state.LevelSolver, mesh, rec, lastLevel);
     if (lastLevel)
     {
       this->Stop = stop ? this->Stop : (atFloor ? StopReason::SigmaFloor : StopReason::MaxLevels);
       this->Levels.push_back(rec);
       break;
+    }
+    if (midpointNext)
+    {
+      this->Levels.push_back(rec);
+      state.MidpointLevel = true;
+      continue;
     }
     bool refined = false;
     if (!this->RefineLevel(mesh, state, rec, refined, error))

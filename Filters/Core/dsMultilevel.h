@@ -468,6 +468,9 @@ private:
   bool ScheduleEndsAt(const RunState& state, int level) const;
   /// With the hierarchical sigma: the level's sigma is at its floor (SigmaFloorVoxels).
   bool AtSigmaFloor(const RunState& state) const;
+  /// Whether an object's range is a click's competition range (ObjectRegion::FollowsFront):
+  /// after the schedule and its front levels, one more level rests it at the local midpoint.
+  bool MidpointLevelWanted(const RunState& state) const;
   /// After a level kept apart: its remaining folds smoothed open (SmoothFolds) on any mesh.
   void SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec);
   /// Each object's region model for a level at sigma: its range, its fade (its own sigma_0's

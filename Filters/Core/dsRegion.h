@@ -20,6 +20,7 @@
 #include "dsTriangleMesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace dsurf
@@ -33,6 +34,35 @@ inline double RegionSpeed(double intensity, double lo, double hi)
   const double w = RegionTransition * (hi - lo);
   const double s = std::min(intensity - lo, hi - intensity) / w;
   return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : (s == s ? s : 0.0)); // NaN: no force
+}
+
+/// The last level of a click's competition range rests the surface at the local midpoint
+/// (docs/METHOD.md §9.3, "A click's last level"): the image is read at these depths, in voxels,
+/// inward and outward along the vertex's normal.
+constexpr double MidpointDepthsVoxels[3] = { 0.5, 0.75, 1.0 };
+/// ... and the midpoint replaces the range's end only where the two sides differ by at least this
+/// share of the range's width (an edge, not noise).
+constexpr double MidpointContrastShare = 0.2;
+
+/// The region speed at a vertex whose image is `intensity`, `inside` and `outside` the means of
+/// the image at MidpointDepthsVoxels inward and outward: where the outside lies beyond one end
+/// of [lo, hi] and the inside beyond the same end on the object's side, by at least
+/// MidpointContrastShare of the range, the speed of RegionSpeed with that end moved to the
+/// midpoint of the two sides (the level where the two that meet there are blended half and
+/// half); elsewhere `speed`, the speed of the range itself.
+inline double MidpointSpeed(
+  double intensity, double inside, double outside, double lo, double hi, double speed)
+{
+  const bool below = outside<lo, above = outside> hi;
+  if (!(below ? inside > lo : (above && inside < hi)) ||
+    !(std::abs(inside - outside) >= MidpointContrastShare * (hi - lo)))
+  {
+    return speed;
+  }
+  const double mid = 0.5 * (inside + outside);
+  const double s =
+    (below ? intensity - mid : mid - intensity) / (RegionTransition * std::abs(inside - outside));
+  return s > 1.0 ? 1.0 : (s < -1.0 ? -1.0 : (s == s ? s : speed));
 }
 
 /// The edge force `force` at a vertex with its component against the unit normal n scaled by

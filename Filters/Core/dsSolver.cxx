@@ -456,6 +456,10 @@ Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) 
       const RegionModel& model =
         this->RegionModels[this->LocalObjects.empty() ? 0 : this->LocalObjects[v]];
       double speed = model.On ? RegionSpeed(intensity, model.Low, model.High) : 0.0;
+      if (model.On && model.MidpointVoxel > 0)
+      {
+        speed = this->LocalMidpointSpeed(p, (1.0 / nn) * normal, model, intensity, speed);
+      }
       speed = model.OutwardOnly ? std::max(speed, 0.0) : speed;
       if (model.DropInwardEdgePull && speed > 0)
       {
@@ -465,6 +469,27 @@ Vec3 Solver::ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) 
     }
   }
   return force;
+}
+
+double Solver::LocalMidpointSpeed(
+  const Vec3& p, const Vec3& n, const RegionModel& model, double intensity, double speed) const
+{
+  // The means of the image at a few depths on either side: one sample each is noise.
+  double inside = 0, outside = 0;
+  for (double depth : MidpointDepthsVoxels)
+  {
+    const Vec3 step = (depth * model.MidpointVoxel) * n;
+    bool in = false, out = false;
+    inside += SampleVolume(this->RegionImage, (p - step).data(), &in);
+    outside += SampleVolume(this->RegionImage, (p + step).data(), &out);
+    if (!in || !out)
+    {
+      return speed; // at the image's border
+    }
+  }
+  constexpr double samples = sizeof(MidpointDepthsVoxels) / sizeof(MidpointDepthsVoxels[0]);
+  return MidpointSpeed(
+    intensity, inside / samples, outside / samples, model.Low, model.High, speed);
 }
 
 void Solver::UpdateRange(int first, int last)

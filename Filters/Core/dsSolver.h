@@ -127,6 +127,9 @@ public:
     /// The edge force's pull against the normal weakens by the region speed where that is
     /// positive (a click's first levels; WithoutInwardEdgePull, docs/METHOD.md §9.3).
     bool DropInwardEdgePull = false;
+    /// Above 0 (the voxel's size): the speed's zero lies at the local midpoint of the image
+    /// inside and outside the vertex (MidpointSpeed, dsRegion.h; a click's last level).
+    double MidpointVoxel = 0;
   };
   void SetRegionForce(const ImageView& image, std::vector<RegionModel> models, double scale)
   {
@@ -237,6 +240,10 @@ private:
   /// (outside = 1 when v lies outside the force field's volume) plus the region force; the
   /// region force's fan normal is returned in `normal` (haveNormal) for the rule to reuse.
   Vec3 ExternalForce(int v, int& outside, Vec3& normal, bool& haveNormal) const;
+  /// The region speed `speed` at point p (image value `intensity`) with the range's end moved to
+  /// the local midpoint along the unit normal n (RegionModel::MidpointVoxel, MidpointSpeed).
+  double LocalMidpointSpeed(
+    const Vec3& p, const Vec3& n, const RegionModel& model, double intensity, double speed) const;
   /// An edge field or a region force is set (else the external force is zero).
   bool HasExternalForce() const { return (this->Field && this->Sampler) || this->RegionImage.Data; }
 

@@ -279,6 +279,20 @@ int TestRegionRange(int, char*[])
     "speed +1 inside, -1 outside, 0 at the ends");
   DS_CHECK(RegionSpeed(std::nan(""), 50, 150) == 0.0, "NaN intensity: no force");
 
+  // A click's last level (MidpointSpeed): a bright rim (600) between the object's range
+  // [170, 499] and soft tissue (50) moves the end to the midpoint of the two sides, 325.
+  DS_CHECK(MidpointSpeed(325, 600, 50, 170, 499, 0.7) == 0.0 &&
+      MidpointSpeed(300, 600, 50, 170, 499, 0.7) < 0.0 &&
+      MidpointSpeed(350, 600, 50, 170, 499, 0.7) > 0.0,
+    "a rim above the range: the speed changes sign at the midpoint 325, not at 170");
+  DS_CHECK(MidpointSpeed(45, 20, 70, 0, 45, -0.2) == 0.0 &&
+      MidpointSpeed(44, 20, 70, 0, 45, 0.1) > 0.0 && MidpointSpeed(46, 20, 70, 0, 45, -0.1) < 0.0,
+    "a dark object in a bright surround: its end moves to the midpoint 45 of 20 and 70");
+  DS_CHECK(MidpointSpeed(300, 300, 200, 170, 499, 0.9) == 0.9,
+    "the outside within the range: the range's own speed");
+  DS_CHECK(MidpointSpeed(160, 180, 150, 170, 499, -0.2) == -0.2,
+    "two sides closer than a fifth of the range (noise): the range's own speed");
+
   // A click's first levels (WithoutInwardEdgePull): the edge force's pull against the normal
   // weakens by the region speed; a push along the normal and a pull across it are kept.
   const Vec3 up{ 0, 0, 1 };
