@@ -6,12 +6,12 @@
 #   whole-head solves in VTK Python against vtkFlyingEdges3D; about a minute; BENCH_ARGS = the
 #   runs of each), Accuracy (our filter, vtkFlyingEdges3D and ITK's geodesic active contour on
 #   the accuracy phantoms; about 10 minutes) and Scale (128^3..1024^3 CT-like volumes, time and
-#   peak memory, from the box and, issue 28, from a sphere near the object and one click;
-#   about 5 minutes) and Objects (issue 24: one click on the spine and horned
+#   peak memory, from the box, from a sphere near the object and one click;
+#   about 5 minutes) and Objects (one click on the spine and horned
 #   phantoms, Colin27's caudates and 50 white-matter clicks, beside a connected threshold, with
-#   the issue's goals; about 25 minutes, 30 s a white-matter click; BENCH_ARGS="spine horned"
-#   runs the cases named, "--wm-clicks 10 wm" the first 10 clicks) and SeveralObjects (issue 25:
-#   several objects in one run with ObjectIds on the spine, assembly and engine phantoms and
+#   the goals; about 25 minutes, 30 s a white-matter click; BENCH_ARGS="spine horned"
+#   runs the cases named, "--wm-clicks 10 wm" the first 10 clicks) and SeveralObjects
+#   (several objects in one run with ObjectIds on the spine, assembly and engine phantoms and
 #   Colin27's caudates and putamina, beside the same seeds as one object; about a minute;
 #   BENCH_ARGS=ranges: the putamina again over a grid of typed ranges, 40 s) run when named.
 #   Accuracy installs ITK (libinsighttoolkit5-dev, for the benchmark only) when it is missing;

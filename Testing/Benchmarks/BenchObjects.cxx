@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// One click finds a homogeneous object (issue 24): the README's one-click workflow (a click ->
+// One click finds a homogeneous object: the README's one-click workflow (a click ->
 // vtkDelaunaySeedSurface -> vtkDeformableSurfaceFilter, every default unless said) on objects
 // that are not a brain, beside the alternative a user would pick: a connected threshold (the
 // voxels in the same range, the 6-connected component holding the click; the range is the one
@@ -117,7 +117,7 @@ void Header()
 {
   std::printf("| case | method | s | vertices | surface -> ref mean / 95%% | ref -> surface mean / "
               "95%% | Dice | volume ratio | %% outside | self-int. | vertices outside image | "
-              "goal (issue 24) | met |\n");
+              "goal | met |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 }
 
@@ -361,7 +361,7 @@ int main(int argc, char* argv[])
     else
       filters.push_back(arg);
   }
-  std::printf("One click, every default unless said (issue 24); distances: mm (horned: voxels of "
+  std::printf("One click, every default unless said; distances: mm (horned: voxels of "
               "1 mm); threshold: the filter's range, the 6-connected component of the click\n");
   Header();
   if (Wanted(filters, "spine"))

@@ -231,7 +231,7 @@ void OneObject()
 int main(int argc, char* argv[])
 {
   const std::vector<std::string> filters(argv + 1, argv + argc);
-  std::printf("Several objects in one run, every default (issue 25); distances in voxels (nuclei: "
+  std::printf("Several objects in one run, every default; distances in voxels (nuclei: "
               "mm), surface -> its reference and back, mean / 95 %%; goals: 0.5 voxel (nuclei 1.5 "
               "mm), 0 crossing pairs\n");
   std::printf("| case | run | ObjectId | s | vertices | surface -> ref | ref -> surface | Dice | "

@@ -88,7 +88,7 @@ inline double CleanValue(const Phantom& ph, double x, double y, double z)
   return v;
 }
 
-/// Issue 28's near-start scene at n^3 (see the file's comment).
+/// The near-start scene at n^3 (see the file's comment).
 inline Phantom NearScene(int n)
 {
   Phantom ph;

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""How Examples/colin27_wm_clicks.csv was chosen (issue 24), on the image alone, as a user
+"""How Examples/colin27_wm_clicks.csv was chosen, on the image alone, as a user
 looking for white matter would: voxels of Colin27 (mricron-data ch2.nii.gz, read with the
 plugin's reader conventions: world = the file's sform, MNI mm) whose T1 lies in 100-125 (white
 matter) and at least 6 mm from any voxel outside 85-140 (away from grey matter, CSF and

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The one-click phantoms of issue 24 (docs/METHOD.md §9.3): homogeneous objects that are not a
+// The one-click phantoms (docs/METHOD.md §9.3): homogeneous objects that are not a
 // brain, shared by TestObjectPhantoms, TestOneClickObjects and BenchObjects. Each generator
 // returns the image a user sees (a named scalar array: ParaView crashes on unnamed ones), the
 // per-voxel label reference (only ever used to score) and the click a user would make (computed
@@ -10,7 +10,7 @@
 // is added per voxel afterwards (white, Gaussian: Box-Muller on std::mt19937, which the C++
 // standard fixes bit for bit).
 //
-// Spine (CT, int16 HU "CT", 3 mm isotropic voxels as the issue's abdominal CT, 32 x 28 x 62
+// Spine (CT, int16 HU "CT", 3 mm isotropic voxels as an abdominal CT, 32 x 28 x 62
 // voxels, origin 0): five vertebral bodies stacked along z, elliptic cylinders of semi-axes
 // 21 x 16 mm and 27 mm (9 slices) high, one above the other every 33 mm, separated by discs of
 // 80 HU 6 mm (2 slices) thick (ellipse 22 x 17 mm: a slight bulge); discs also fill the 10.8 and

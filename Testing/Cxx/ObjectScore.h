@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Scores a segmentation of one object against its reference mask, the same way for our
-// filter's surface and for the threshold a user would try instead (issue 24): distances both
+// filter's surface and for the threshold a user would try instead: distances both
 // ways between the surface and the reference boundary (the mask's 0.5 iso-surface), Dice of the
 // voxels inside the surface against the mask, the volume ratio, the share of the enclosed
 // volume outside the mask, the surface's SelfIntersections (its field data) and its vertices

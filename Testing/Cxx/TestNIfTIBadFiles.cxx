@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Corrupt NIfTI files through vtkDSNIFTIImageReader (the plugin's reader): each must give an
-// error naming the spoiled field and an empty output, never a crash (issue 29: datatype 1234
-// killed ParaView, dims 30000^3 aborted it, a truncated file was solved on in part). The files
+// error naming the spoiled field and an empty output, never a crash (before the checks, datatype
+// 1234 killed ParaView, dims 30000^3 aborted it, a truncated file was solved on in part). The files
 // are made from a small synthetic volume written by VTK's own writer, one header field spoiled
 // at its nifti1.h offset; gzipped variants too. pixdim 0 or negative must give a warning and
 // spacing 1. Valid files in the other byte order and as NIfTI-2 must read as the original.

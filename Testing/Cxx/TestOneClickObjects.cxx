@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Issue 24's goals for one click with every default (docs/METHOD.md §9.3), on the phantoms of
+// The goals for one click with every default (docs/METHOD.md §9.3), on the phantoms of
 // ObjectPhantoms.h, each click scored against its object's label (OneClickScore.h):
 // - spine (3 mm CT, one click in the middle of the middle body, the default 5 mm seed sphere):
 //   at most 5 % of the enclosed volume outside the middle body, Dice >= 0.9;

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Writes the seed corpus of FuzzNIfTIReader (Testing/Fuzz/corpus/NIfTIReader): small valid
-files written by VTK's own NIfTI writer, and the nine spoiled files of issue 29 made from one of
+files written by VTK's own NIfTI writer, and the nine spoiled files that once crashed or fooled the reader, made from one of
 them (one header field changed at its nifti1.h offset). Each seed is one mode byte (0: the file
 as it is, 1: to be gzipped by the fuzzer, 2: already a gzip stream) and the file's bytes.
 
@@ -80,7 +80,7 @@ base = nifti_bytes(volume((0, 9, 0, 9, 0, 5), VTK_SHORT), qform=placed)  # 1 200
 save("valid-int16-placed-gz", 1, base)
 save("valid-int16-gzip-stream", 2, gzip.compress(base, mtime=0))
 
-# The nine cases of issue 29, on the int16 file (offsets of nifti1.h).
+# The nine spoiled cases, on the int16 file (offsets of nifti1.h).
 save("bad-datatype-1234", 0, put(base, 70, "h", 1234))
 huge = base[:352 + 1000]
 for axis in (1, 2, 3):

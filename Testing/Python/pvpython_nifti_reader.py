@@ -7,8 +7,8 @@ template of the demo opens with its known size, range and place (its sform: MNI 
 The header checks of the reader change nothing of a valid file: Colin27, ITK's KmeansTest, the
 oblique file and the others read as with VTK's own reader (voxels, spacing, origin, direction);
 its Maximum Data Size property refuses a file above it with an empty output. Colin27 with a
-spoiled datatype, and cut in half, leave the reader and Deformable Surface empty (issue 29's path:
-OpenDataFile, then the filter with a box)."""
+spoiled datatype, and cut in half, leave the reader and Deformable Surface empty (the path a user
+takes: OpenDataFile, then the filter with a box)."""
 import os
 import sys
 
@@ -197,7 +197,7 @@ reader.MaximumDataSize = a.nbytes
 reader.UpdatePipeline()
 assert reader.GetDataInformation().GetNumberOfPoints() == a.size, reader.GetDataInformation().GetNumberOfPoints()
 
-# The user's path of issue 29 on Colin27 itself: OpenDataFile, then Deformable Surface with a
+# A user's path on Colin27 itself: OpenDataFile, then Deformable Surface with a
 # box. A spoiled datatype (which killed the process) and a file cut in half (which was solved on
 # in part) must both leave the reader and the filter empty, the process alive.
 import gzip  # noqa: E402
