@@ -29,6 +29,8 @@ packages=(
   mricron-data
   # a second real head no one tuned on: ITK's KmeansTest T1 with its skull-stripped reference
   insighttoolkit5-examples
+  # a real head CT (InVesalius's example project), and SciPy for scoring and benchmarks
+  invesalius-examples python3-scipy
 )
 if [ "${1:-}" = "--with-itk" ]; then
   packages+=(libinsighttoolkit5-dev)

@@ -540,6 +540,59 @@ double CompetitorBoundary(const Mixture& m, int o, double start, double stop, do
 /// ~44) before the voxels of a two-voxel horn, partly surround (docs/METHOD.md §9.3).
 constexpr double MixtureTailShare = 0.002;
 
+/// Bins of the histogram a click's mixture is fitted to (CompetitorsAround).
+constexpr int MixtureBins = 256;
+
+/// A click's class narrower than this many bins of its histogram is not resolved from the
+/// classes next to it: a CT's neighbourhood spans air (-1000 HU) to bone (2000 HU), 12 HU a bin,
+/// and the soft tissues (fat -100, vitreous 10-20, muscle 50) fall into a few bins each, where
+/// the fit merges them into one class or into spreads of hundreds of HU. The histogram is then
+/// fitted again over the click's median +- ZoomSds of that class (ZoomedMixture).
+constexpr double ZoomBins = 3.0;
+constexpr double ZoomSds = 10.0;
+
+/// The histogram (MixtureBins bins from `low`, of `width`) of the values in [low, low + width *
+/// MixtureBins), summed across processes.
+std::vector<double> MixtureHistogram(
+  const std::vector<float>& values, double low, double width, const PieceReductions& reduce)
+{
+  std::vector<double> counts(MixtureBins, 0.0);
+  for (float v : values)
+  {
+    counts[static_cast<int>(std::min(MixtureBins - 1.0, std::max(0.0, (v - low) / width)))] += 1.0;
+  }
+  reduce.Sum(counts);
+  return counts;
+}
+
+/// The mixture of the values within the click's median m0 +- ZoomSds s.d. of its class o in
+/// `coarse` (clipped to [low, high]; the values beyond are left out, not piled into the end
+/// bins: a pile of air or bone would pass for a class), and its window; an empty mixture when
+/// the class is resolved (at least ZoomBins bins wide) or the window is not narrower than half
+/// the span. Every process fits the same one: the window comes from the shared fit and median.
+Mixture ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, int o, double m0,
+  double low, double high, const PieceReductions& reduce, double& zoomLow, double& zoomWidth)
+{
+  const double width = (high - low) / MixtureBins;
+  zoomLow = std::max(low, m0 - ZoomSds * coarse.Sd[o]);
+  const double zoomHigh = std::min(high, m0 + ZoomSds * coarse.Sd[o]);
+  zoomWidth = (zoomHigh - zoomLow) / MixtureBins;
+  if (!(coarse.Sd[o] < ZoomBins * width) || !(zoomHigh - zoomLow < 0.5 * (high - low)))
+  {
+    return Mixture();
+  }
+  std::vector<float> within;
+  for (float v : values)
+  {
+    if (v >= zoomLow && v < zoomHigh)
+    {
+      within.push_back(v);
+    }
+  }
+  return FitHistogramMixture(
+    MixtureHistogram(within, zoomLow, zoomWidth, reduce), zoomLow, zoomWidth, 4);
+}
+
 /// A start inside one region (a click): its competitors are the other classes of intensity
 /// around it. The voxels within `reach` of the start's bounding box are fitted as a Gaussian
 /// mixture (dsMixture.h, 256 bins between their MixtureTailShare quantiles); the object's class
@@ -585,7 +638,6 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   {
     return;
   }
-  constexpr int Bins = 256;
   const double low = Quantile(all, MixtureTailShare, reduce),
                high = Quantile(all, 1.0 - MixtureTailShare, reduce);
   if (!(high > low))
@@ -593,13 +645,8 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
     estimate.Classes = 1; // one value around the click
     return;
   }
-  const double width = (high - low) / Bins;
-  std::vector<double> counts(Bins, 0.0);
-  for (float v : values)
-  {
-    counts[static_cast<int>(std::min(Bins - 1.0, std::max(0.0, (v - low) / width)))] += 1.0;
-  }
-  reduce.Sum(counts);
+  const double width = (high - low) / MixtureBins;
+  const std::vector<double> counts = MixtureHistogram(values, low, width, reduce);
   // One class when BIC says so with the tails beyond the quantiles in the end bins modelled
   // (IsOneClass): the mixture below takes them for spikes and split a noisy ball's one class
   // into four, two of them halves of the click's own class (one a "competitor" at its median).
@@ -619,8 +666,21 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   // From the click's median, where its class is the likeliest (not always at the class's mean:
   // a narrow neighbour can win there).
   const double m0 = estimate.Median;
-  const double lo = CompetitorBoundary(m, o, m0, reachLow, width / 8);
-  const double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
+  double lo = CompetitorBoundary(m, o, m0, reachLow, width / 8);
+  double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
+  // A class the histogram does not resolve: its neighbours within the zoomed window decide the
+  // ends they reach; a side with no competitor there keeps the end of the whole span's fit.
+  double zoomLow = 0, zoomWidth = 0;
+  const Mixture z = ZoomedMixture(values, m, o, m0, low, high, reduce, zoomLow, zoomWidth);
+  const int zo = z.Size() > 1 ? z.Likeliest(m0) : -1;
+  if (zo >= 0)
+  {
+    const double zoomHigh = zoomLow + MixtureBins * zoomWidth;
+    const double zlo = CompetitorBoundary(z, zo, m0, zoomLow, zoomWidth / 8);
+    const double zhi = CompetitorBoundary(z, zo, m0, zoomHigh, zoomWidth / 8);
+    lo = std::isnan(zlo) ? lo : zlo;
+    hi = std::isnan(zhi) ? hi : zhi;
+  }
   if ((std::isnan(lo) && std::isnan(hi)) || !(std::isnan(lo) || lo < m0) ||
     !(std::isnan(hi) || hi > m0))
   {
@@ -639,16 +699,19 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
   estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
   estimate.Contrast = true;
-  estimate.ObjectMedian = m.Mean[o];
-  int nearest = o == 0 ? 1 : 0;
-  for (int k = 0; k < m.Size(); ++k)
+  const Mixture& fit = zo >= 0 ? z : m;
+  const int object = zo >= 0 ? zo : o;
+  estimate.ObjectMedian = fit.Mean[object];
+  int nearest = object == 0 ? 1 : 0;
+  for (int k = 0; k < fit.Size(); ++k)
   {
-    if (k != o && std::abs(m.Mean[k] - m.Mean[o]) < std::abs(m.Mean[nearest] - m.Mean[o]))
+    if (k != object &&
+      std::abs(fit.Mean[k] - fit.Mean[object]) < std::abs(fit.Mean[nearest] - fit.Mean[object]))
     {
       nearest = k;
     }
   }
-  estimate.BackgroundMedian = m.Mean[nearest];
+  estimate.BackgroundMedian = fit.Mean[nearest];
 }
 } // namespace
 
