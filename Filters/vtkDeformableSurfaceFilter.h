@@ -45,20 +45,20 @@
  * pieces are turned outward when the region force is on; the merged input's points in their
  * order, refined, unless the start was coarsened) with point arrays Normals, Displacement (|c| of
  * the last sweep), ExternalForce (|F|, region force included), ErrorIndicator (|internal part of c|
- * of the last sweep), RefinementLevel, VertexLabel and field data Sweeps, Levels,
- * InitialSubdivisions, FinalMeanCorrection, SelfIntersections (intersecting triangle pairs, found
- * with a bounding-volume hierarchy), Sigma (the last level's), InitialSigma, Converged (the last
- * level), StopReason (why the levels ended: "sigma floor", "no detail", "MaxLevels", "MaxSweeps"
- * or "aborted"), WarmStart, FrontLevels (levels past sigma's floor that followed a thin part of a
- * click's object), KeptApartLevels (levels solved with the surface kept off itself, after one
- * made it cross itself) and, with the region force, IntensityRange (the range it used).
- * Several objects (docs/METHOD.md §9.9): a start with a cell array ObjectId is one object per
- * value, solved together, each with its own sigma_0, start subdivision and region range, never
- * crossing another (each step limited to keep 0.1 voxel between objects); the output then has
- * ObjectId per point and per cell and field data ObjectIds, ObjectVolumes, ObjectVertices,
- * ObjectIntensityRanges (0 0 where the object's region force was off) and CrossingPairs.
- * Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices, Triangles,
- * MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
+ * of the last sweep), RefinementLevel, VertexLabel and field data Sweeps, Levels (a click's
+ * midpoint level included), InitialSubdivisions, FinalMeanCorrection, SelfIntersections
+ * (intersecting triangle pairs, found with a bounding-volume hierarchy), Sigma (the last level's),
+ * InitialSigma, Converged (the last level), StopReason (why the levels ended: "sigma floor", "no
+ * detail", "MaxLevels", "MaxSweeps" or "aborted"), WarmStart, FrontLevels (levels past sigma's
+ * floor that followed a thin part of a click's object), KeptApartLevels (levels solved with the
+ * surface kept off itself, after one made it cross itself) and, with the region force,
+ * IntensityRange (the range it used). Several objects (docs/METHOD.md §9.9): a start with a cell
+ * array ObjectId is one object per value, solved together, each with its own sigma_0, start
+ * subdivision and region range, never crossing another (each step limited to keep 0.1 voxel between
+ * objects); the output then has ObjectId per point and per cell and field data ObjectIds,
+ * ObjectVolumes, ObjectVertices, ObjectIntensityRanges (0 0 where the object's region force was
+ * off) and CrossingPairs. Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices,
+ * Triangles, MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
  *
  * Start surface: with SubdivideInitialSurface on, a coarse start is first
  * split 1 -> 4 at edge midpoints to the mean edge length nearest 4 sigma_0 (within a factor
@@ -78,7 +78,8 @@
  * (HierarchicalSigma) and the force field rebuilt.
  * Sigma never goes below 2/3 of a voxel, and goes straight there when half would be less than
  * 1.26 times that (a third of an octave: NextHierarchicalSigma); the level solved there is the
- * last (finer meshes would follow detail the image does not show), so the number of levels
+ * schedule's last (finer meshes would follow detail the image does not show; a click's front
+ * levels and its midpoint level stay at that sigma), so the number of levels
  * follows the resolution:
  * halving from extent / 6 takes 6 levels at 128^3, 8 at 512^3. MaxLevels is a cap. Refinement
  * stops where nothing is marked or before a step would exceed MaxVertices (a warning; the

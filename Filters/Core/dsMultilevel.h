@@ -79,7 +79,8 @@ constexpr double InitialEdgeSigmaRatio = 4.0;
 /// one (docs/METHOD.md §6.6); its basin of attraction is ~2 voxels.
 constexpr double ConstantSigmaVoxels = 1.0;
 /// Sigma's floor with the hierarchical sigma, in voxels (mean spacing): sigma halves level by
-/// level, never below this, and the level solved there is the last. With the force's chain rule
+/// level, never below this, and the level solved there is the schedule's last (a click's front
+/// levels and midpoint level stay there, docs/METHOD.md §9.3). With the force's chain rule
 /// (dsScaleSpace.h) an edge at 2/3 voxel is 0.70 voxel wide in the potential; a level at half a
 /// voxel (0.59 wide) changed the noise-free phantoms by <= 0.01 voxel and moved the noisy
 /// sphere's worst vertex 0.03-0.05 voxel further out (docs/METHOD.md §6 item 1).

@@ -47,13 +47,17 @@ constexpr double MidpointContrastShare = 0.2;
 /// The region speed at a vertex whose image is `intensity`, `inside` and `outside` the means of
 /// the image at MidpointDepthsVoxels inward and outward: where the outside lies beyond one end
 /// of [lo, hi] and the inside beyond the same end on the object's side, by at least
-/// MidpointContrastShare of the range, the speed of RegionSpeed with that end moved to the
-/// midpoint of the two sides (the level where the two that meet there are blended half and
-/// half); elsewhere `speed`, the speed of the range itself.
+/// MidpointContrastShare of the range, a one-sided ramp about the midpoint m of the two sides
+/// (the level where the two that meet there are blended half and half): (I - m) / w below
+/// (outside < lo), (m - I) / w above, clamped to [-1, 1], w = RegionTransition * |inside -
+/// outside|. The range's other end plays no part there: a vertebra's cortex (600 HU) inside a
+/// range of [170, 499] and soft tissue (50) outside pushes outward (+1) wherever the image is
+/// above the midpoint. Elsewhere `speed`, the speed of the range itself.
 inline double MidpointSpeed(
   double intensity, double inside, double outside, double lo, double hi, double speed)
 {
-  const bool below = outside<lo, above = outside> hi;
+  const bool below = (outside < lo);
+  const bool above = (outside > hi);
   if (!(below ? inside > lo : (above && inside < hi)) ||
     !(std::abs(inside - outside) >= MidpointContrastShare * (hi - lo)))
   {

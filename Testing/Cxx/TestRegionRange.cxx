@@ -320,6 +320,8 @@ int TestRegionRange(int, char*[])
       MidpointSpeed(300, 600, 50, 170, 499, 0.7) < 0.0 &&
       MidpointSpeed(350, 600, 50, 170, 499, 0.7) > 0.0,
     "a rim above the range: the speed changes sign at the midpoint 325, not at 170");
+  DS_CHECK(MidpointSpeed(600, 600, 50, 170, 499, -0.7) == 1.0,
+    "the rim itself, beyond the range's other end: pushed outward, the ramp is one-sided");
   DS_CHECK(MidpointSpeed(45, 20, 70, 0, 45, -0.2) == 0.0 &&
       MidpointSpeed(44, 20, 70, 0, 45, 0.1) > 0.0 && MidpointSpeed(46, 20, 70, 0, 45, -0.1) < 0.0,
     "a dark object in a bright surround: its end moves to the midpoint 45 of 20 and 70");
