@@ -568,8 +568,11 @@ std::vector<double> MixtureHistogram(
 /// The mixture of the values within the click's median m0 +- ZoomSds s.d. of its class o in
 /// `coarse` (clipped to [low, high]; the values beyond are left out, not piled into the end
 /// bins: a pile of air or bone would pass for a class), and its window; an empty mixture when
-/// the class is resolved (at least ZoomBins bins wide) or the window is not narrower than half
-/// the span. Every process fits the same one: the window comes from the shared fit and median.
+/// the class is resolved (at least ZoomBins bins wide), the window is not narrower than half
+/// the span, or the click's class is no better resolved in the window: a class narrow in itself
+/// (a CT's air, -1024 HU and a few integers above) splits there into a spike per value, and the
+/// value next to the click's would compete. Every process fits the same one: the window comes
+/// from the shared fit and median.
 Mixture ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, int o, double m0,
   double low, double high, const PieceReductions& reduce, double& zoomLow, double& zoomWidth)
 {
@@ -589,8 +592,10 @@ Mixture ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, i
       within.push_back(v);
     }
   }
-  return FitHistogramMixture(
+  Mixture zoomed = FitHistogramMixture(
     MixtureHistogram(within, zoomLow, zoomWidth, reduce), zoomLow, zoomWidth, 4);
+  const int object = zoomed.Size() > 1 ? zoomed.Likeliest(m0) : -1;
+  return object >= 0 && zoomed.Sd[object] >= ZoomBins * zoomWidth ? zoomed : Mixture();
 }
 
 /// A start inside one region (a click): its competitors are the other classes of intensity

@@ -238,6 +238,36 @@ int TestRegionRange(int, char*[])
       "CT soft tissue: the high end between the tissue and the muscle");
   }
 
+  // A click in a CT's air: -1024 HU (the scanner's floor) and the integers just above it, in
+  // slabs beside fat and bone as above. The air's class is as narrow as a bin because the air
+  // is, not because the histogram merges it with a neighbour: fitted again near it, it split
+  // into a spike per integer, the next one competed, and the click's own voxels fell outside
+  // its range (the surface collapsed). It keeps the whole span's fit.
+  {
+    std::vector<float> hu(image.size());
+    std::mt19937 random(2013);
+    std::normal_distribution<float> noise(0.f, 1.f);
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+          float v = std::max(-1024.f, std::round(-1022.f + 3.f * noise(random)));
+          if (i >= 26)
+            v = -100.f + 15.f * noise(random);
+          if (i >= 31)
+            v = 1200.f + 150.f * noise(random);
+          hu[(static_cast<size_t>(k) * n + j) * n + i] = v;
+        }
+    RangeEstimate t;
+    DS_CHECK(
+      EstimateIntensityRange(ImageView::Of(hu.data(), g), click, 1.0, t, &error, 40.0), error);
+    std::cout << "click in a CT's air: " << t.Classes << " classes, range [" << t.Range[0] << ", "
+              << t.Range[1] << "]" << std::endl;
+    DS_CHECK(t.Range[0] <= -1024.0 && t.Range[1] >= -1014.0,
+      "CT air: the range holds the air's values, the floor and those just above it");
+    DS_CHECK(t.Range[1] < -300.0, "CT air: the range ends below the fat");
+  }
+
   // A click inside one noisy region, all its neighbourhood one class (a click at the centre of
   // a CT-like ball much larger than its reach: uint16 values 1100 +- 60): one class, so the
   // range is the median -+ 3 s and holds the whole class. The histogram spans the values'
