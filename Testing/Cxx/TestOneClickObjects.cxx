@@ -6,8 +6,10 @@
 // - horned (a dark body with four horns 2-4 voxels wide, one click at the body's centre):
 //   reference boundary -> surface mean <= 0.5 voxel, 95 % <= 1.5 voxel, no self-intersections.
 // The spine's one-voxel cortex is brighter than the range's far end: without the click's last
-// level at the local midpoint (docs/METHOD.md §9.3) 8.5 % lay outside. `scripts/benchmark.sh
-// Objects` prints the numbers beside the goals.
+// level at the local midpoint (docs/METHOD.md §9.3) 8.5 % lay outside. The committed phantom
+// ends 4.6 % outside, the most of noise seeds 2401-2407 (3.7-4.6 %), close to the goal: a
+// change that moves it by half a point fails here (that level run to a stricter rest: 5.3 %).
+// `scripts/benchmark.sh Objects` prints the numbers beside the goals.
 #include "DSTestHelpers.h"
 #include "OneClickScore.h"
 
