@@ -464,6 +464,10 @@ private:
   /// made it cross itself; returns SolveLevel's stop.
   bool SolveLevelKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
+  /// A front level of a surface already kept apart: SolveLevel, its moves undone (and no
+  /// front level after it) when they made the surface cross itself; returns SolveLevel's stop.
+  bool SolveFrontLevelOfKeptApart(
+    const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The schedule's last level (before any front levels): sigma at its floor with the
   /// hierarchical sigma, or level MaxLevels.
   bool ScheduleEndsAt(const RunState& state, int level) const;
