@@ -1286,16 +1286,20 @@ bool MultilevelSolver::SolveFrontLevelOfKeptApart(
   // septa, docs/METHOD.md §9.3). A front level pushes at the floor's sigma with the region force
   // at full strength and is not kept apart (SolveLevelKeptApart): where it made such a surface
   // cross itself, it pushed through its own other side, not into a thin part (a click in a
-  // head CT's sphenoid sinus: 0 crossing pairs before its first front level, 130 after, 71 at
-  // the end). That level's moves are undone and the front is followed no further; kept apart,
-  // it ran all 64 front levels (37 s against 1.6 s) and never reached a front.
+  // head CT's sphenoid sinus: 0 crossing pairs before its first front level, 130 after and 71
+  // at the end, or, from the committed click, a surface inside out). That level's moves are
+  // undone, also when they turned an object inside out (a collapse), and the front is followed
+  // no further; kept apart, it ran all 64 front levels (37 s against 1.6 s) and never ended.
   const std::vector<Vec3> start = mesh.Points;
   const int crossingBefore = CountSelfIntersections(mesh);
   const bool stop = this->SolveLevel(image, mesh, state, rec);
-  if (!stop && CountSelfIntersections(mesh) > crossingBefore)
+  const bool collapsed = !this->Collapse.empty();
+  if (collapsed || CountSelfIntersections(mesh) > crossingBefore)
   {
     mesh.Points = start;
     state.FrontCrossed = true;
+    this->Collapse.clear();
+    return stop && !collapsed;
   }
   return stop;
 }

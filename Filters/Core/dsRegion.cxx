@@ -544,7 +544,7 @@ constexpr double MixtureTailShare = 0.002;
 constexpr int MixtureBins = 256;
 
 /// A click's class narrower than this many bins of its histogram is not resolved from the
-/// classes next to it: a CT's neighbourhood spans air (-1000 HU) to bone (2000 HU), 12 HU a bin,
+/// classes next to it: a CT's neighbourhood spans air (-1000 HU) to bone (2000 HU), 8-12 HU a bin,
 /// and the soft tissues (fat -100, vitreous 10-20, muscle 50) fall into a few bins each, where
 /// the fit merges them into one class or into spreads of hundreds of HU. The histogram is then
 /// fitted again over the click's median +- ZoomSds of that class (ZoomedMixture).
@@ -569,10 +569,11 @@ std::vector<double> MixtureHistogram(
 /// `coarse` (clipped to [low, high]; the values beyond are left out, not piled into the end
 /// bins: a pile of air or bone would pass for a class), and its window; an empty mixture when
 /// the class is resolved (at least ZoomBins bins wide), the window is not narrower than half
-/// the span, or the click's class is no better resolved in the window: a class narrow in itself
-/// (a CT's air, -1024 HU and a few integers above) splits there into a spike per value, and the
-/// value next to the click's would compete. Every process fits the same one: the window comes
-/// from the shared fit and median.
+/// the span or, clipped to the span, does not hold the median (a rare class beyond a
+/// quantile: the search for its ends would run the wrong way), or the click's class is no better
+/// resolved in the window: a class narrow in itself (a CT's air, -1024 HU and a few integers above)
+/// splits there into a spike per value, and the value next to the click's would compete. Every
+/// process fits the same one: the window comes from the shared fit and median.
 Mixture ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, int o, double m0,
   double low, double high, const PieceReductions& reduce, double& zoomLow, double& zoomWidth)
 {
@@ -580,7 +581,8 @@ Mixture ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, i
   zoomLow = std::max(low, m0 - ZoomSds * coarse.Sd[o]);
   const double zoomHigh = std::min(high, m0 + ZoomSds * coarse.Sd[o]);
   zoomWidth = (zoomHigh - zoomLow) / MixtureBins;
-  if (!(coarse.Sd[o] < ZoomBins * width) || !(zoomHigh - zoomLow < 0.5 * (high - low)))
+  if (!(coarse.Sd[o] < ZoomBins * width) || !(zoomHigh - zoomLow < 0.5 * (high - low)) ||
+    !(zoomLow < m0 && m0 < zoomHigh))
   {
     return Mixture();
   }

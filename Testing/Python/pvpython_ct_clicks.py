@@ -25,7 +25,8 @@ such a front level is undone now (docs/METHOD.md §9.3). Checks:
   surface takes in), and at least 70 % of the voxels it encloses are air (below -500 HU): it
   stays in the cavity, not in its bony wall or beyond.
 Printed beside each: the component of the click in a threshold at the same range (an eye's: 1.6
-litres, the head's soft tissue). Skipped (exit 77) without the invesalius-examples package."""
+litres, the head's soft tissue). Skipped (exit 77) without the invesalius-examples or
+python3-scipy package."""
 import csv
 import os
 import sys
@@ -40,13 +41,17 @@ from vtkmodules.vtkFiltersCore import vtkMassProperties, vtkTriangleFilter  # no
 from vtkmodules.vtkFiltersModeling import vtkSelectEnclosedPoints  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 import numpy  # noqa: E402
-from scipy import ndimage  # noqa: E402
 
 import ds_cranium  # noqa: E402
 import ds_invariants  # noqa: E402
 
 if not os.path.exists(ds_cranium.CRANIUM):
     print("no %s (Debian package invesalius-examples): nothing to test" % ds_cranium.CRANIUM)
+    sys.exit(77)
+try:
+    from scipy import ndimage
+except ImportError:
+    print("no SciPy (Debian package python3-scipy): nothing to score with")
     sys.exit(77)
 HERE = os.path.dirname(os.path.abspath(__file__))
 CLICKS = os.path.join(HERE, "..", "..", "Examples", "cranium_clicks.csv")
