@@ -26,6 +26,25 @@
 
 using namespace dsurf;
 
+namespace
+{
+/// An n^3 image whose voxel (i, j, k) is tissue(i, j, k, noise), noise() drawing standard normal
+/// values from a generator seeded with `seed` (voxels in x-fastest order, so the draws are too).
+template <typename Tissue>
+std::vector<float> NoisyImage(int n, unsigned seed, Tissue tissue)
+{
+  std::vector<float> image(static_cast<size_t>(n) * n * n);
+  std::mt19937 random(seed);
+  std::normal_distribution<float> normal(0.f, 1.f);
+  auto noise = [&] { return normal(random); };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        image[(static_cast<size_t>(k) * n + j) * n + i] = tissue(i, j, k, noise);
+  return image;
+}
+} // namespace
+
 int TestRegionRange(int, char*[])
 {
   const int n = 40;
@@ -178,20 +197,16 @@ int TestRegionRange(int, char*[])
   // 157 +- 7 in a small block; the click in the grey slab. Taken for a blend, the range ran past
   // the white matter to the bright class (139 on Colin27).
   {
-    std::vector<float> tissues(image.size());
-    std::mt19937 random(24);
-    std::normal_distribution<float> noise(0.f, 1.f);
-    for (int k = 0; k < n; ++k)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-        {
-          float v = i < 7 ? 40.f + 10.f * noise(random) : 90.f + 14.f * noise(random);
-          if (i >= 30)
-            v = 113.f + 4.f * noise(random);
-          if (i >= 32 && j < 10 && k < 10)
-            v = 157.f + 7.f * noise(random);
-          tissues[(static_cast<size_t>(k) * n + j) * n + i] = v;
-        }
+    const std::vector<float> tissues = NoisyImage(n, 24,
+      [](int i, int j, int k, auto& noise)
+      {
+        float v = i < 7 ? 40.f + 10.f * noise() : 90.f + 14.f * noise();
+        if (i >= 30)
+          v = 113.f + 4.f * noise();
+        if (i >= 32 && j < 10 && k < 10)
+          v = 157.f + 7.f * noise();
+        return v;
+      });
     RangeEstimate t;
     DS_CHECK(
       EstimateIntensityRange(ImageView::Of(tissues.data(), g), click, 1.0, t, &error, 40.0), error);
@@ -210,22 +225,18 @@ int TestRegionRange(int, char*[])
   // the range ran from far into the fat to past the muscle. Fitted again over the click's
   // median +- 10 s.d. of its class, it ends between the tissue and each neighbour.
   {
-    std::vector<float> hu(image.size());
-    std::mt19937 random(2012);
-    std::normal_distribution<float> noise(0.f, 1.f);
-    for (int k = 0; k < n; ++k)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-        {
-          float v = i < 6 ? -1000.f + 5.f * noise(random) : -100.f + 15.f * noise(random);
-          if (i >= 12)
-            v = 20.f + 8.f * noise(random);
-          if (i >= 25)
-            v = 55.f + 8.f * noise(random);
-          if (i >= 31)
-            v = 1200.f + 150.f * noise(random);
-          hu[(static_cast<size_t>(k) * n + j) * n + i] = v;
-        }
+    const std::vector<float> hu = NoisyImage(n, 2012,
+      [](int i, int, int, auto& noise)
+      {
+        float v = i < 6 ? -1000.f + 5.f * noise() : -100.f + 15.f * noise();
+        if (i >= 12)
+          v = 20.f + 8.f * noise();
+        if (i >= 25)
+          v = 55.f + 8.f * noise();
+        if (i >= 31)
+          v = 1200.f + 150.f * noise();
+        return v;
+      });
     RangeEstimate t;
     DS_CHECK(
       EstimateIntensityRange(ImageView::Of(hu.data(), g), click, 1.0, t, &error, 40.0), error);
@@ -244,20 +255,16 @@ int TestRegionRange(int, char*[])
   // into a spike per integer, the next one competed, and the click's own voxels fell outside
   // its range (the surface collapsed). It keeps the whole span's fit.
   {
-    std::vector<float> hu(image.size());
-    std::mt19937 random(2013);
-    std::normal_distribution<float> noise(0.f, 1.f);
-    for (int k = 0; k < n; ++k)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-        {
-          float v = std::max(-1024.f, std::round(-1022.f + 3.f * noise(random)));
-          if (i >= 26)
-            v = -100.f + 15.f * noise(random);
-          if (i >= 31)
-            v = 1200.f + 150.f * noise(random);
-          hu[(static_cast<size_t>(k) * n + j) * n + i] = v;
-        }
+    const std::vector<float> hu = NoisyImage(n, 2013,
+      [](int i, int, int, auto& noise)
+      {
+        float v = std::max(-1024.f, std::round(-1022.f + 3.f * noise()));
+        if (i >= 26)
+          v = -100.f + 15.f * noise();
+        if (i >= 31)
+          v = 1200.f + 150.f * noise();
+        return v;
+      });
     RangeEstimate t;
     DS_CHECK(
       EstimateIntensityRange(ImageView::Of(hu.data(), g), click, 1.0, t, &error, 40.0), error);
