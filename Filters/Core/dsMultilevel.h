@@ -465,7 +465,8 @@ private:
   bool SolveLevelKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// A front level of a surface already kept apart: SolveLevel, its moves undone (and no
-  /// front level after it) when they made the surface cross itself; returns SolveLevel's stop.
+  /// front level after it) when they made the surface cross itself or an object collapse;
+  /// returns SolveLevel's stop, but for such a collapse.
   bool SolveFrontLevelOfKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The schedule's last level (before any front levels): sigma at its floor with the

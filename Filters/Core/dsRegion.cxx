@@ -565,39 +565,50 @@ std::vector<double> MixtureHistogram(
   return counts;
 }
 
+/// A click's mixture fitted again near its class (ZoomedMixture): the fit, the click's class in
+/// it (-1: no refit) and the window [Low, Low + MixtureBins * Width) it spans.
+struct ZoomedFit
+{
+  Mixture Fit;
+  int Object = -1;
+  double Low = 0, Width = 0;
+};
+
 /// The mixture of the values within the click's median m0 +- ZoomSds s.d. of its class o in
 /// `coarse` (clipped to [low, high]; the values beyond are left out, not piled into the end
-/// bins: a pile of air or bone would pass for a class), and its window; an empty mixture when
-/// the class is resolved (at least ZoomBins bins wide), the window is not narrower than half
-/// the span or, clipped to the span, does not hold the median (a rare class beyond a
-/// quantile: the search for its ends would run the wrong way), or the click's class is no better
-/// resolved in the window: a class narrow in itself (a CT's air, -1024 HU and a few integers above)
-/// splits there into a spike per value, and the value next to the click's would compete. Every
-/// process fits the same one: the window comes from the shared fit and median.
-Mixture ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, int o, double m0,
-  double low, double high, const PieceReductions& reduce, double& zoomLow, double& zoomWidth)
+/// bins: a pile of air or bone would pass for a class). No refit (Object -1) when the class is
+/// resolved (at least ZoomBins bins wide), the window is not narrower than half the span or,
+/// clipped to the span, does not hold the median (a rare class beyond a quantile: the search for
+/// its ends would run the wrong way), or the click's class is no better resolved in the window:
+/// a class narrow in itself (a CT's air, -1024 HU and a few integers above) splits there into a
+/// spike per value, and the value next to the click's would compete. Every process fits the
+/// same one: the window comes from the shared fit and median.
+ZoomedFit ZoomedMixture(const std::vector<float>& values, const Mixture& coarse, int o, double m0,
+  double low, double high, const PieceReductions& reduce)
 {
   const double width = (high - low) / MixtureBins;
-  zoomLow = std::max(low, m0 - ZoomSds * coarse.Sd[o]);
+  ZoomedFit zoom;
+  zoom.Low = std::max(low, m0 - ZoomSds * coarse.Sd[o]);
   const double zoomHigh = std::min(high, m0 + ZoomSds * coarse.Sd[o]);
-  zoomWidth = (zoomHigh - zoomLow) / MixtureBins;
-  if (!(coarse.Sd[o] < ZoomBins * width) || !(zoomHigh - zoomLow < 0.5 * (high - low)) ||
-    !(zoomLow < m0 && m0 < zoomHigh))
+  zoom.Width = (zoomHigh - zoom.Low) / MixtureBins;
+  if (!(coarse.Sd[o] < ZoomBins * width) || !(zoomHigh - zoom.Low < 0.5 * (high - low)) ||
+    !(zoom.Low < m0 && m0 < zoomHigh))
   {
-    return Mixture();
+    return zoom;
   }
   std::vector<float> within;
   for (float v : values)
   {
-    if (v >= zoomLow && v < zoomHigh)
+    if (v >= zoom.Low && v < zoomHigh)
     {
       within.push_back(v);
     }
   }
-  Mixture zoomed = FitHistogramMixture(
-    MixtureHistogram(within, zoomLow, zoomWidth, reduce), zoomLow, zoomWidth, 4);
-  const int object = zoomed.Size() > 1 ? zoomed.Likeliest(m0) : -1;
-  return object >= 0 && zoomed.Sd[object] >= ZoomBins * zoomWidth ? zoomed : Mixture();
+  zoom.Fit = FitHistogramMixture(
+    MixtureHistogram(within, zoom.Low, zoom.Width, reduce), zoom.Low, zoom.Width, 4);
+  const int object = zoom.Fit.Size() > 1 ? zoom.Fit.Likeliest(m0) : -1;
+  zoom.Object = object >= 0 && zoom.Fit.Sd[object] >= ZoomBins * zoom.Width ? object : -1;
+  return zoom;
 }
 
 /// A start inside one region (a click): its competitors are the other classes of intensity
@@ -677,14 +688,12 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
   // A class the histogram does not resolve: its neighbours within the zoomed window decide the
   // ends they reach; a side with no competitor there keeps the end of the whole span's fit.
-  double zoomLow = 0, zoomWidth = 0;
-  const Mixture z = ZoomedMixture(values, m, o, m0, low, high, reduce, zoomLow, zoomWidth);
-  const int zo = z.Size() > 1 ? z.Likeliest(m0) : -1;
-  if (zo >= 0)
+  const ZoomedFit zoom = ZoomedMixture(values, m, o, m0, low, high, reduce);
+  if (zoom.Object >= 0)
   {
-    const double zoomHigh = zoomLow + MixtureBins * zoomWidth;
-    const double zlo = CompetitorBoundary(z, zo, m0, zoomLow, zoomWidth / 8);
-    const double zhi = CompetitorBoundary(z, zo, m0, zoomHigh, zoomWidth / 8);
+    const double zoomHigh = zoom.Low + MixtureBins * zoom.Width;
+    const double zlo = CompetitorBoundary(zoom.Fit, zoom.Object, m0, zoom.Low, zoom.Width / 8);
+    const double zhi = CompetitorBoundary(zoom.Fit, zoom.Object, m0, zoomHigh, zoom.Width / 8);
     lo = std::isnan(zlo) ? lo : zlo;
     hi = std::isnan(zhi) ? hi : zhi;
   }
@@ -706,8 +715,8 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
   estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
   estimate.Contrast = true;
-  const Mixture& fit = zo >= 0 ? z : m;
-  const int object = zo >= 0 ? zo : o;
+  const Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
+  const int object = zoom.Object >= 0 ? zoom.Object : o;
   estimate.ObjectMedian = fit.Mean[object];
   int nearest = object == 0 ? 1 : 0;
   for (int k = 0; k < fit.Size(); ++k)
