@@ -611,6 +611,21 @@ ZoomedFit ZoomedMixture(const std::vector<float>& values, const Mixture& coarse,
   return zoom;
 }
 
+/// Whether the click's class o in `fit` (bins of `binWidth`) merges the click's tissue with
+/// others: the click's own voxels (median m0, robust s.d. `clickSpread`) are narrower than the
+/// class, which the histogram resolves (at least ZoomBins bins), and their median lies more than
+/// OneModeSds of their s.d. from the class's mean, so that the two make two modes, not one. A
+/// small tissue among larger ones is not a class of its own in a fit of at most four: a CT's
+/// ventricle (CSF, 0 +- 7 HU, about 1 % of a whole head's neighbourhood) merged with the brain's
+/// partial volumes into a class of 21 +- 18, and the range took in the brain (docs/METHOD.md
+/// §9.3). A click near its class's centre (Colin27's caudate: 1.4 from its class's mean, s.d. 1.5
+/// against 14) keeps the class: a tissue's spread over the image is wider than one spot's.
+bool MergesClickTissue(const Mixture& fit, int o, double m0, double clickSpread, double binWidth)
+{
+  return clickSpread > 0.0 && clickSpread < fit.Sd[o] && fit.Sd[o] >= ZoomBins * binWidth &&
+    std::abs(m0 - fit.Mean[o]) > OneModeSds * clickSpread;
+}
+
 /// A start inside one region (a click): its competitors are the other classes of intensity
 /// around it. The voxels within `reach` of the start's bounding box are fitted as a Gaussian
 /// mixture (dsMixture.h, 256 bins between their MixtureTailShare quantiles); the object's class
@@ -619,9 +634,10 @@ ZoomedFit ZoomedMixture(const std::vector<float>& values, const Mixture& coarse,
 /// competition (Zhu and Yuille, IEEE PAMI 18(9), 1996) between the object's model and its
 /// neighbour's. A side without a competitor stays open (to beyond the neighbourhood's extreme
 /// value, so the speed's ramp lies outside the data). Nothing changes when the neighbourhood holds
-/// one class.
+/// one class. Where the click's class merges its tissue with others (MergesClickTissue), the
+/// click's own model, N(m0, clickSpread) with the class's weight, competes in its place.
 void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double reach,
-  const PieceReductions& reduce, RangeEstimate& estimate)
+  const PieceReductions& reduce, double clickSpread, RangeEstimate& estimate)
 {
   const VoxelBox around = SurfaceNeighbourhood(mesh, piece.Whole, reach);
   const VoxelBox counted = piece.CountedVoxels();
@@ -668,7 +684,7 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   // One class when BIC says so with the tails beyond the quantiles in the end bins modelled
   // (IsOneClass): the mixture below takes them for spikes and split a noisy ball's one class
   // into four, two of them halves of the click's own class (one a "competitor" at its median).
-  const Mixture m = FitHistogramMixture(counts, low, width, 4);
+  Mixture m = FitHistogramMixture(counts, low, width, 4);
   estimate.Classes = IsOneClass(counts, low, width, 4) ? 1 : m.Size();
   if (estimate.Classes < 2)
   {
@@ -681,14 +697,23 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
     reachLow = std::min(reachLow, m.Mean[k] - 5.0 * m.Sd[k]);
     reachHigh = std::max(reachHigh, m.Mean[k] + 5.0 * m.Sd[k]);
   }
+  const double m0 = estimate.Median;
+  ZoomedFit zoom = ZoomedMixture(values, m, o, m0, low, high, reduce);
+  // The click's class is the zoomed fit's where there is one; merging the click's tissue with
+  // others, it gives way to the click's own model.
+  Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
+  const int object = zoom.Object >= 0 ? zoom.Object : o;
+  if (MergesClickTissue(fit, object, m0, clickSpread, zoom.Object >= 0 ? zoom.Width : width))
+  {
+    fit.Mean[object] = m0;
+    fit.Sd[object] = clickSpread;
+  }
   // From the click's median, where its class is the likeliest (not always at the class's mean:
   // a narrow neighbour can win there).
-  const double m0 = estimate.Median;
   double lo = CompetitorBoundary(m, o, m0, reachLow, width / 8);
   double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
   // A class the histogram does not resolve: its neighbours within the zoomed window decide the
   // ends they reach; a side with no competitor there keeps the end of the whole span's fit.
-  const ZoomedFit zoom = ZoomedMixture(values, m, o, m0, low, high, reduce);
   if (zoom.Object >= 0)
   {
     const double zoomHigh = zoom.Low + MixtureBins * zoom.Width;
@@ -715,8 +740,6 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
   estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
   estimate.Contrast = true;
-  const Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
-  const int object = zoom.Object >= 0 ? zoom.Object : o;
   estimate.ObjectMedian = fit.Mean[object];
   int nearest = object == 0 ? 1 : 0;
   for (int k = 0; k < fit.Size(); ++k)
@@ -792,7 +815,7 @@ bool EstimatePieceIntensityRange(const ImagePiece& piece, const TriangleMesh& me
     // A click: a few voxels inside and a shell of three voxels around them cannot tell the
     // object from its background (the shell of a click near a bone's cortex is brighter than
     // the click, which then passed for a dark object); the classes around it can.
-    CompetitorsAround(piece, mesh, competitorReach, reduce, estimate);
+    CompetitorsAround(piece, mesh, competitorReach, reduce, 1.4826 * mad, estimate);
     return true;
   }
   const std::vector<float> outside = ValuesOutside(piece, mesh, outwardSign);

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""One click on each of three objects of a real head CT (Debian's invesalius-examples, int16 HU,
+"""One click on each of six objects of a real head CT (Debian's invesalius-examples, int16 HU,
 0.96 x 0.96 x 1.5 mm), every default: SeedPoints -> Delaunay Seed Surface -> Deformable Surface,
 one run per click. The clicks (Examples/cranium_clicks.csv) were chosen on the CT's axial slices
-40 (each eye's vitreous, 10-20 HU), 20 (the air of the right maxillary sinus) and 30 (the
-sphenoid sinus, two chambers parted by a thin bony septum), in the frame of ds_cranium.py.
+40 (each eye's vitreous, 10-20 HU), 20 (the air of the right maxillary sinus), 30 (the
+sphenoid sinus, two chambers parted by a thin bony septum) and 68 (the middle of each lateral
+ventricle's dark body, CSF), in the frame of ds_cranium.py.
 
 A CT's neighbourhood spans air (-1000 HU) to bone (2000 HU): fitted over that span at once, an
 eye click's class merged with the soft tissues around it and the range ran from far into the
@@ -13,7 +14,10 @@ lies between the orbital fat (-100 HU) and bone. The sinus's air is narrow in it
 and a few integers above): fitted again, it split into a spike per value and its surface
 collapsed; it keeps the whole span's fit. The sphenoid sinus's surface met itself around the
 septum and a front level pushed it through itself: it ended inside out (an error, no output);
-such a front level is undone now (docs/METHOD.md §9.3). Checks:
+such a front level is undone now (docs/METHOD.md §9.3). A ventricle's CSF (0 +- 7 HU) is about 1 %
+of its click's neighbourhood, the whole head: the mixture merged it with the brain's partial
+volumes, the range ran to 74 HU and the surface spread over the head (2.3 litres); the click's
+own model now competes in that class's place (docs/METHOD.md §9.3). Checks:
 - each surface is closed, manifold and free of self-intersections;
 - an eye's range ends above the fat and below the bone (-60 < lo, hi < 80 HU), and its surface
   holds at least the globe (an adult's holds ~7 ml: at least 6 ml) and stays within the orbit
@@ -23,7 +27,12 @@ such a front level is undone now (docs/METHOD.md §9.3). Checks:
   its surface encloses at least 0.7 times the voxels of that range connected to the click (the
   cavity; the sphenoid's septum parts that component from the sinus's other chamber, which the
   surface takes in), and at least 70 % of the voxels it encloses are air (below -500 HU): it
-  stays in the cavity, not in its bony wall or beyond.
+  stays in the cavity, not in its bony wall or beyond;
+- a ventricle's range holds its CSF and ends below the brain (-60 < lo < -5, 5 < hi < 20 HU);
+  its surface encloses 2-40 ml (a lateral ventricle; the threshold's component at the same range,
+  95 ml, runs on into the CSF beyond) and at least 80 % of the voxels it encloses are CSF (below
+  15 HU).
+  It stops short of the ventricle's horns at the default RegionWeight (docs/RESULTS.md).
 Printed beside each: the component of the click in a threshold at the same range (an eye's: 1.6
 litres, the head's soft tissue). Skipped (exit 77) without the invesalius-examples or
 python3-scipy package."""
@@ -132,6 +141,13 @@ for name, click in clicks:
             failures.append("%s: range [%.1f, %.1f] not between fat and bone" % (name, lo, hi))
         if not (6.0 <= ml <= 30.0):
             failures.append("%s: %.1f ml, not between the globe (6) and the orbit (30)" % (name, ml))
+    elif name.endswith("ventricle"):
+        if not (-60.0 < lo < -5.0 and 5.0 < hi < 20.0):
+            failures.append("%s: range [%.1f, %.1f] not between fat and brain" % (name, lo, hi))
+        csf = float((enclosed_values(surface) < 15).mean())
+        print("%s: %.0f %% of the enclosed voxels are CSF (below 15 HU)" % (name, 100 * csf))
+        if not (2.0 <= ml <= 40.0 and csf >= 0.8):
+            failures.append("%s: %.1f ml, %.0f %% CSF" % (name, ml, 100 * csf))
     else:
         if not (lo <= -1024.0 < hi < -300.0):
             failures.append("%s: range [%.1f, %.1f] does not hold the air alone" % (name, lo, hi))
