@@ -4,6 +4,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -443,6 +444,9 @@ void SampledAxisZ(
   const float* src, float* dst, const int dims[3], double sigmaVoxels, int k0, int k1)
 {
   const AxisSmoother s = MakeSmoother(sigmaVoxels);
+  // The recursive filter reads whole lines, which a window of slices does not hold: its callers
+  // (dsSmoothSlabs.cxx) run it in two passes over the whole axis instead.
+  assert(s.Type != AxisSmoother::IIR && "SampledAxisZ is the sampled Gaussian's pass only");
   const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   const int last = dims[2] - 1;
   const auto source = [&](int k) { return src + std::min(std::max(k, 0), last) * slice; };
@@ -454,7 +458,7 @@ void SampledAxisZ(
         // FIRRows's arithmetic for every line through this slice.
         float* out = dst + (k - k0) * slice;
         const float* centre = source(k);
-        if (s.Type != AxisSmoother::FIR)
+        if (s.Type != AxisSmoother::FIR) // the axis left alone (sigma below 0.001 voxel)
         {
           std::copy(centre, centre + slice, out);
           continue;
