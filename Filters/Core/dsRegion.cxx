@@ -8,6 +8,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -614,7 +615,8 @@ ZoomedFit ZoomedMixture(const std::vector<float>& values, const Mixture& coarse,
 /// Whether the click's class o in `fit` (bins of `binWidth`) merges the click's tissue with
 /// others: the click's own voxels (median m0, robust s.d. `clickSpread`) are narrower than the
 /// class, which the histogram resolves (at least ZoomBins bins), and their median lies more than
-/// OneModeSds of their s.d. from the class's mean, so that the two make two modes, not one. A
+/// OneModeSds of their s.d. from the class's mean, beyond the bound within which the two would
+/// be one mode (see OneModeSds), as two tissues' classes are. A
 /// small tissue among larger ones is not a class of its own in a fit of at most four: a CT's
 /// ventricle (CSF, 0 +- 7 HU, about 1 % of a whole head's neighbourhood) merged with the brain's
 /// partial volumes into a class of 21 +- 18, and the range took in the brain (docs/METHOD.md
@@ -626,6 +628,56 @@ bool MergesClickTissue(const Mixture& fit, int o, double m0, double clickSpread,
     std::abs(m0 - fit.Mean[o]) > OneModeSds * clickSpread;
 }
 
+/// The ends of a click's range on either side of its median m0 (NaN: no competitor on that side):
+/// its decision boundaries with the competing classes of the whole span's fit `m` (the click's
+/// class o; searched out to reachLow and reachHigh, in steps of an eighth of a bin of `width`), or
+/// of the zoomed fit within its window where that finds one. The click's class in the fit that
+/// decides (the zoomed one where there is one) gives way to the click's own model where it merges
+/// the click's tissue with others (MergesClickTissue); a side on which the zoomed window finds no
+/// competitor keeps the whole span's end, that of its own class.
+std::array<double, 2> ClickRangeEnds(Mixture& m, int o, ZoomedFit& zoom, double m0,
+  double clickSpread, double width, double reachLow, double reachHigh)
+{
+  Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
+  const int object = zoom.Object >= 0 ? zoom.Object : o;
+  const double binWidth = zoom.Object >= 0 ? zoom.Width : width;
+  if (MergesClickTissue(fit, object, m0, clickSpread, binWidth))
+  {
+    fit.Mean[object] = m0;
+    fit.Sd[object] = std::max(clickSpread, binWidth); // no class narrower than a bin (dsMixture.h)
+  }
+  // From the click's median, where its class is the likeliest (not always at the class's mean:
+  // a narrow neighbour can win there).
+  double lo = CompetitorBoundary(m, o, m0, reachLow, width / 8);
+  double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
+  // A class the histogram does not resolve: its neighbours within the zoomed window decide the
+  // ends they reach.
+  if (zoom.Object >= 0)
+  {
+    const double zoomHigh = zoom.Low + MixtureBins * zoom.Width;
+    const double zlo = CompetitorBoundary(zoom.Fit, zoom.Object, m0, zoom.Low, zoom.Width / 8);
+    const double zhi = CompetitorBoundary(zoom.Fit, zoom.Object, m0, zoomHigh, zoom.Width / 8);
+    lo = std::isnan(zlo) ? lo : zlo;
+    hi = std::isnan(zhi) ? hi : zhi;
+  }
+  return { lo, hi };
+}
+
+/// The class of `fit` whose mean lies nearest the object's class's (fit has two classes or more).
+int NearestClass(const Mixture& fit, int object)
+{
+  int nearest = object == 0 ? 1 : 0;
+  for (int k = 0; k < fit.Size(); ++k)
+  {
+    if (k != object &&
+      std::abs(fit.Mean[k] - fit.Mean[object]) < std::abs(fit.Mean[nearest] - fit.Mean[object]))
+    {
+      nearest = k;
+    }
+  }
+  return nearest;
+}
+
 /// A start inside one region (a click): its competitors are the other classes of intensity
 /// around it. The voxels within `reach` of the start's bounding box are fitted as a Gaussian
 /// mixture (dsMixture.h, 256 bins between their MixtureTailShare quantiles); the object's class
@@ -635,7 +687,8 @@ bool MergesClickTissue(const Mixture& fit, int o, double m0, double clickSpread,
 /// neighbour's. A side without a competitor stays open (to beyond the neighbourhood's extreme
 /// value, so the speed's ramp lies outside the data). Nothing changes when the neighbourhood holds
 /// one class. Where the click's class merges its tissue with others (MergesClickTissue), the
-/// click's own model, N(m0, clickSpread) with the class's weight, competes in its place.
+/// click's own model, N(m0, clickSpread) with the class's weight, competes in its place
+/// (ClickRangeEnds).
 void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double reach,
   const PieceReductions& reduce, double clickSpread, RangeEstimate& estimate)
 {
@@ -699,29 +752,9 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   }
   const double m0 = estimate.Median;
   ZoomedFit zoom = ZoomedMixture(values, m, o, m0, low, high, reduce);
-  // The click's class is the zoomed fit's where there is one; merging the click's tissue with
-  // others, it gives way to the click's own model.
-  Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
-  const int object = zoom.Object >= 0 ? zoom.Object : o;
-  if (MergesClickTissue(fit, object, m0, clickSpread, zoom.Object >= 0 ? zoom.Width : width))
-  {
-    fit.Mean[object] = m0;
-    fit.Sd[object] = clickSpread;
-  }
-  // From the click's median, where its class is the likeliest (not always at the class's mean:
-  // a narrow neighbour can win there).
-  double lo = CompetitorBoundary(m, o, m0, reachLow, width / 8);
-  double hi = CompetitorBoundary(m, o, m0, reachHigh, width / 8);
-  // A class the histogram does not resolve: its neighbours within the zoomed window decide the
-  // ends they reach; a side with no competitor there keeps the end of the whole span's fit.
-  if (zoom.Object >= 0)
-  {
-    const double zoomHigh = zoom.Low + MixtureBins * zoom.Width;
-    const double zlo = CompetitorBoundary(zoom.Fit, zoom.Object, m0, zoom.Low, zoom.Width / 8);
-    const double zhi = CompetitorBoundary(zoom.Fit, zoom.Object, m0, zoomHigh, zoom.Width / 8);
-    lo = std::isnan(zlo) ? lo : zlo;
-    hi = std::isnan(zhi) ? hi : zhi;
-  }
+  const std::array<double, 2> ends =
+    ClickRangeEnds(m, o, zoom, m0, clickSpread, width, reachLow, reachHigh);
+  const double lo = ends[0], hi = ends[1];
   if ((std::isnan(lo) && std::isnan(hi)) || !(std::isnan(lo) || lo < m0) ||
     !(std::isnan(hi) || hi > m0))
   {
@@ -740,17 +773,10 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
   estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
   estimate.Contrast = true;
+  const Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
+  const int object = zoom.Object >= 0 ? zoom.Object : o;
   estimate.ObjectMedian = fit.Mean[object];
-  int nearest = object == 0 ? 1 : 0;
-  for (int k = 0; k < fit.Size(); ++k)
-  {
-    if (k != object &&
-      std::abs(fit.Mean[k] - fit.Mean[object]) < std::abs(fit.Mean[nearest] - fit.Mean[object]))
-    {
-      nearest = k;
-    }
-  }
-  estimate.BackgroundMedian = fit.Mean[nearest];
+  estimate.BackgroundMedian = fit.Mean[NearestClass(fit, object)];
 }
 } // namespace
 

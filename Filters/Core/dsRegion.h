@@ -114,9 +114,10 @@ struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 /// the range is m -+ 3 s: the whole of that region's class.
 /// A click (fewer than ClickVoxels inside) with competitorReach > 0 instead looks for the region's
 /// competitors: the classes of intensity within competitorReach of the start (a Gaussian mixture),
-/// and the range runs to the decision boundaries between the click's class and the classes
-/// beside it (region competition, docs/METHOD.md §9.3); the m -+ 3 s range stays when the
-/// neighbourhood holds one class.
+/// and the range runs to the decision boundaries between the click's class (or the click's own
+/// model, where that class merges its tissue with others) and the classes beside it (region
+/// competition, docs/METHOD.md §9.3); the m -+ 3 s range stays when the neighbourhood holds one
+/// class.
 /// Returns false (with a message) when there is nothing to sample.
 DEFORMABLESURFACEFILTERS_EXPORT bool EstimateIntensityRange(const ImageView& image,
   const TriangleMesh& mesh, double outwardSign, RangeEstimate& estimate, std::string* error,

@@ -11,8 +11,9 @@
 // - spheres around a blurred ball in an empty image put the low end at the ball's half level.
 // - a click inside one noisy class (its tails beyond the histogram's quantiles) finds one class
 //   and keeps the whole class in its range (IsOneClass).
-// - clicks in a CT: a soft tissue and a ventricle's CSF, which the whole span's fit merges with
-//   their neighbours, end between their own class and each neighbour; the air keeps its class.
+// - clicks in a CT: a soft tissue, which the whole span's fit merges with its neighbours, and a
+//   ventricle's CSF, which the fit near it merges with the brain, end between their own class
+//   and each neighbour; the air keeps its class.
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -283,8 +284,8 @@ int TestRegionRange(int, char*[])
   // 15), air (-1000 +- 5), bone (1200 +- 150) and their partial volumes (values spread evenly
   // over [-60, 260] HU). Fitted near the click, the CSF merged with the brain's wider part into
   // a class of 18.5 +- 20.8 and the range, [-32, 69], took in the brain (on the real CT the
-  // surface spread over the head). The click's own voxels, narrower and two modes away from that
-  // class, compete in its place.
+  // surface spread over the head). The click's own voxels, narrower than that class and beyond
+  // the one-mode bound from its mean, compete in its place: [-22.5, 11.5].
   {
     const std::vector<float> hu = NoisyImage(n, 2014,
       [](int i, int j, int k, auto& noise)
