@@ -616,12 +616,12 @@ ZoomedFit ZoomedMixture(const std::vector<float>& values, const Mixture& coarse,
 /// others: the click's own voxels (median m0, robust s.d. `clickSpread`) are narrower than the
 /// class, which the histogram resolves (at least ZoomBins bins), and their median lies more than
 /// OneModeSds of their s.d. from the class's mean, beyond the bound within which the two would
-/// be one mode (see OneModeSds), as two tissues' classes are. A
-/// small tissue among larger ones is not a class of its own in a fit of at most four: a CT's
-/// ventricle (CSF, 0 +- 7 HU, about 1 % of a whole head's neighbourhood) merged with the brain's
-/// partial volumes into a class of 21 +- 18, and the range took in the brain (docs/METHOD.md
-/// §9.3). A click near its class's centre (Colin27's caudate: 1.4 from its class's mean, s.d. 1.5
-/// against 14) keeps the class: a tissue's spread over the image is wider than one spot's.
+/// be one mode (see OneModeSds), as two tissues' classes are. A small tissue among larger ones
+/// is not a class of its own in a fit of at most four: a CT's ventricle (CSF, 0 +- 7 HU, about
+/// 1 % of a whole head's neighbourhood) merged with the brain's partial volumes into a class of
+/// 21 +- 18, and the range took in the brain (docs/METHOD.md §9.3). A click near its class's centre
+/// (Colin27's caudate: 1.4 from its class's mean, s.d. 1.5 against 14) keeps the class: a tissue's
+/// spread over the image is wider than one spot's.
 bool MergesClickTissue(const Mixture& fit, int o, double m0, double clickSpread, double binWidth)
 {
   return clickSpread > 0.0 && clickSpread < fit.Sd[o] && fit.Sd[o] >= ZoomBins * binWidth &&
