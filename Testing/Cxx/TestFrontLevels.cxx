@@ -8,7 +8,7 @@
 //   from the body's surface along it);
 // - the horn two voxels wide to within two voxels of its end (its voxels, partly surround, lie
 //   near the range's end, which the click's mixture places only when the dark body lies within
-//   the histogram's span: dsRegion.cxx MixtureTailShare);
+//   the histogram's span: dsClickCompetition.cxx MixtureTailShare);
 // - reference boundary -> surface mean at most 0.5 voxel and 95 % at most 1.5 voxel (the
 //   one-click goals); surface -> reference 95 % at most 0.6 voxel and at most 1 % of
 //   the enclosed volume outside the object (no leak); at most 6 000 vertices (only the front is
