@@ -227,10 +227,13 @@ int NearestClass(const Mixture& fit, int object)
   }
   return nearest;
 }
-} // namespace
 
-void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double reach,
-  const PieceReductions& reduce, double clickSpread, RangeEstimate& estimate)
+/// The values of the voxels within `reach` of the start's bounding box that this process counts:
+/// every n-th voxel id of the neighbourhood (n from its whole size, so every process takes the
+/// same voxels), at most ~2^24 values; non-finite values (a float image's NaN background) belong
+/// to no class.
+std::vector<float> NeighbourhoodValues(
+  const ImagePiece& piece, const TriangleMesh& mesh, double reach)
 {
   const VoxelBox around = SurfaceNeighbourhood(mesh, piece.Whole, reach);
   const VoxelBox counted = piece.CountedVoxels();
@@ -240,9 +243,6 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
     box.Begin[a] = std::max(around.Begin[a], counted.Begin[a]);
     box.End[a] = std::max(box.Begin[a], std::min(around.End[a], counted.End[a]));
   }
-  // Every n-th voxel id of the neighbourhood (n from its whole size, so every process takes
-  // the same voxels), at most ~2^24 values; non-finite values (a float image's NaN background)
-  // belong to no class.
   const long long every = 1 + around.NumberOfVoxels() / (1LL << 24);
   const long long nx = piece.Whole.Dimensions[0], ny = piece.Whole.Dimensions[1];
   std::vector<float> values;
@@ -260,6 +260,34 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
         }
       }
     });
+  return values;
+}
+
+/// The click's range from its ends lo and hi (NaN: no competitor on that side) around its median
+/// m0: a side without a competitor stays open, beyond the neighbourhood's extreme value (over all
+/// processes) by a quarter of the span to the other end, so the speed's ramp lies outside the data.
+std::array<double, 2> RangeWithOpenSides(
+  const std::vector<float>& values, double lo, double hi, double m0, const PieceReductions& reduce)
+{
+  float lowest = std::numeric_limits<float>::max(), highest = std::numeric_limits<float>::lowest();
+  for (float v : values)
+  {
+    lowest = std::min(lowest, v);
+    highest = std::max(highest, v);
+  }
+  const double minimum = -reduce.Max(-static_cast<double>(lowest));
+  const double maximum = reduce.Max(highest);
+  const double closedLow = std::isnan(lo) ? m0 : lo;
+  const double closedHigh = std::isnan(hi) ? m0 : hi;
+  return { std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo,
+    std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi };
+}
+} // namespace
+
+void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double reach,
+  const PieceReductions& reduce, double clickSpread, RangeEstimate& estimate)
+{
+  const std::vector<float> values = NeighbourhoodValues(piece, mesh, reach);
   const SharedValues all{ values, CountOfAll(values, reduce) };
   if (all.Count < 64)
   {
@@ -300,18 +328,9 @@ void CompetitorsAround(const ImagePiece& piece, const TriangleMesh& mesh, double
   {
     return; // no competitor, or none that leaves the click in its range: m -+ 3 s, grow only
   }
-  float lowest = std::numeric_limits<float>::max(), highest = std::numeric_limits<float>::lowest();
-  for (float v : values)
-  {
-    lowest = std::min(lowest, v);
-    highest = std::max(highest, v);
-  }
-  const double minimum = -reduce.Max(-static_cast<double>(lowest));
-  const double maximum = reduce.Max(highest);
-  const double closedLow = std::isnan(lo) ? m0 : lo;
-  const double closedHigh = std::isnan(hi) ? m0 : hi;
-  estimate.Range[0] = std::isnan(lo) ? minimum - 0.25 * (closedHigh - minimum) : lo;
-  estimate.Range[1] = std::isnan(hi) ? maximum + 0.25 * (maximum - closedLow) : hi;
+  const std::array<double, 2> range = RangeWithOpenSides(values, lo, hi, m0, reduce);
+  estimate.Range[0] = range[0];
+  estimate.Range[1] = range[1];
   estimate.Contrast = true;
   const Mixture& fit = zoom.Object >= 0 ? zoom.Fit : m;
   const int object = zoom.Object >= 0 ? zoom.Object : o;
