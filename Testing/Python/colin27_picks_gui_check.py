@@ -13,10 +13,9 @@ with pvpython after the client saved DS_TEST_OUTPUT/gui_colin27_picks.pvsm.
   brain mask's boundary, ch2bet > 0, differs by at most 0.1 mm). The solver does not keep picks
   a fraction of a voxel apart within 0.1 mm of each other: the number of vertices and the
   surface itself change with them (this test measured 0.10 mm and, with views zoomed closer onto
-  the picks, 0.41 mm between the surfaces). The CSV's picks moved at random by up to 0.25 mm
-  along each axis gave 0.09-0.13 mm in three runs of four, and 0.39 mm in the fourth: its sigma_0,
-  a distance the probe measures in steps of half a voxel (docs/METHOD.md §9.1), came out 3.5 mm
-  instead of 3.0, and the hierarchy ran four levels instead of three."""
+  the picks, 0.41 mm between the surfaces): sigma_0 is a distance measured in steps of half a
+  voxel (docs/METHOD.md §9.1), so a pick moved a fraction of a voxel can change it by a step and
+  the hierarchy by a level."""
 import math
 import os
 import sys
