@@ -4,6 +4,7 @@
 #include "dsMemory.h"
 #include "dsSmoothSlabs.h"
 #include "dsThreads.h"
+#include "dsVoxelSet.h"
 
 #include "vtkSMPTools.h"
 
@@ -59,12 +60,11 @@ bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpacePara
 {
   // A piece's part of a distributed image needs the other pieces' states and maximum (its
   // hooks), which Reset drops: refused here, not smoothed without them.
-  if (parameters.Smooth || parameters.GradientMaximum ||
-    (parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local))
+  if (parameters.Smooth || parameters.GradientMaximum)
   {
     if (error)
     {
-      *error = "only the globally normalised field of a whole image is smoothed in slabs";
+      *error = "only the field of a whole image is smoothed in slabs";
     }
     return false;
   }
@@ -77,7 +77,7 @@ bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpacePara
   this->TileMargin = reach;
   std::vector<char> keep;
   this->MarkNearSurface(surface, reach + this->TileMargin, keep);
-  return this->SmoothTiles(keep, error);
+  return this->FillTiles(keep, error);
 }
 
 void FieldBricks::Reset(
@@ -175,6 +175,96 @@ bool FieldBricks::SmoothTiles(const std::vector<char>& keep, std::string* error)
   // store runs in the SMP scope SmoothForPotentialInSlabs sets (the parameters' threads).
   return SmoothForPotentialInSlabs(
     this->Source, this->Parameters, this->SlabCore, store, this->Gains, error);
+}
+
+VoxelSet FieldBricks::TileVoxels(const std::vector<char>& keep, std::vector<int>& kept) const
+{
+  VoxelSet voxels(this->Grid.NumberOfVoxels());
+  kept.clear();
+  for (std::size_t id = 0; id < keep.size(); ++id)
+  {
+    if (keep[id])
+    {
+      kept.push_back(static_cast<int>(id));
+      this->ForEachTileRow(static_cast<int>(id),
+        [&](std::ptrdiff_t v, std::ptrdiff_t n, std::ptrdiff_t)
+        {
+          for (std::ptrdiff_t i = 0; i < n; ++i)
+          {
+            voxels.Insert(v + i);
+          }
+        });
+    }
+  }
+  voxels.Finish();
+  return voxels;
+}
+
+bool FieldBricks::LocalPotentialOfBox(
+  const VoxelSet& wanted, std::vector<float>& potential, std::string* error) const
+{
+  // Both maxima over the box, as ComputeScaleSpaceForce takes them.
+  ScaleSpaceParameters local = this->Parameters;
+  local.ComputeForce = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    local.MaximumBegin[a] = 0;
+    local.MaximumEnd[a] = this->Grid.Dimensions[a];
+  }
+  if (this->SlabCore >= 0)
+  {
+    return LocalPotentialAt(this->Source, local, wanted, potential, error, this->SlabCore);
+  }
+  // One pass over the whole box (at most half the image), read at the wanted voxels.
+  ForceField whole;
+  if (!ComputeScaleSpaceForce(this->Source, local, whole, error))
+  {
+    return false;
+  }
+  potential.resize(static_cast<std::size_t>(wanted.Size()));
+  wanted.ForEachIn(0, this->Grid.NumberOfVoxels(),
+    [&](long long v, long long rank) { potential[rank] = whole.Potential[v]; });
+  return true;
+}
+
+bool FieldBricks::LocalTiles(const std::vector<char>& keep, std::string* error)
+{
+  for (std::size_t id = 0; id < keep.size(); ++id)
+  {
+    std::vector<float>().swap(this->Tiles[id]);
+  }
+  std::vector<int> kept;
+  const VoxelSet wanted = this->TileVoxels(keep, kept);
+  std::vector<float> potential;
+  ++this->Smoothings;
+  if (!this->LocalPotentialOfBox(wanted, potential, error))
+  {
+    return false;
+  }
+  vtkSMPTools::LocalScope(
+    vtkSMPTools::Config{ ResolveThreads(this->Parameters.NumberOfThreads), "STDThread", false },
+    [&]
+    {
+      vtkSMPTools::For(0, static_cast<int>(kept.size()),
+        [&](int begin, int end)
+        {
+          for (int t = begin; t < end; ++t)
+          {
+            std::vector<float>& values = this->Tiles[kept[t]];
+            const int b[3] = { kept[t] % this->Bricks[0],
+              (kept[t] / this->Bricks[0]) % this->Bricks[1],
+              kept[t] / (this->Bricks[0] * this->Bricks[1]) };
+            values.resize(static_cast<std::size_t>(this->TileBox(b).NumberOfVoxels()));
+            this->ForEachTileRow(kept[t],
+              [&](std::ptrdiff_t v, std::ptrdiff_t n, std::ptrdiff_t at)
+              {
+                // A row's voxels are all wanted: consecutive ranks.
+                std::copy_n(potential.data() + wanted.Rank(v), n, values.data() + at);
+              });
+          }
+        });
+    });
+  return true;
 }
 
 void FieldBricks::MarkNear(
@@ -295,14 +385,32 @@ bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& 
   std::vector<char> keep;
   this->MarkNearSurface(mesh, this->Reach + this->TileMargin, keep);
   // The tiles held now are freed first; counted as if not, to be safe.
+  const double tiles = static_cast<double>(std::count(keep.begin(), keep.end(), char(1)));
   const double more =
-    static_cast<double>(std::count(keep.begin(), keep.end(), char(1))) * TileBytes +
-    SmoothInSlabsBytes(this->Grid, this->Parameters.Sigma, this->SlabCore);
+    tiles * TileBytes + TileMakingBytes(this->Grid, this->Parameters, tiles, this->SlabCore);
   if (!this->Affords(more, "the force field's smoothed image near the surface, smoothed again"))
   {
     return false;
   }
-  return this->SmoothTiles(keep, nullptr);
+  return this->FillTiles(keep, nullptr);
+}
+
+double FieldBricks::TileMakingBytes(
+  const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double tiles, int coreSlices)
+{
+  if (LocallyNormalised(parameters) && coreSlices < 0)
+  {
+    // P over the box and its scratch (ComputeScaleSpaceForce without the force), the set of the
+    // tiles' voxels (a quarter of a byte a voxel of the box) and P at them.
+    return (3.0 * sizeof(float) + 0.25) * static_cast<double>(grid.NumberOfVoxels()) +
+      sizeof(float) * tiles * BrickSize * BrickSize * BrickSize;
+  }
+  if (LocallyNormalised(parameters))
+  {
+    return LocalPotentialBytes(
+      grid, parameters, tiles * BrickSize * BrickSize * BrickSize, coreSlices);
+  }
+  return SmoothInSlabsBytes(grid, parameters.Sigma, coreSlices);
 }
 
 bool FieldBricks::Affords(double bytes, const char* what)
@@ -339,8 +447,8 @@ double FieldBricks::InitialBytes(const ImageGeometry& grid, const ScaleSpacePara
   }
   // InitializeInSlabs's tiles, and the slabs while they are smoothed.
   counter.MarkNearSurface(surface, 2.0 * reach, mark);
-  return bytes + static_cast<double>(std::count(mark.begin(), mark.end(), char(1))) * TileBytes +
-    SmoothInSlabsBytes(grid, parameters.Sigma, coreSlices);
+  const double tiles = static_cast<double>(std::count(mark.begin(), mark.end(), char(1)));
+  return bytes + tiles * TileBytes + TileMakingBytes(grid, parameters, tiles, coreSlices);
 }
 
 const float* FieldBricks::SmoothAround(
@@ -415,6 +523,12 @@ void FieldBricks::ComputeBrick(const int b[3], int slot)
   std::vector<float> around;
   VoxelBox over;
   const float* smooth = this->SmoothAround(b, around, over);
+  if (this->Local())
+  {
+    ForceOfPotentialInBox(smooth, over, this->Grid, box, this->OwnBox(b),
+      this->Potential[slot].data(), this->Force[slot].data());
+    return;
+  }
   PotentialAndForceInBox(smooth, over, this->Grid, box, this->OwnBox(b), this->Gains,
     this->Potential[slot].data(), this->Force[slot].data());
 }
@@ -450,6 +564,11 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
         {
           const VoxelBox voxel{ { i, j, k }, { i + 1, j + 1, k + 1 } };
           smooth = smooth ? smooth : this->SmoothAround(b, around, over);
+          if (this->Local())
+          {
+            ForceOfPotentialInBox(smooth, over, this->Grid, box, voxel, potential, force);
+            continue;
+          }
           PotentialAndForceInBox(
             smooth, over, this->Grid, box, voxel, this->Gains, potential, force);
           continue;

@@ -9,7 +9,10 @@
 // dsFieldGrid.h). A brick's values are computed from it exactly as the whole box's would be
 // (PotentialAndForceInBox), so a vertex in a brick samples the whole-box field bit for bit; a
 // voxel two bricks share is computed once and copied. Bricks are computed when the surface
-// first comes within reach of them and kept for the level. Plain C++.
+// first comes within reach of them and kept for the level. With the local edge normalisation
+// the tiles hold P itself, computed in slabs at their voxels only (LocalPotentialAt,
+// dsScaleSpace.h), and a brick's -grad P is the central differences of P, as the whole box's
+// is. Plain C++.
 #ifndef dsFieldBricks_h
 #define dsFieldBricks_h
 
@@ -53,7 +56,11 @@ public:
   /// near `surface`; when the surface later comes within reach of a brick whose tiles were not
   /// kept, the box is smoothed again in slabs, keeping the tiles near it then, with a margin twice
   /// as wide each time. The values equal Initialize's bit for bit. `image` must outlive the
-  /// bricks. Not for a piece's hooks (dsPieceField.h).
+  /// bricks. With the local edge normalisation (for any box) the tiles hold P instead, computed
+  /// at their voxels by LocalPotentialAt (coreSlices its slabs' cores) or, coreSlices negative,
+  /// read off the box's whole P made in one pass (12 bytes a voxel of the box, then freed), and
+  /// again, with the wider margin, when the surface goes past them. Not for a piece's hooks
+  /// (dsPieceField.h).
   bool InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
     double reach, const TriangleMesh& surface, int coreSlices, std::string* error);
   /// Computes the bricks within the reach of a vertex of `mesh` that are not computed yet (in
@@ -132,11 +139,50 @@ private:
   void MarkNearSurface(const TriangleMesh& mesh, double reach, std::vector<char>& mark) const;
   /// G_sigma * f smoothed in slabs, the tiles of the `keep` bricks (and no other) stored.
   bool SmoothTiles(const std::vector<char>& keep, std::string* error);
+  /// With the local edge normalisation: P at the voxels of the `keep` bricks' tiles (and no
+  /// other), computed by LocalPotentialOfBox.
+  bool LocalTiles(const std::vector<char>& keep, std::string* error);
+  /// The voxels of the `keep` bricks' tiles, whose ids go into `kept`.
+  VoxelSet TileVoxels(const std::vector<char>& keep, std::vector<int>& kept) const;
+  /// The box's locally normalised P at the `wanted` voxels (by rank): LocalPotentialAt in slabs
+  /// of SlabCore slices, or for SlabCore negative the box's whole P made in one pass.
+  bool LocalPotentialOfBox(
+    const VoxelSet& wanted, std::vector<float>& potential, std::string* error) const;
+  /// Calls row(v, n, at) for each row of brick `id`'s tile: its first voxel's id v in the box,
+  /// its n voxels, its place `at` in the tile's values.
+  template <typename Row>
+  void ForEachTileRow(int id, Row&& row) const
+  {
+    const int b[3] = { id % this->Bricks[0], (id / this->Bricks[0]) % this->Bricks[1],
+      id / (this->Bricks[0] * this->Bricks[1]) };
+    const VoxelBox tile = this->TileBox(b);
+    const std::ptrdiff_t nx = this->Grid.Dimensions[0];
+    const std::ptrdiff_t slice = nx * this->Grid.Dimensions[1];
+    const std::ptrdiff_t tx = tile.End[0] - tile.Begin[0], ty = tile.End[1] - tile.Begin[1];
+    for (int k = tile.Begin[2]; k < tile.End[2]; ++k)
+      for (int j = tile.Begin[1]; j < tile.End[1]; ++j)
+      {
+        row(k * slice + j * nx + tile.Begin[0], tx,
+          (j - tile.Begin[1]) * tx + (k - tile.Begin[2]) * tx * ty);
+      }
+  }
+  /// The tiles of the `keep` bricks made (SmoothTiles, or LocalTiles when Local()).
+  bool FillTiles(const std::vector<char>& keep, std::string* error)
+  {
+    return this->Local() ? this->LocalTiles(keep, error) : this->SmoothTiles(keep, error);
+  }
+  /// Whether the field is locally normalised: its tiles hold P, not G_sigma * f.
+  bool Local() const { return LocallyNormalised(this->Parameters); }
+  /// Bytes making the `tiles` kept tiles holds besides them, at most (the slabs' smoothing, or
+  /// LocalPotentialAt's, or the box's whole P for coreSlices negative).
+  static double TileMakingBytes(const ImageGeometry& grid, const ScaleSpaceParameters& parameters,
+    double tiles, int coreSlices);
   /// Before the `fresh` bricks are computed: smooths again (SmoothTiles) unless every tile they
   /// read is held. False only when that fails.
   bool EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& fresh);
-  /// G_sigma * f over brick b's voxels and their neighbours within the box, into `values`
-  /// (x fastest over the returned box): a pointer into Smooth, or gathered from the tiles.
+  /// G_sigma * f (P when Local()) over brick b's voxels and their neighbours within the box, into
+  /// `values` (x fastest over the returned box): a pointer into Smooth, or gathered from the
+  /// tiles.
   const float* SmoothAround(const int b[3], std::vector<float>& values, VoxelBox& over) const;
   /// Computes brick b's own voxels (OwnBox) into its slot.
   void ComputeBrick(const int b[3], int slot);
@@ -154,8 +200,9 @@ private:
   /// G_sigma * f over the box; new float[] leaves it unset (SmoothForPotential writes every
   /// voxel: a zero fill first would be a pass over the box for nothing).
   std::unique_ptr<float[]> Smooth;
-  /// In slabs (InitializeInSlabs): the image, G_sigma * f per brick's TileBox (empty where not
-  /// kept), the margin past the reach the tiles were kept within, and the smoothings.
+  /// In slabs (InitializeInSlabs): the image, G_sigma * f (P when Local()) per brick's TileBox
+  /// (empty where not kept), the margin past the reach the tiles were kept within, and the
+  /// smoothings.
   ImageView Source;
   int SlabCore = 0;
   std::vector<std::vector<float>> Tiles;

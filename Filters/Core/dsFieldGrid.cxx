@@ -242,9 +242,7 @@ bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters)
 {
   VoxelBox cut;
-  const bool local =
-    parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
-  return !local && FieldCutFactor(box, whole, parameters.Sigma, cut) <= 1;
+  return FieldCutFactor(box, whole, parameters.Sigma, cut) <= 1;
 }
 
 double FieldBytesPerVoxel(bool bricked)
@@ -266,12 +264,14 @@ double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
   const int f = FieldCutFactor(box, whole, parameters.Sigma, cut);
   const bool bricked = f <= 1 && FieldInBricks(box, whole, parameters);
   const bool inSlabs = bricked && FieldInSlabs(cut, whole);
+  const bool local = LocallyNormalised(parameters);
   // (A geometry the scale space refuses is refused when the field is made: counted plainly.)
   if (bricked && surface && ScaleSpaceProblem(whole, parameters.Sigma).empty())
   {
-    // The field's first bricks and G_sigma * f; Cover checks the bricks added later.
-    return FieldBricks::InitialBytes(
-      BoxGeometry(whole, cut), parameters, BrickReachSigmas * parameters.Sigma, *surface, inSlabs);
+    // The field's first bricks and G_sigma * f (the locally normalised P's tiles, made in slabs
+    // or in one pass: ComputeBrickedForce); Cover checks the bricks added later.
+    return FieldBricks::InitialBytes(BoxGeometry(whole, cut), parameters,
+      BrickReachSigmas * parameters.Sigma, *surface, inSlabs || local, local && !inSlabs ? -1 : 0);
   }
   const double slabs =
     inSlabs ? SmoothInSlabsBytes(BoxGeometry(whole, cut), parameters.Sigma, 0) : 0.0;
@@ -283,8 +283,13 @@ bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& para
 {
   auto bricks = std::make_shared<FieldBricks>();
   const double reach = BrickReachSigmas * parameters.Sigma;
-  if (!(inSlabs ? bricks->InitializeInSlabs(part, parameters, reach, surface, 0, error)
-                : bricks->Initialize(part, parameters, reach, error)))
+  // The locally normalised P is kept at the tiles' voxels only, whatever the box: computed in
+  // slabs over a box of more than half the image, in one pass over a smaller one, as G_sigma * f
+  // is smoothed (docs/METHOD.md §9.7).
+  const bool local = LocallyNormalised(parameters);
+  if (!(inSlabs || local ? bricks->InitializeInSlabs(
+                             part, parameters, reach, surface, local && !inSlabs ? -1 : 0, error)
+                         : bricks->Initialize(part, parameters, reach, error)))
   {
     return false;
   }
@@ -339,12 +344,10 @@ bool ComputeForceAtScale(const ImageView& image, const VoxelBox& box,
   const int f = FieldCutFactor(box, image.Geometry, parameters.Sigma, part);
   const ImageView cut =
     part.NumberOfVoxels() < image.Geometry.NumberOfVoxels() ? image.Box(part) : image;
-  const bool local =
-    parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
   if (f <= 1)
   {
     const bool inSlabs = FieldInSlabs(part, image.Geometry);
-    const bool ok = surface && !local
+    const bool ok = surface
       ? ComputeBrickedForce(cut, parameters, *surface, out, error, inSlabs, true)
       : ComputeScaleSpaceForce(cut, parameters, out, error);
     out.Image = image.Geometry;

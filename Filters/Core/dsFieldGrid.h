@@ -104,8 +104,7 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldGridVoxels(const VoxelBox& cut, int 
 
 /// Whether a field at `parameters` over `box` of an image of geometry `whole` is kept in bricks
 /// around a surface (ComputeForceAtScale, ComputePieceForce with a surface): on the image's own
-/// grid, unless with the local edge normalisation. The same on every process of a distributed
-/// solve.
+/// grid. The same on every process of a distributed solve.
 DEFORMABLESURFACEFILTERS_EXPORT bool FieldInBricks(
   const VoxelBox& box, const ImageGeometry& whole, const ScaleSpaceParameters& parameters);
 
@@ -127,11 +126,11 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(const VoxelBox& box, const Ima
 
 /// The field at parameters.Sigma over all of `part` (a view of the image's values, placed in the
 /// image: the cut of ComputeForceAtScale, or a piece's region) but kept only in the bricks within
-/// BrickReachSigmas sigma of `surface`'s vertices (dsFieldBricks.h; not the local edge
-/// normalisation). With parameters.Smooth and GradientMaximum, a piece's part of the field
-/// (dsPieceField.h).
+/// BrickReachSigmas sigma of `surface`'s vertices (dsFieldBricks.h). With parameters.Smooth and
+/// GradientMaximum, a piece's part of the field (dsPieceField.h).
 /// `inSlabs`: G_sigma * f is smoothed in slabs and kept near the surface only
-/// (FieldBricks::InitializeInSlabs; not with a piece's hooks), else over all of `part`.
+/// (FieldBricks::InitializeInSlabs; not with a piece's hooks), else over all of `part`. With the
+/// local edge normalisation its P is always computed at the tiles near the surface only.
 /// `checkAsAdded`: the bricks added as the surface moves are checked against the memory
 /// available (FieldBricks::CheckMemoryAsAdded; the first ones too, false with its message).
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,
@@ -151,10 +150,9 @@ DEFORMABLESURFACEFILTERS_EXPORT bool FieldInSlabs(const VoxelBox& cut, const Ima
 /// The force field at parameters.Sigma over `box` of the image (over FieldCut), on a grid decimated
 /// by DecimationFactor when that is above 1, else on the image's own grid (ComputeScaleSpaceForce).
 /// The edge strength is normalised within the box. With a `surface`, a field on the image's own
-/// grid with the global edge normalisation is kept only in the bricks within BrickReachSigmas sigma
-/// of its vertices (dsFieldBricks.h; more are computed as the surface moves: FieldBricks::Cover).
-/// out's earlier field is released first. out.Sigma is parameters.Sigma either way, out.Image the
-/// image's geometry.
+/// grid is kept only in the bricks within BrickReachSigmas sigma of its vertices (dsFieldBricks.h;
+/// more are computed as the surface moves: FieldBricks::Cover). out's earlier field is released
+/// first. out.Sigma is parameters.Sigma either way, out.Image the image's geometry.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeForceAtScale(const ImageView& image,
   const VoxelBox& box, const ScaleSpaceParameters& parameters, ForceField& out, std::string* error,
   const TriangleMesh* surface = nullptr);

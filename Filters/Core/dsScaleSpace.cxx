@@ -278,6 +278,28 @@ inline void WorldGradientAt(const float* v, const int p[3], const int n[3],
   toWorld.Apply(gi, gw);
 }
 
+/// Calls visit(p, step, v, o) for every voxel p (grid position) of `part`, a box within `box`
+/// and within `valuesBox`: v its place among values known over `valuesBox` (x fastest; step[a]
+/// between neighbours along axis a), o its place in `box`.
+template <typename Visit>
+void ForEachVoxelOfPart(
+  const VoxelBox& valuesBox, const VoxelBox& box, const VoxelBox& part, Visit&& visit)
+{
+  const std::ptrdiff_t sx = valuesBox.End[0] - valuesBox.Begin[0];
+  const std::ptrdiff_t step[3] = { 1, sx, sx * (valuesBox.End[1] - valuesBox.Begin[1]) };
+  const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
+  for (int k = part.Begin[2]; k < part.End[2]; ++k)
+    for (int j = part.Begin[1]; j < part.End[1]; ++j)
+      for (int i = part.Begin[0]; i < part.End[0]; ++i)
+      {
+        const int p[3] = { i, j, k };
+        visit(p, step,
+          (i - valuesBox.Begin[0]) + (j - valuesBox.Begin[1]) * step[1] +
+            (k - valuesBox.Begin[2]) * step[2],
+          (i - box.Begin[0]) + (j - box.Begin[1]) * bx + (k - box.Begin[2]) * bx * by);
+      }
+}
+
 /// Calls visit(v, gw) for every voxel v of slice k with gw the world gradient of `values`
 /// there (WorldGradientAt).
 template <typename Visit>
@@ -812,8 +834,10 @@ struct LocalEdgeScan
   bool Finite = true; ///< every g and s of the cores (else the whole field's P is not finite)
   std::vector<float> BinMax = std::vector<float>(RatioBins, -1.0f); ///< largest g per bin so far
   std::vector<std::pair<float, float>>
-    Candidates;                       ///< (g, G_2sigma * g) that may hold the ratio's maximum
-  std::vector<float> G, Wide, Smooth; ///< at the wanted voxels, by rank
+    Candidates; ///< (g, G_2sigma * g) that may hold the ratio's maximum
+  /// At the wanted voxels, by rank; Smooth only when the image term reads it (ImageWeight not 0:
+  /// else its gain is 0, and 0 * s adds nothing to the edge term's non-negative value).
+  std::vector<float> G, Wide, Smooth;
 };
 
 /// A slab's core (slices [Core0, Core1)) and the maximum box, in the slab's indices.
@@ -963,14 +987,240 @@ int SlabCore(int reach, int slices, int coreSlices)
 double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParameters& parameters,
   const VoxelSet& wanted, int coreSlices)
 {
-  const int nz = geometry.Dimensions[2];
-  const int reach = LocalFieldReach(parameters.Sigma / geometry.Spacing[2]);
-  const int slab = std::min(nz, SlabCore(reach, nz, coreSlices) + 2 * std::max(0, reach));
-  const double slice = static_cast<double>(geometry.Dimensions[0]) * geometry.Dimensions[1];
-  // A slab's candidates for the largest ratio (two floats each) are at most its voxels.
-  return 5 * sizeof(float) * slab * slice + 3 * sizeof(float) * static_cast<double>(wanted.Size()) +
-    wanted.Bytes();
+  return LocalPotentialBytes(geometry, parameters, static_cast<double>(wanted.Size()), coreSlices);
 }
+
+double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParameters& parameters,
+  double wantedVoxels, int coreSlices)
+{
+  const int nz = geometry.Dimensions[2];
+  const double sigmaZ = parameters.Sigma / geometry.Spacing[2];
+  const int reach = LocalFieldReach(sigmaZ);
+  const double slice = static_cast<double>(geometry.Dimensions[0]) * geometry.Dimensions[1];
+  // The set of wanted voxels: a bit and a count every 64 voxels (VoxelSet::Bytes).
+  const double set = std::ceil(static_cast<double>(geometry.NumberOfVoxels()) / 64.0) *
+    (sizeof(std::uint64_t) + sizeof(long long));
+  const double kept = (parameters.ImageWeight != 0.0 ? 3 : 2) * sizeof(float) * wantedVoxels + set;
+  if (reach >= 0)
+  {
+    // G_sigma * f, g and G_2sigma * g of a slab, and its candidates for the largest ratio (two
+    // floats each, at most its voxels).
+    const int slab = std::min(nz, SlabCore(reach, nz, coreSlices) + 2 * std::max(0, reach));
+    return 5 * sizeof(float) * slab * slice + kept;
+  }
+  // ScanRecursiveSlabs: G_2sigma * g of a core, G_sigma * f and g of its slab (two slices more),
+  // the slices smoothed along x and y that either Gaussian's pass along z reads (a sampled one's
+  // reach on either side), the core's candidates; the recorded states of both passes along z
+  // and a recursive pass's own (6 doubles a line).
+  const int core = coreSlices > 0 ? coreSlices : DefaultSlabCore(geometry.Dimensions, 2 * sigmaZ);
+  const std::vector<int> cores = SlabCores(nz, core);
+  int longest = 0;
+  for (std::size_t c = 0; c + 1 < cores.size(); ++c)
+  {
+    longest = std::max(longest, cores[c + 1] - cores[c]);
+  }
+  const int smoothReach = GaussianAxisReach(sigmaZ);
+  const double floats = 6.0 * longest + 6 + 2 * std::max(0, smoothReach);
+  const double boundaries = static_cast<double>(cores.size()) - 2;
+  const double states = 2.0 * RecursiveAxisPass::States * (smoothReach < 0 ? 2 : 1) * boundaries;
+  return sizeof(float) * floats * slice + sizeof(double) * (states + 12) * slice + kept;
+}
+
+namespace
+{
+/// The maximum box of `parameters` in the indices of slices [first, ...) of the image, with the
+/// slices [core0, core1) (image indices) as the core.
+SlabBox SlabBoxOf(const ScaleSpaceParameters& parameters, int first, int core0, int core1)
+{
+  SlabBox where{ core0 - first, core1 - first, {}, {} };
+  for (int a = 0; a < 3; ++a)
+  {
+    where.Box0[a] = parameters.MaximumBegin[a] - (a == 2 ? first : 0);
+    where.Box1[a] = parameters.MaximumEnd[a] - (a == 2 ? first : 0);
+  }
+  return where;
+}
+
+/// The wanted voxels' g, G_2sigma * g and s of the core [core0, core1) into `scan`: g and wide
+/// hold the core's slices, s the slices from `first` on.
+void KeepWanted(const VoxelSet& wanted, std::ptrdiff_t sliceVoxels, int first, int core0, int core1,
+  const float* g, const float* wide, const float* s, LocalEdgeScan& scan)
+{
+  const std::ptrdiff_t coreFirst = core0 * sliceVoxels, sFirst = first * sliceVoxels;
+  // Slice by slice in parallel: each voxel has its own rank.
+  vtkSMPTools::For(core0, core1,
+    [&](int kb, int ke)
+    {
+      wanted.ForEachIn(kb * sliceVoxels, ke * sliceVoxels,
+        [&](long long v, long long rank)
+        {
+          scan.G[rank] = g[v - coreFirst];
+          scan.Wide[rank] = wide[v - coreFirst];
+          if (!scan.Smooth.empty())
+          {
+            scan.Smooth[rank] = s[v - sFirst];
+          }
+        });
+    });
+}
+
+/// LocalPotentialAt's pass when both Gaussians along z are sampled: slabs of `core` slices with
+/// the pipeline's `reach` (LocalFieldReach) on either side, each computed whole.
+void ScanSampledSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
+  const VoxelSet& wanted, int core, int reach, LocalEdgeScan& scan)
+{
+  const ImageGeometry& geometry = image.Geometry;
+  const int nx = geometry.Dimensions[0], ny = geometry.Dimensions[1], nz = geometry.Dimensions[2];
+  double sv[3];
+  SigmaVoxels(parameters.Sigma, geometry, sv);
+  const double wide[3] = { 2 * sv[0], 2 * sv[1], 2 * sv[2] };
+  const GradientToWorld toWorld(geometry);
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(nx) * ny;
+  std::vector<float> s, g, w;
+  for (int z0 = 0; z0 < nz; z0 += core)
+  {
+    const int z1 = std::min(nz, z0 + core);
+    VoxelBox slab = VoxelBox::Whole(geometry);
+    slab.Begin[2] = std::max(0, z0 - reach);
+    slab.End[2] = std::min(nz, z1 + reach);
+    const ImageView part = image.Box(slab);
+    const int* dims = part.Geometry.Dimensions;
+    const std::size_t n = static_cast<std::size_t>(part.Geometry.NumberOfVoxels());
+    s.resize(n);
+    g.resize(n);
+    w.resize(n);
+    SmoothImage(part, sv, s.data());
+    const SlabBox where = SlabBoxOf(parameters, slab.Begin[2], z0, z1);
+    // g where G_2sigma * g on the core reads it, and that Gaussian on those slices alone (its
+    // values beyond the core are not used).
+    const int k0 = std::max(0, where.Core0 - SampledRadius(wide[2]));
+    const int k1 = std::min(dims[2], where.Core1 + SampledRadius(wide[2]));
+    SlabEdges(s.data(), dims, toWorld, where, k0, k1, g.data(), scan);
+    const int used[3] = { dims[0], dims[1], k1 - k0 };
+    SmoothGaussianSeparable(g.data() + k0 * sz, w.data() + k0 * sz, used, wide);
+    SlabRatioCandidates(g.data(), w.data(), dims, where, scan);
+    KeepUnbeaten(scan.Candidates);
+    const std::ptrdiff_t core0 = where.Core0 * sz;
+    KeepWanted(
+      wanted, sz, slab.Begin[2], z0, z1, g.data() + core0, w.data() + core0, s.data(), scan);
+  }
+}
+
+/// G_sigma * f of slab s of `cores` (its core and a slice on either side, which g's differences
+/// read), in any order: sampled along z from the slab's reach of slices smoothed along x and y,
+/// or, recursive along z, from a RecursiveSlabsZ prepared by a pass up and down the slabs.
+class SmoothedSlabs
+{
+public:
+  SmoothedSlabs(const ImageView& image, const double sigmaVoxels[3], const std::vector<int>& cores)
+    : Image(image)
+    , Cores(cores)
+  {
+    std::copy(sigmaVoxels, sigmaVoxels + 3, this->Sigma);
+    if (GaussianAxisReach(this->Sigma[2]) < 0)
+    {
+      this->Recursive.reset(new RecursiveSlabsZ(image.Geometry.Dimensions, this->Sigma[2], cores, 1,
+        [this](int z0, int z1, float* out)
+        { SmoothSlicesXY(this->Image, z0, z1, this->Sigma, out); }));
+      this->Recursive->Prepare();
+    }
+  }
+  void Slab(int s, std::vector<float>& out)
+  {
+    if (this->Recursive)
+    {
+      this->Recursive->Slab(s, out);
+      return;
+    }
+    const int* dims = this->Image.Geometry.Dimensions;
+    const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+    const int f0 = std::max(0, this->Cores[s] - 1), f1 = std::min(dims[2], this->Cores[s + 1] + 1);
+    const int r = std::max(0, GaussianAxisReach(this->Sigma[2]));
+    const int w0 = std::max(0, f0 - r), w1 = std::min(dims[2], f1 + r);
+    this->Window.resize(static_cast<std::size_t>((w1 - w0) * sz));
+    SmoothSlicesXY(this->Image, w0, w1, this->Sigma, this->Window.data());
+    out.resize(static_cast<std::size_t>((f1 - f0) * sz));
+    const int wdims[3] = { dims[0], dims[1], w1 - w0 };
+    SampledAxisZ(this->Window.data(), out.data(), wdims, this->Sigma[2], f0 - w0, f1 - w0);
+  }
+
+private:
+  ImageView Image;
+  std::vector<int> Cores;
+  double Sigma[3];
+  std::unique_ptr<RecursiveSlabsZ> Recursive;
+  std::vector<float> Window; ///< the slices a sampled slab's pass along z reads
+};
+
+/// g of the slices [z0, z1) (a slab's core) into `out`, from G_sigma * f of those slices and one
+/// on either side within the image (`smooth`, from slice max(0, z0 - 1) on): EdgeMagnitude's
+/// values.
+void CoreEdges(const float* smooth, const int dims[3], const GradientToWorld& toWorld, int z0,
+  int z1, float* out)
+{
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const int f0 = std::max(0, z0 - 1);
+  const int slabDims[3] = { dims[0], dims[1], std::min(dims[2], z1 + 1) - f0 };
+  vtkSMPTools::For(z0 - f0, z1 - f0,
+    [&](int kb, int ke)
+    {
+      for (int k = kb; k < ke; ++k)
+      {
+        ForEachRowSquares(smooth, slabDims, toWorld, k,
+          [&](std::ptrdiff_t row, const double* squares)
+          {
+            float* to = out + (row - (z0 - f0) * sz);
+            for (int i = 0; i < dims[0]; ++i)
+            {
+              to[i] = static_cast<float>(std::sqrt(squares[i]));
+            }
+          });
+      }
+    });
+}
+
+/// LocalPotentialAt's pass when G_2sigma * g is recursive along z (2 sigma of 3 voxels or more,
+/// so it reads whole lines of g): slabs of `core` slices (SmoothedSlabs gives G_sigma * f of
+/// each); g of each core, smoothed along x and y at 2 sigma, is the input of the second
+/// Gaussian's RecursiveSlabsZ, which runs up the slabs and then down them, where each slab's
+/// values are final and scanned.
+void ScanRecursiveSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
+  const VoxelSet& wanted, int core, LocalEdgeScan& scan)
+{
+  const int* dims = image.Geometry.Dimensions;
+  double sv[3];
+  SigmaVoxels(parameters.Sigma, image.Geometry, sv);
+  const double wideXY[3] = { 2 * sv[0], 2 * sv[1], 0.0 };
+  const GradientToWorld toWorld(image.Geometry);
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const std::vector<int> cores = SlabCores(dims[2], core);
+  SmoothedSlabs smoothed(image, sv, cores);
+  std::vector<float> smooth, g; // the slab's G_sigma * f (the last asked for), its g
+  const auto wideInput = [&](int z0, int z1, float* out)
+  {
+    smoothed.Slab(
+      static_cast<int>(std::lower_bound(cores.begin(), cores.end(), z0) - cores.begin()), smooth);
+    CoreEdges(smooth.data(), dims, toWorld, z0, z1, out);
+    const int coreDims[3] = { dims[0], dims[1], z1 - z0 };
+    SmoothGaussianSeparable(out, out, coreDims, wideXY);
+  };
+  RecursiveSlabsZ wideZ(dims, 2 * sv[2], cores, 0, wideInput);
+  wideZ.Prepare(
+    [&](int s, const std::vector<float>& wide)
+    {
+      const int z0 = cores[s], z1 = cores[s + 1], f0 = std::max(0, z0 - 1);
+      const int slabDims[3] = { dims[0], dims[1], std::min(dims[2], z1 + 1) - f0 };
+      g.resize(smooth.size());
+      const SlabBox where = SlabBoxOf(parameters, f0, z0, z1);
+      SlabEdges(smooth.data(), slabDims, toWorld, where, where.Core0, where.Core1, g.data(), scan);
+      const int coreDims[3] = { dims[0], dims[1], z1 - z0 };
+      const float* coreG = g.data() + where.Core0 * sz;
+      SlabRatioCandidates(coreG, wide.data(), coreDims, SlabBoxOf(parameters, z0, z0, z1), scan);
+      KeepUnbeaten(scan.Candidates);
+      KeepWanted(wanted, sz, f0, z0, z1, coreG, wide.data(), smooth.data(), scan);
+    });
+}
+} // namespace
 
 bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parameters,
   const VoxelSet& wanted, std::vector<float>& potential, std::string* error, int coreSlices)
@@ -990,60 +1240,25 @@ bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parame
     return false;
   }
   const ImageGeometry& geometry = image.Geometry;
-  const int nx = geometry.Dimensions[0], ny = geometry.Dimensions[1], nz = geometry.Dimensions[2];
-  double sv[3];
-  SigmaVoxels(parameters.Sigma, geometry, sv);
-  const double wide[3] = { 2 * sv[0], 2 * sv[1], 2 * sv[2] };
-  const GradientToWorld toWorld(geometry);
-  const int reach = LocalFieldReach(sv[2]);
-  const int core = SlabCore(reach, nz, coreSlices);
-  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(nx) * ny;
-
+  const int nz = geometry.Dimensions[2];
+  const double sigmaZ = parameters.Sigma / geometry.Spacing[2];
+  const int reach = LocalFieldReach(sigmaZ);
   LocalEdgeScan scan;
   scan.G.resize(wanted.Size());
   scan.Wide.resize(wanted.Size());
-  scan.Smooth.resize(wanted.Size());
+  scan.Smooth.resize(parameters.ImageWeight != 0.0 ? wanted.Size() : 0);
   WithThreads(parameters.NumberOfThreads,
     [&]()
     {
-      std::vector<float> s, g, w;
-      for (int z0 = 0; z0 < nz; z0 += core)
+      if (reach < 0)
       {
-        const int z1 = std::min(nz, z0 + core);
-        VoxelBox slab = VoxelBox::Whole(geometry);
-        slab.Begin[2] = reach < 0 ? 0 : std::max(0, z0 - reach);
-        slab.End[2] = reach < 0 ? nz : std::min(nz, z1 + reach);
-        const ImageView part = image.Box(slab);
-        const int* dims = part.Geometry.Dimensions;
-        const std::size_t n = static_cast<std::size_t>(part.Geometry.NumberOfVoxels());
-        s.resize(n);
-        g.resize(n);
-        w.resize(n);
-        SmoothImage(part, sv, s.data());
-        SlabBox where{ z0 - slab.Begin[2], z1 - slab.Begin[2], {}, {} };
-        for (int a = 0; a < 3; ++a)
-        {
-          where.Box0[a] = parameters.MaximumBegin[a] - (a == 2 ? slab.Begin[2] : 0);
-          where.Box1[a] = parameters.MaximumEnd[a] - (a == 2 ? slab.Begin[2] : 0);
-        }
-        // g where G_2sigma * g on the core reads it, and that Gaussian on those slices alone
-        // (its values beyond the core are not used).
-        const int k0 = reach < 0 ? 0 : std::max(0, where.Core0 - SampledRadius(wide[2]));
-        const int k1 =
-          reach < 0 ? dims[2] : std::min(dims[2], where.Core1 + SampledRadius(wide[2]));
-        SlabEdges(s.data(), dims, toWorld, where, k0, k1, g.data(), scan);
-        const int used[3] = { dims[0], dims[1], k1 - k0 };
-        SmoothGaussianSeparable(g.data() + k0 * sz, w.data() + k0 * sz, used, wide);
-        SlabRatioCandidates(g.data(), w.data(), dims, where, scan);
-        KeepUnbeaten(scan.Candidates);
-        const std::ptrdiff_t first = slab.Begin[2] * sz;
-        wanted.ForEachIn(z0 * sz, z1 * sz,
-          [&](long long v, long long rank)
-          {
-            scan.G[rank] = g[v - first];
-            scan.Wide[rank] = w[v - first];
-            scan.Smooth[rank] = s[v - first];
-          });
+        ScanRecursiveSlabs(image, parameters, wanted,
+          coreSlices > 0 ? coreSlices : DefaultSlabCore(geometry.Dimensions, 2 * sigmaZ), scan);
+      }
+      else
+      {
+        ScanSampledSlabs(
+          image, parameters, wanted, SlabCore(reach, nz, coreSlices), std::max(0, reach), scan);
       }
     });
 
@@ -1067,19 +1282,22 @@ bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parame
     gNorm = parameters.GradientMaximum ? parameters.GradientMaximum(m) : m;
   }
   const PotentialGains gains = GainsOf(stats, gNorm, parameters);
-  potential.resize(wanted.Size());
-  for (std::size_t r = 0; r < potential.size(); ++r)
+  // P in place of g (a wanted voxel's value is read once), then handed out.
+  for (std::size_t r = 0; r < scan.G.size(); ++r)
   {
     const float e =
       stats.GradientMax > 0.0 ? static_cast<float>(ratio(scan.G[r], scan.Wide[r])) : scan.G[r];
-    potential[r] = PotentialOf(e, scan.Smooth[r], gains);
+    scan.G[r] = PotentialOf(e, scan.Smooth.empty() ? 0.0f : scan.Smooth[r], gains);
   }
+  std::vector<float>().swap(scan.Wide);
+  potential = std::move(scan.G);
   if (!scan.Finite ||
     !std::all_of(potential.begin(), potential.end(), [](float v) { return std::isfinite(v); }))
   {
     if (error)
     {
-      *error = "the probe's potential is not finite";
+      *error = "the locally normalised potential is not finite: sigma (" +
+        std::to_string(parameters.Sigma) + ") or the weights are too large";
     }
     return false;
   }
@@ -1260,22 +1478,13 @@ void PotentialAndForceInBox(const float* smooth, const VoxelBox& smoothBox,
   // Each value as ComputeScaleSpaceForceInto computes it (PotentialAndForceAt on the image's
   // grid: its border where the grid's is), so the box's values equal the whole field's bit for
   // bit.
-  const int* n = geometry.Dimensions;
   const GradientToWorld toWorld(geometry);
-  const std::ptrdiff_t sx = smoothBox.End[0] - smoothBox.Begin[0];
-  const std::ptrdiff_t step[3] = { 1, sx, sx * (smoothBox.End[1] - smoothBox.Begin[1]) };
-  const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
-  for (int k = part.Begin[2]; k < part.End[2]; ++k)
-    for (int j = part.Begin[1]; j < part.End[1]; ++j)
-      for (int i = part.Begin[0]; i < part.End[0]; ++i)
-      {
-        const int p[3] = { i, j, k };
-        const std::ptrdiff_t o =
-          (i - box.Begin[0]) + (j - box.Begin[1]) * bx + (k - box.Begin[2]) * bx * by;
-        const std::ptrdiff_t v = (i - smoothBox.Begin[0]) + (j - smoothBox.Begin[1]) * step[1] +
-          (k - smoothBox.Begin[2]) * step[2];
-        PotentialAndForceAt(smooth + v, p, n, step, toWorld, gains, potential[o], force + 3 * o);
-      }
+  ForEachVoxelOfPart(smoothBox, box, part,
+    [&](const int p[3], const std::ptrdiff_t step[3], std::ptrdiff_t v, std::ptrdiff_t o)
+    {
+      PotentialAndForceAt(
+        smooth + v, p, geometry.Dimensions, step, toWorld, gains, potential[o], force + 3 * o);
+    });
 }
 
 void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, const VoxelBox& box,
@@ -1283,6 +1492,26 @@ void PotentialAndForceInBox(const float* smooth, const ImageGeometry& geometry, 
 {
   PotentialAndForceInBox(
     smooth, VoxelBox::Whole(geometry), geometry, box, part, gains, potential, force);
+}
+
+void ForceOfPotentialInBox(const float* potentialValues, const VoxelBox& potentialBox,
+  const ImageGeometry& geometry, const VoxelBox& box, const VoxelBox& part, float* potential,
+  float* force)
+{
+  // As LocallyNormalisedField differentiates P over the image's grid (WorldGradientAt: its
+  // border where the grid's is).
+  const GradientToWorld toWorld(geometry);
+  ForEachVoxelOfPart(potentialBox, box, part,
+    [&](const int p[3], const std::ptrdiff_t step[3], std::ptrdiff_t v, std::ptrdiff_t o)
+    {
+      double gw[3];
+      WorldGradientAt(potentialValues + v, p, geometry.Dimensions, step, toWorld, gw);
+      potential[o] = potentialValues[v];
+      float* f = force + 3 * o;
+      f[0] = static_cast<float>(-gw[0]);
+      f[1] = static_cast<float>(-gw[1]);
+      f[2] = static_cast<float>(-gw[2]);
+    });
 }
 
 std::string ScaleSpaceProblem(const ImageGeometry& geometry, double sigma)

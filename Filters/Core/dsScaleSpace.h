@@ -79,6 +79,14 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ScaleSpaceParameters
   bool ComputeForce = true;
 };
 
+/// Whether a field at `parameters` is locally normalised (EdgeNormalization::Local with
+/// NormalizePotential): P then comes from a second Gaussian of g, and -grad P from central
+/// differences of P.
+inline bool LocallyNormalised(const ScaleSpaceParameters& parameters)
+{
+  return parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local;
+}
+
 class FieldBricks;
 class VoxelSet;
 struct SmoothSlab;
@@ -179,6 +187,15 @@ DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
   const VoxelBox& smoothBox, const ImageGeometry& geometry, const VoxelBox& box,
   const VoxelBox& part, const PotentialGains& gains, float* potential, float* force);
 
+/// P and -grad P at the voxels of `part` (a box within `box`) of the image of `geometry` whose
+/// locally normalised P (EdgeNormalization::Local) is known over `potentialBox` (x fastest;
+/// `part` and its neighbours within the image), stored where they lie in `box`: -grad P by
+/// central differences of P (one-sided at the image's border), bit for bit what
+/// ComputeScaleSpaceForceInto gives there with that normalisation. Runs serially.
+DEFORMABLESURFACEFILTERS_EXPORT void ForceOfPotentialInBox(const float* potentialValues,
+  const VoxelBox& potentialBox, const ImageGeometry& geometry, const VoxelBox& box,
+  const VoxelBox& part, float* potential, float* force);
+
 /// P of ComputeScaleSpaceForce with the local edge normalisation (EdgeNormalization::Local)
 /// at the voxels of `wanted` only (ids of the voxels of `image`, x fastest; the set finished):
 /// potential[wanted.Rank(v)] is bit for bit the whole field's P at v, both maxima of the
@@ -186,7 +203,12 @@ DEFORMABLESURFACEFILTERS_EXPORT void PotentialAndForceInBox(const float* smooth,
 /// GradientMaximum when it is set (Smooth must be empty). The field is computed in slabs of
 /// `coreSlices` slices along z (0: four times the pipeline's reach along z) with that reach on
 /// either side, and only the maxima and the wanted voxels' values are kept: 12 bytes a voxel of
-/// one slab and 12 a wanted voxel, instead of 12 bytes a voxel of the image. The largest
+/// one slab and 8 a wanted voxel (12 with an image term), instead of 12 bytes a voxel of the
+/// image. Where the second Gaussian is recursive along z (2 sigma of 3 voxels or more: it
+/// reads whole lines) each slab is computed twice, its passes along z started from the
+/// states recorded by passes up and down the slabs (dsSmoothSlabs.h's RecursiveSlabsZ; slabs of
+/// `coreSlices`, 0: about sqrt(10 nz)); that holds a few slabs and 80 bytes a line a slab
+/// boundary for each recursive pass along z. The largest
 /// locally normalised g is found without a second pass: a voxel's ratio g / (G_2sigma * g +
 /// floor) cannot exceed that of a voxel with a larger g and a smaller G_2sigma * g, so only the
 /// voxels no earlier voxel beats on both are kept until the floor is known. False with a
@@ -198,9 +220,13 @@ DEFORMABLESURFACEFILTERS_EXPORT bool LocalPotentialAt(const ImageView& image,
 /// Bytes LocalPotentialAt holds at most for `wanted` voxels of an image of `geometry` with
 /// these parameters and coreSlices (the memory estimate of the sigma_0 probe, dsMemory.h): its
 /// three floats a voxel of one slab and at most two more for the slab's candidates for the
-/// largest ratio, three floats a wanted voxel and the set itself.
+/// largest ratio (or, recursive along z, the slabs and states above), two floats a wanted voxel
+/// (three with an image term) and the set itself.
 DEFORMABLESURFACEFILTERS_EXPORT double LocalPotentialBytes(const ImageGeometry& geometry,
   const ScaleSpaceParameters& parameters, const VoxelSet& wanted, int coreSlices = 0);
+/// The same for a set of `wantedVoxels` members (a field's tiles, dsFieldBricks.h).
+DEFORMABLESURFACEFILTERS_EXPORT double LocalPotentialBytes(const ImageGeometry& geometry,
+  const ScaleSpaceParameters& parameters, double wantedVoxels, int coreSlices = 0);
 
 /// G_sigma * f alone (same separable filter, same border handling), in place on a
 /// float volume of geometry.Dimensions. sigma in world units. Exposed for tests.

@@ -13,21 +13,6 @@ namespace
 {
 constexpr int StateDoubles = RecursiveAxisPass::States;
 
-/// The slab core count and the first slice of each core (cores[s] .. cores[s + 1]): as equal
-/// as integers allow, so that no core is a single slice after longer ones.
-std::vector<int> SlabCores(int nz, int core)
-{
-  // Several cores have two slices or more (RecursiveSlabs records the state after a core's
-  // last but one).
-  const int slabs = std::max(1, std::min((nz + core - 1) / core, nz / 2));
-  std::vector<int> first(slabs + 1);
-  for (int s = 0; s <= slabs; ++s)
-  {
-    first[s] = static_cast<int>(static_cast<long long>(nz) * s / slabs);
-  }
-  return first;
-}
-
 /// The most slices a core has.
 int LongestCore(const std::vector<int>& cores)
 {
@@ -37,28 +22,6 @@ int LongestCore(const std::vector<int>& cores)
     longest = std::max(longest, cores[s + 1] - cores[s]);
   }
   return longest;
-}
-
-/// Slices [z0, z1) of `image` smoothed along x and y (each slice alone, as the whole image's
-/// passes smooth it) into `out`. As the whole image's SmoothImage does: a contiguous float view
-/// is read in place, any other converted first.
-void SmoothSlicesXY(const ImageView& image, int z0, int z1, const double sigmaVoxels[3], float* out)
-{
-  VoxelBox slab = VoxelBox::Whole(image.Geometry);
-  slab.Begin[2] = z0;
-  slab.End[2] = z1;
-  const ImageView part = image.Box(slab);
-  const int* dims = part.Geometry.Dimensions;
-  const double sv[3] = { sigmaVoxels[0], sigmaVoxels[1], 0.0 };
-  if (part.IsContiguousFloat())
-  {
-    SmoothGaussianSeparable(static_cast<const float*>(part.Data), out, dims, sv);
-  }
-  else
-  {
-    CopyToFloat(part, out);
-    SmoothGaussianSeparable(out, out, dims, sv);
-  }
 }
 
 /// The sampled Gaussian (or none) along z. Each slice is smoothed along x and y once, into a
@@ -153,6 +116,128 @@ void RecursiveSlabs(const ImageView& image, const double sv[3], int core,
   }
 }
 } // namespace
+
+std::vector<int> SlabCores(int nz, int core)
+{
+  // Several cores have two slices or more (RecursiveSlabs records the state after a core's
+  // last but one).
+  const int slabs = std::max(1, std::min((nz + core - 1) / core, nz / 2));
+  std::vector<int> first(slabs + 1);
+  for (int s = 0; s <= slabs; ++s)
+  {
+    first[s] = static_cast<int>(static_cast<long long>(nz) * s / slabs);
+  }
+  return first;
+}
+
+void SmoothSlicesXY(const ImageView& image, int z0, int z1, const double sigmaVoxels[3], float* out)
+{
+  VoxelBox slab = VoxelBox::Whole(image.Geometry);
+  slab.Begin[2] = z0;
+  slab.End[2] = z1;
+  const ImageView part = image.Box(slab);
+  const int* dims = part.Geometry.Dimensions;
+  const double sv[3] = { sigmaVoxels[0], sigmaVoxels[1], 0.0 };
+  if (part.IsContiguousFloat())
+  {
+    SmoothGaussianSeparable(static_cast<const float*>(part.Data), out, dims, sv);
+  }
+  else
+  {
+    CopyToFloat(part, out);
+    SmoothGaussianSeparable(out, out, dims, sv);
+  }
+}
+
+RecursiveSlabsZ::RecursiveSlabsZ(
+  const int dims[3], double sigmaVoxelsZ, std::vector<int> cores, int margin, Input input)
+  : Sigma(sigmaVoxelsZ)
+  , Cores(std::move(cores))
+  , Margin(margin)
+  , Produce(std::move(input))
+{
+  std::copy(dims, dims + 3, this->Dims);
+  this->Starts.resize(this->Slabs());
+  this->Aheads.resize(this->Slabs());
+}
+
+int RecursiveSlabsZ::Begin(int s) const
+{
+  return std::max(0, this->Cores[s] - this->Margin);
+}
+
+int RecursiveSlabsZ::End(int s) const
+{
+  return std::min(this->Dims[2], this->Cores[s + 1] + this->Margin);
+}
+
+void RecursiveSlabsZ::Prepare(const Visit& visit)
+{
+  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(this->Dims[0]) * this->Dims[1];
+  std::vector<float> buffer;
+  std::vector<std::vector<double>> recorded;
+  std::vector<double> carry; // the forward state after the previous core's last slice
+  for (int s = 0; s + 1 < this->Slabs(); ++s)
+  {
+    const int n = this->Cores[s + 1] - this->Cores[s];
+    buffer.resize(static_cast<std::size_t>(n * slice));
+    this->Produce(this->Cores[s], this->Cores[s + 1], buffer.data());
+    const int dims[3] = { this->Dims[0], this->Dims[1], n };
+    RecursiveAxisPass pass(buffer.data(), dims, 2, this->Sigma);
+    // After the core's last slice and, with a margin, after the slice before the next slab's
+    // first (cores have two slices or more when there are several).
+    std::vector<int> record{ n - 1 };
+    if (this->Margin > 0)
+    {
+      record.push_back(this->Begin(s + 1) - 1 - this->Cores[s]);
+    }
+    pass.Forward(s > 0 ? carry.data() : nullptr, record, recorded);
+    carry = std::move(recorded[0]);
+    this->Starts[s + 1] = this->Margin > 0 ? std::move(recorded[1]) : carry;
+  }
+  for (int s = this->Slabs() - 1; s >= (visit ? 0 : 1); --s)
+  {
+    this->Run(s, buffer, true);
+    if (visit)
+    {
+      visit(s, buffer);
+    }
+  }
+}
+
+void RecursiveSlabsZ::Run(int s, std::vector<float>& values, bool recordBelow)
+{
+  const int f0 = this->Begin(s), f1 = this->End(s);
+  values.resize(static_cast<std::size_t>(f1 - f0) * this->Dims[0] * this->Dims[1]);
+  this->Produce(f0, f1, values.data());
+  const int dims[3] = { this->Dims[0], this->Dims[1], f1 - f0 };
+  RecursiveAxisPass pass(values.data(), dims, 2, this->Sigma);
+  std::vector<std::vector<double>> recorded;
+  pass.Forward(f0 > 0 ? this->Starts[s].data() : nullptr, {}, recorded);
+  // The slab below ends at End(s - 1) (exclusive): its backward recursion starts from the state
+  // after that slice, unless it reaches the volume's end.
+  std::vector<int> record;
+  if (recordBelow && s > 0 && this->End(s - 1) < this->Dims[2])
+  {
+    record.push_back(this->End(s - 1) - f0);
+  }
+  pass.Backward(f1 < this->Dims[2] ? this->Aheads[s].data() : nullptr, record, recorded);
+  if (!record.empty())
+  {
+    this->Aheads[s - 1] = std::move(recorded[0]);
+  }
+}
+
+void RecursiveSlabsZ::Slab(int s, std::vector<float>& values)
+{
+  this->Run(s, values, false);
+}
+
+double RecursiveSlabsZ::StateBytes() const
+{
+  return 2.0 * sizeof(double) * StateDoubles * static_cast<double>(this->Dims[0]) * this->Dims[1] *
+    std::max(0, this->Slabs() - 1);
+}
 
 int DefaultSlabCore(const int dims[3], double sigmaVoxelsZ)
 {

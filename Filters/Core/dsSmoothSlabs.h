@@ -21,6 +21,7 @@
 #include "dsImageView.h"
 
 #include <functional>
+#include <vector>
 
 namespace dsurf
 {
@@ -48,6 +49,54 @@ DEFORMABLESURFACEFILTERS_EXPORT void SmoothInSlabs(const ImageView& image,
 /// Bytes SmoothInSlabs holds at most for an image of `geometry` at `sigma` (world units).
 DEFORMABLESURFACEFILTERS_EXPORT double SmoothInSlabsBytes(
   const ImageGeometry& geometry, double sigma, int coreSlices);
+
+/// The first slice of each slab's core for an image of nz slices and cores of about `core`
+/// slices (cores[s] .. cores[s + 1]): as equal as integers allow, each of two slices or more
+/// when there are several.
+DEFORMABLESURFACEFILTERS_EXPORT std::vector<int> SlabCores(int nz, int core);
+
+/// Slices [z0, z1) of `image` smoothed along x and y (sigmaVoxels[0], [1]; each slice alone, as
+/// the whole image's passes smooth it) into `out`, converted to float first when the view is
+/// not a contiguous float one. In the caller's SMP scope.
+DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlicesXY(
+  const ImageView& image, int z0, int z1, const double sigmaVoxels[3], float* out);
+
+/// The recursive filter along z (sigma at least GaussianRecursiveFromSigmaVoxels) of a volume
+/// that is never held whole: `input(z0, z1, out)` gives its slices [z0, z1), already smoothed
+/// along x and y, whenever asked. Prepare runs a forward pass up the slabs' cores and a pass
+/// down the slabs, recording each slab's forward start and backward start (5 doubles a line a
+/// slab each); the pass down computes each slab's final values, handed to `visit` when given.
+/// Then Slab gives any slab's values, in any order. Every value is bit for bit the whole lines'
+/// (the pieces' arithmetic, RecursiveAxisPass). Slab s spans its core [cores[s], cores[s + 1])
+/// and `margin` (0 or 1) slices on either side within the volume. In the caller's SMP scope.
+class DEFORMABLESURFACEFILTERS_EXPORT RecursiveSlabsZ
+{
+public:
+  using Input = std::function<void(int z0, int z1, float* out)>;
+  RecursiveSlabsZ(
+    const int dims[3], double sigmaVoxelsZ, std::vector<int> cores, int margin, Input input);
+  int Slabs() const { return static_cast<int>(this->Cores.size()) - 1; }
+  int Begin(int s) const;
+  int End(int s) const;
+  using Visit = std::function<void(int s, const std::vector<float>& values)>;
+  void Prepare(const Visit& visit = nullptr);
+  /// Slab s's values (End(s) - Begin(s) slices, x fastest) into `values`.
+  void Slab(int s, std::vector<float>& values);
+  /// Bytes of the recorded states (5 doubles a line, two a slab boundary).
+  double StateBytes() const;
+
+private:
+  /// Slab s filtered into `values`; with `recordBelow`, the backward state the slab below starts
+  /// from is recorded.
+  void Run(int s, std::vector<float>& values, bool recordBelow);
+
+  int Dims[3];
+  double Sigma;
+  std::vector<int> Cores;
+  int Margin;
+  Input Produce;
+  std::vector<std::vector<double>> Starts, Aheads; ///< per slab (empty where not needed)
+};
 } // namespace dsurf
 
 #endif

@@ -111,13 +111,20 @@ inline std::string RunOursFrom(vtkImageData* image, const Phantom& ph, int threa
 }
 
 /// Our filter from the box enclosing the volume (half a voxel inside the border).
-inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads)
+inline std::string RunOurs(vtkImageData* image, const Phantom& ph, int threads,
+  const std::function<void(vtkDeformableSurfaceFilter*)>& configure = nullptr)
 {
   const double n = ph.N;
   vtkNew<vtkCubeSource> box;
   box->SetBounds(0.5, n - 1.5, 0.5, n - 1.5, 0.5, n - 1.5);
   box->Update();
-  return RunOursFrom(image, ph, threads, box->GetOutput());
+  return RunOursFrom(image, ph, threads, box->GetOutput(), configure);
+}
+
+/// Sets the local edge normalisation (EdgeNormalization Local, docs/METHOD.md §9.2).
+inline void LocalEdges(vtkDeformableSurfaceFilter* f)
+{
+  f->SetEdgeNormalization(vtkDeformableSurfaceFilter::LOCAL);
 }
 
 /// Our filter from a sphere near the object: ParaView's Sphere (24 x 24) of radius 0.3 n at
@@ -153,8 +160,8 @@ inline std::string RunOursClick(vtkImageData* image, const Phantom& ph, int thre
 /// Our filter from a sphere `gap` voxels outside the ball, at its centre (48 x 48), every
 /// default: sigma_0 from so tight a start is a few voxels, so the first level runs on the
 /// image's own grid (as for picks a few voxels outside an object; docs/METHOD.md §9.7).
-inline std::string RunOursTightSphere(
-  vtkImageData* image, const Phantom& ph, int threads, double gap)
+inline std::string RunOursTightSphere(vtkImageData* image, const Phantom& ph, int threads,
+  double gap, const std::function<void(vtkDeformableSurfaceFilter*)>& configure = nullptr)
 {
   const double c = 0.5 * (ph.N - 1);
   vtkNew<vtkSphereSource> sphere;
@@ -163,7 +170,7 @@ inline std::string RunOursTightSphere(
   sphere->SetThetaResolution(48);
   sphere->SetPhiResolution(48);
   sphere->Update();
-  return RunOursFrom(image, ph, threads, sphere->GetOutput());
+  return RunOursFrom(image, ph, threads, sphere->GetOutput(), configure);
 }
 
 /// vtkFlyingEdges3D at the phantom's mid value, all cores (vtkSMPTools).

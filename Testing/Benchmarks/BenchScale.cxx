@@ -2,18 +2,19 @@
 // Time, peak memory and accuracy against the volume size: CT-like uint16 phantoms (a noisy ball
 // of radius n/4 and a noisy cube of half side n/8, background 1000, object 2000, noise sigma
 // 100) at 128^3 .. 1024^3, our whole solve (every default, from the box enclosing the volume)
-// on two threads and, for the ball, on one, beside vtkFlyingEdges3D on the same volume in the
-// same run. Every case runs in a child process of its own, so "peak RSS" is that case's
-// high-water mark, phantom included. Before a case starts its peak is estimated from the
-// largest size of the same method measured in this run (or a prior per voxel); a case whose
-// estimate exceeds the memory available minus a reserve is skipped with the estimate printed.
-// Then starts near the object on the ball+block scene (BenchVolumes.h NearScene):
+// on two threads and, for the ball, on one and with the local edge normalisation, beside
+// vtkFlyingEdges3D on the same volume in the same run. Every case runs in a child process of its
+// own, so "peak RSS" is that case's high-water mark, phantom included. Before a case starts its
+// peak is estimated from the largest size of the same method measured in this run (or a prior per
+// voxel); a case whose estimate exceeds the memory available minus a reserve is skipped with the
+// estimate printed. Then starts near the object on the ball+block scene (BenchVolumes.h NearScene):
 // a sphere of radius 0.3 n around the ball, and one click at its centre (vtkDelaunaySeedSurface,
 // RegionWeight 1), and a sphere 4 voxels around the ball (every default: sigma_0 a few voxels,
 // so the first level is on the image's own grid), on two threads, beside vtkFlyingEdges3D at
 // the ball's mid value. Last a ball filling most of the volume (radius 0.42 n, as the first
-// ball otherwise) from a sphere 4 voxels around it: its fine levels' boxes hold more than half the
-// image, so their G_sigma * f is smoothed in slabs and kept near the surface (docs/METHOD.md §9.7).
+// ball otherwise) from a sphere 4 voxels around it, also with the local edge normalisation: its
+// fine levels' boxes hold more than half the image, so their G_sigma * f (or the locally
+// normalised P) is computed in slabs and kept near the surface (docs/METHOD.md §9.7).
 // Usage: BenchScale [--time-limit CPU seconds (default 600)] [--reserve-gib G (default 2)]
 //                   [--only TEXT (only the rows whose "phantom method" contains TEXT; repeat it
 //                   to ask for every TEXT: --only ball --only "2 threads")]
@@ -76,8 +77,13 @@ int main(int argc, char* argv[])
         { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },
       };
       if (shape == Shape::Sphere)
+      {
         methods.insert(methods.begin() + 1,
           { "ours, 1 thread", 18, [&](vtkImageData* im) { return RunOurs(im, ph, 1); } });
+        methods.insert(methods.begin() + 2,
+          { "ours local edges, 2 threads", 18,
+            [&](vtkImageData* im) { return RunOurs(im, ph, 2, LocalEdges); } });
+      }
       for (const auto& m : methods)
         runner.Run(ph, m, true);
     }
@@ -110,6 +116,8 @@ int main(int argc, char* argv[])
     const std::vector<Method> methods = {
       { "ours tight sphere, 2 threads", 18,
         [&](vtkImageData* im) { return RunOursTightSphere(im, ph, 2, 4.0); } },
+      { "ours tight sphere local edges, 2 threads", 18,
+        [&](vtkImageData* im) { return RunOursTightSphere(im, ph, 2, 4.0, LocalEdges); } },
       { "vtkFlyingEdges3D", 4, [&](vtkImageData* im) { return RunFlyingEdges(im, ph); } },
     };
     for (const auto& m : methods)

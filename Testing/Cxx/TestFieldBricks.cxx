@@ -10,7 +10,7 @@
 // on a first level in bricks; the bricks a travelling surface left behind are dropped once the
 // whole field's size is reached, and equal it when computed again; G_sigma * f smoothed in slabs
 // and kept in tiles near the surface equals the whole field's bit for bit, and is smoothed again
-// when the surface moves past its tiles.
+// when the surface moves past its tiles; so does the locally normalised P kept in tiles.
 #include "DSTestHelpers.h"
 #include "ScaleSpaceTestUtils.h"
 #include "TestSolverMeshes.h"
@@ -119,10 +119,11 @@ void TurnedGrid()
 /// bricks.
 std::shared_ptr<FieldBricks> WholeAndInSlabs(const ImageView& view, double sigma,
   const TriangleMesh& surface, int coreSlices, ForceField& whole, ForceField& slabs,
-  int threads = 2)
+  int threads = 2, EdgeNormalization normalization = EdgeNormalization::GlobalMaximum)
 {
   ScaleSpaceParameters p;
   p.Sigma = sigma;
+  p.EdgeNormalization = normalization;
   p.NumberOfThreads = 2;
   std::string error;
   DS_CHECK(ComputeScaleSpaceForce(view, p, whole, &error), error);
@@ -138,6 +139,30 @@ std::shared_ptr<FieldBricks> WholeAndInSlabs(const ImageView& view, double sigma
   return bricks;
 }
 
+/// A soft ball of radius 25 in 90 x 84 x 70 voxels with z spacing 1.4, as floats and as uint16
+/// (1000 + 800 f), and a sphere 1.5 outside it.
+struct SlabScene
+{
+  ImageGeometry Geometry;
+  Vec3 Centre{ 44.0, 41.5, 48.0 };
+  std::vector<float> Ball;
+  std::vector<unsigned short> Counts;
+  TriangleMesh Surface;
+  SlabScene()
+  {
+    this->Geometry.Dimensions[0] = 90;
+    this->Geometry.Dimensions[1] = 84;
+    this->Geometry.Dimensions[2] = 70;
+    this->Geometry.Spacing[2] = 1.4;
+    this->Ball = sstest::SoftBall(this->Geometry, this->Centre.data(), 25.0);
+    for (float f : this->Ball)
+    {
+      this->Counts.push_back(static_cast<unsigned short>(std::lround(1000.0 + 800.0 * f)));
+    }
+    this->Surface = dstest::MakeIcosphere(3, 26.5, this->Centre);
+  }
+};
+
 /// G_sigma * f smoothed in slabs and kept in tiles near the surface (FieldBricks::
 /// InitializeInSlabs) against the whole image's field: bit for bit within the reach, with the
 /// sampled and the recursive Gaussian along z, slabs of a few slices and the default, a float and
@@ -145,19 +170,12 @@ std::shared_ptr<FieldBricks> WholeAndInSlabs(const ImageView& view, double sigma
 /// moved past the tiles smooths the image again and still equals the whole field.
 void InSlabs()
 {
-  ImageGeometry g;
-  g.Dimensions[0] = 90;
-  g.Dimensions[1] = 84;
-  g.Dimensions[2] = 70;
-  g.Spacing[2] = 1.4;
-  const Vec3 c{ 44.0, 41.5, 48.0 };
-  const std::vector<float> ball = sstest::SoftBall(g, c.data(), 25.0);
-  std::vector<unsigned short> counts(ball.size());
-  for (std::size_t v = 0; v < ball.size(); ++v)
-  {
-    counts[v] = static_cast<unsigned short>(std::lround(1000.0 + 800.0 * ball[v]));
-  }
-  const TriangleMesh surface = dstest::MakeIcosphere(3, 26.5, c);
+  const SlabScene scene;
+  const ImageGeometry& g = scene.Geometry;
+  const Vec3& c = scene.Centre;
+  const std::vector<float>& ball = scene.Ball;
+  const std::vector<unsigned short>& counts = scene.Counts;
+  const TriangleMesh& surface = scene.Surface;
   // sigma 2: sampled along every axis; 3.5: recursive along x and y, sampled along z (2.5
   // voxels); 5: recursive along every axis.
   for (const double sigma : { 2.0, 3.5, 5.0 })
@@ -178,7 +196,7 @@ void InSlabs()
 
   // A box cut from the image (a view that is not contiguous: converted slab by slab), one thread
   // against the whole field's two; an image of 4 slices in slabs of 2, sigma recursive along
-  // every axis; the local edge normalisation refused.
+  // every axis; a piece's hooks refused.
   VoxelBox cut = VoxelBox::Whole(g);
   cut.Begin[0] = 7;
   cut.End[0] = 83;
@@ -205,15 +223,15 @@ void InSlabs()
       "4 slices in slabs of 2: in slabs = the whole field bit for bit");
   }
   {
-    ScaleSpaceParameters local;
-    local.Sigma = 2.0;
-    local.EdgeNormalization = EdgeNormalization::Local;
+    ScaleSpaceParameters hooked;
+    hooked.Sigma = 2.0;
+    hooked.GradientMaximum = [](double m) { return m; };
     std::string error;
     FieldBricks refused;
     DS_CHECK(
-      !refused.InitializeInSlabs(ImageView::Of(ball.data(), g), local, 4.0, surface, 0, &error) &&
+      !refused.InitializeInSlabs(ImageView::Of(ball.data(), g), hooked, 4.0, surface, 0, &error) &&
         !error.empty(),
-      "the local edge normalisation is not smoothed in slabs: " + error);
+      "a piece's hooks are not smoothed in slabs: " + error);
   }
 
   // A larger ball against its image, sigma 1.5 voxels (reach 3): the tiles kept (the bricks of
@@ -243,6 +261,82 @@ void InSlabs()
       LargestDifference(slabs, whole, PointsWithinReach(away, moved, reach, false)) == 0.0 &&
       bricks->Misses() == misses,
     "a surface moved past the tiles smooths again, and equals the whole field");
+}
+/// The locally normalised field (EdgeNormalization::Local) in bricks whose tiles hold P
+/// (LocalPotentialAt at their voxels) against the whole image's: bit for bit within the reach,
+/// both Gaussians sampled along z (sigma 1 and 2; the second recursive along x and y at 2), the
+/// second recursive along z (3.5), both (5), slabs of a few slices and the default or one pass
+/// over the box (a box of at most half the image), float and uint16, z spacing 1.4; a surface moved
+/// past the tiles computes them again and still equals the whole field; a level's field around a
+/// surface (ComputeForceAtScale) is kept in bricks with this normalisation too and equals the box's
+/// whole field, and the memory count covers it.
+void LocallyNormalisedTiles()
+{
+  const SlabScene scene;
+  for (const double sigma : { 1.0, 2.0, 3.5, 5.0 })
+    for (const int core : { 5, 0, -1 })
+      for (const bool integers : { false, true })
+      {
+        const ImageView view = integers ? ImageView::Of(scene.Counts.data(), scene.Geometry)
+                                        : ImageView::Of(scene.Ball.data(), scene.Geometry);
+        ForceField whole, tiles;
+        const auto bricks = WholeAndInSlabs(
+          view, sigma, scene.Surface, core, whole, tiles, 2, EdgeNormalization::Local);
+        const std::string what = "local normalisation, sigma " + std::to_string(sigma) +
+          (core < 0 ? ", one pass" : ", slabs of " + std::to_string(core) + " slices") +
+          (integers ? ", uint16" : ", float");
+        // (The line across brick seams runs 5.5 voxels inside the ball, beyond sigma 1's reach.)
+        DS_CHECK(LargestDifference(tiles, whole,
+                   PointsWithinReach(
+                     scene.Surface, scene.Centre, BrickReachSigmas * sigma, sigma > 1.0)) == 0.0 &&
+            bricks->Misses() == 0,
+          what + ": P in tiles = the whole field bit for bit within the reach");
+      }
+
+  // A ball of radius 50 in a larger image (sigma 1): the tiles hold P near it; the scene.Surface
+  // moved 20 voxels, past them, computes them again and still equals the whole field.
+  {
+    ImageGeometry big;
+    big.Dimensions[0] = big.Dimensions[1] = big.Dimensions[2] = 150;
+    const Vec3 m{ 70.0, 74.5, 74.5 };
+    const std::vector<float> image = sstest::SoftBall(big, m.data(), 50.0);
+    const TriangleMesh sphere = dstest::MakeIcosphere(4, 50.5, m);
+    const double reach = BrickReachSigmas * 1.0;
+    ForceField whole, tiles;
+    const auto bricks = WholeAndInSlabs(
+      ImageView::Of(image.data(), big), 1.0, sphere, 0, whole, tiles, 1, EdgeNormalization::Local);
+    const double share = (bricks->Bytes() - FieldBricks::BrickBytes * bricks->ComputedBricks()) /
+      (sizeof(float) * static_cast<double>(big.NumberOfVoxels()));
+    std::cout << "local normalisation: P held in tiles near a ball of radius 50, " << share
+              << " of one float a voxel of the image" << std::endl;
+    const Vec3 moved = m + Vec3{ 20.0, 0.0, 0.0 };
+    const TriangleMesh away = dstest::MakeIcosphere(4, 50.5, moved);
+    bricks->Cover(away);
+    DS_CHECK(bricks->SlabSmoothings() == 2 &&
+        LargestDifference(tiles, whole, PointsWithinReach(away, moved, reach, false)) == 0.0 &&
+        bricks->Misses() == 0,
+      "local normalisation: a scene.Surface moved past the tiles computes them again, = the whole "
+      "field");
+  }
+
+  ScaleSpaceParameters p;
+  p.Sigma = 2.0;
+  p.EdgeNormalization = EdgeNormalization::Local;
+  p.NumberOfThreads = 2;
+  const VoxelBox box =
+    SurfaceNeighbourhood(scene.Surface, scene.Geometry, FieldReach(p.EdgeNormalization, p.Sigma));
+  ForceField boxWhole, boxBricked;
+  std::string error;
+  const ImageView view = ImageView::Of(scene.Counts.data(), scene.Geometry);
+  DS_CHECK(ComputeForceAtScale(view, box, p, boxWhole, &error), error);
+  DS_CHECK(ComputeForceAtScale(view, box, p, boxBricked, &error, &scene.Surface), error);
+  DS_CHECK(FieldInBricks(box, scene.Geometry, p) && boxBricked.Bricks &&
+      boxWhole.Potential.size() > 0 &&
+      LargestDifference(
+        boxBricked, boxWhole, PointsWithinReach(scene.Surface, scene.Centre, 2.0 * p.Sigma)) == 0.0,
+    "local normalisation: a level's box in bricks = its whole field bit for bit");
+  DS_CHECK(FieldBytes(box, scene.Geometry, p, &scene.Surface) >= boxBricked.Bricks->Bytes(),
+    "local normalisation: the memory count covers what the bricks hold once made");
 }
 } // namespace
 
@@ -384,6 +478,7 @@ int TestFieldBricks(int, char*[])
   DS_CHECK(std::abs(radius - 30.0) < 1.0, "and it reaches the ball (mean radius within 1 voxel)");
   TurnedGrid();
   InSlabs();
+  LocallyNormalisedTiles();
   return dstest::Result("TestFieldBricks");
 }
 

@@ -272,7 +272,7 @@ void CheckCutAndBricks()
   p.Sigma = 2.0;
   DS_CHECK(FieldInBricks(largeSmall, large, p), "FieldInBricks: the image's own grid");
   p.EdgeNormalization = EdgeNormalization::Local;
-  DS_CHECK(!FieldInBricks(largeSmall, large, p), "FieldInBricks: not the local normalisation");
+  DS_CHECK(FieldInBricks(largeSmall, large, p), "FieldInBricks: the local normalisation too");
   p.EdgeNormalization = EdgeNormalization::GlobalMaximum;
   p.Sigma = 30.0;
   DS_CHECK(!FieldInBricks(largeSmall, large, p), "FieldInBricks: not a coarse grid");

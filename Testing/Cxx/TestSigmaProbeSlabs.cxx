@@ -2,9 +2,10 @@
 // The sigma_0 probe's potential computed slab by slab at chosen voxels only (LocalPotentialAt,
 // dsScaleSpace.h; docs/METHOD.md §9.7) equals the whole field's P there bit for bit (tolerance
 // 0): on a noisy uint16 image with two edges of different contrast, for one slab and for slabs
-// of 1, 5 and 17 slices, with both maxima over the whole image and over a box of it, on one and
-// on two threads, through the reductions' callback too; and its memory estimate counts one slab
-// and the wanted voxels, less than the whole field.
+// of 1, 5 and 17 slices, with both Gaussians sampled along z and with the second or both
+// recursive along z, with both maxima over the whole image and over a box of it, on one and on
+// two threads, through the reductions' callback too; and its memory estimate counts one slab and
+// the wanted voxels, less than the whole field.
 #include "DSTestHelpers.h"
 
 #include "dsScaleSpace.h"
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iostream>
 #include <random>
 #include <vector>
 
@@ -108,39 +110,52 @@ int TestSigmaProbeSlabs(int, char*[])
   DS_CHECK(wanted.Size() > g.NumberOfVoxels() / 3 && wanted.Rank(1299) == before && before == 633,
     "the set counts its members in order");
   ScaleSpaceParameters p;
-  p.Sigma = 1.0;
   p.EdgeNormalization = EdgeNormalization::Local;
   p.ComputeForce = false;
-  for (int threads : { 1, 2 })
-  {
-    p.NumberOfThreads = threads;
-    for (bool box : { false, true })
+  // sigma 1: both Gaussians sampled along z; 2: G_2sigma * g recursive along z (3.6 voxels);
+  // 3.5: both recursive along z.
+  for (double sigma : { 1.0, 2.0, 3.5 })
+    for (int threads : { 1, 2 })
     {
-      const int end[3] = { g.Dimensions[0], g.Dimensions[1], g.Dimensions[2] };
-      const int inner0[3] = { 3, 6, 20 }, inner1[3] = { 30, 33, 50 };
-      for (int a = 0; a < 3; ++a)
+      p.Sigma = sigma;
+      p.NumberOfThreads = threads;
+      for (bool box : { false, true })
       {
-        p.MaximumBegin[a] = box ? inner0[a] : 0;
-        p.MaximumEnd[a] = box ? inner1[a] : end[a];
-      }
-      // The whole field normalises over the box only through the callback.
-      p.GradientMaximum = box ? [](double m) { return m; } : std::function<double(double)>();
-      for (int core : { 0, 1, 5, 17 })
-      {
-        int calls = 0;
-        const double d = Difference(view, p, wanted, core, &calls);
-        DS_CHECK(d == 0.0,
-          "slabs of " + std::to_string(core) + " slices, " + std::to_string(threads) +
-            " thread(s), maxima over " + (box ? "a box" : "the image") +
-            ": P equals the whole field's (largest difference " + std::to_string(d) + ")");
-        DS_CHECK(calls == (box ? 2 : 0), "both maxima pass through the reductions' callback");
+        const int end[3] = { g.Dimensions[0], g.Dimensions[1], g.Dimensions[2] };
+        const int inner0[3] = { 3, 6, 20 }, inner1[3] = { 30, 33, 50 };
+        for (int a = 0; a < 3; ++a)
+        {
+          p.MaximumBegin[a] = box ? inner0[a] : 0;
+          p.MaximumEnd[a] = box ? inner1[a] : end[a];
+        }
+        // The whole field normalises over the box only through the callback.
+        p.GradientMaximum = box ? [](double m) { return m; } : std::function<double(double)>();
+        for (int core : { 0, 1, 5, 17 })
+        {
+          int calls = 0;
+          const double d = Difference(view, p, wanted, core, &calls);
+          DS_CHECK(d == 0.0,
+            "sigma " + std::to_string(sigma) + ", slabs of " + std::to_string(core) + " slices, " +
+              std::to_string(threads) + " thread(s), maxima over " + (box ? "a box" : "the image") +
+              ": P equals the whole field's (largest difference " + std::to_string(d) + ")");
+          DS_CHECK(calls == (box ? 2 : 0), "both maxima pass through the reductions' callback");
+        }
       }
     }
-  }
+  p.GradientMaximum = nullptr;
+  p.Sigma = 3.5;
+  ImageGeometry large;
+  large.Dimensions[0] = large.Dimensions[1] = large.Dimensions[2] = 512;
+  const double recursive = LocalPotentialBytes(large, p, 0.0);
+  std::cout << "512^3, sigma 3.5 voxels: " << recursive / large.NumberOfVoxels() << " bytes a voxel"
+            << std::endl;
+  DS_CHECK_LE(recursive / (12.0 * large.NumberOfVoxels()), 0.5,
+    "recursive along z, 512^3: the estimate against the whole field's 12 bytes a voxel");
+  p.Sigma = 1.0;
   const double bytes = LocalPotentialBytes(g, p, wanted, 5);
   const double slab = 20.0 * (5 + 2 * 13) * g.Dimensions[0] * g.Dimensions[1];
   DS_CHECK(
-    bytes == slab + 12.0 * wanted.Size() + wanted.Bytes() && bytes < 16.0 * g.NumberOfVoxels(),
+    bytes == slab + 8.0 * wanted.Size() + wanted.Bytes() && bytes < 16.0 * g.NumberOfVoxels(),
     "the estimate counts one slab of 5 + 2 x 13 slices and the wanted voxels, less than a whole "
     "field's 16 bytes a voxel");
   VoxelSet few(g.NumberOfVoxels());
