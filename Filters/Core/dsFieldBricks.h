@@ -10,9 +10,10 @@
 // (PotentialAndForceInBox), so a vertex in a brick samples the whole-box field bit for bit; a
 // voxel two bricks share is computed once and copied. Bricks are computed when the surface
 // first comes within reach of them and kept for the level. With the local edge normalisation
-// the tiles hold P itself, computed in slabs at their voxels only (LocalPotentialAt,
-// dsScaleSpace.h), and a brick's -grad P is the central differences of P, as the whole box's
-// is. Plain C++.
+// the tiles hold P itself: made over the whole box in one pass and read off at the tiles (a box
+// of at most half the image), or computed in slabs at the tiles' voxels only (LocalPotentialAt,
+// dsScaleSpace.h); a brick's -grad P is the central differences of P, as the whole box's is.
+// Plain C++.
 #ifndef dsFieldBricks_h
 #define dsFieldBricks_h
 
@@ -55,12 +56,12 @@ public:
   /// slices each, 0: dsSmoothSlabs.h's default) and kept in tiles (a brick's own voxels) only
   /// near `surface`; when the surface later comes within reach of a brick whose tiles were not
   /// kept, the box is smoothed again in slabs, keeping the tiles near it then, with a margin twice
-  /// as wide each time. The values equal Initialize's bit for bit. `image` must outlive the
-  /// bricks. With the local edge normalisation (for any box) the tiles hold P instead, computed
-  /// at their voxels by LocalPotentialAt (coreSlices its slabs' cores) or, coreSlices negative,
-  /// read off the box's whole P made in one pass (12 bytes a voxel of the box, then freed), and
-  /// again, with the wider margin, when the surface goes past them. Not for a piece's hooks
-  /// (dsPieceField.h).
+  /// as wide each time. The values equal Initialize's (the whole box's) bit for bit. `image` must
+  /// outlive the bricks. With the local edge normalisation (for any box) the tiles hold P instead,
+  /// computed at their voxels by LocalPotentialAt (coreSlices its slabs' cores) or, coreSlices
+  /// negative, read off the box's whole P made in one pass (12 bytes a voxel of the box, then
+  /// freed), and again, with the wider margin, when the surface goes past them. Not for a piece's
+  /// hooks (dsPieceField.h).
   bool InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
     double reach, const TriangleMesh& surface, int coreSlices, std::string* error);
   /// Computes the bricks within the reach of a vertex of `mesh` that are not computed yet (in
@@ -81,7 +82,8 @@ public:
   const std::string& Shortfall() const { return this->ShortfallMessage; }
   /// The bytes a field in bricks over `grid` (a level's box of an image) holds once made and
   /// covering `surface`: G_sigma * f over the box or (inSlabs) the tiles near the surface and
-  /// what the slabs hold while smoothing (coreSlices: InitializeInSlabs's), and the bricks
+  /// what making them holds (TileMakingBytes; coreSlices: InitializeInSlabs's, negative for the
+  /// local normalisation's one pass), and the bricks
   /// within `reach` of its vertices. MultilevelSolver::MakeField checks it; Cover checks the rest
   /// as it is added.
   static double InitialBytes(const ImageGeometry& grid, const ScaleSpaceParameters& parameters,
@@ -177,8 +179,8 @@ private:
   /// LocalPotentialAt's, or the box's whole P for coreSlices negative).
   static double TileMakingBytes(const ImageGeometry& grid, const ScaleSpaceParameters& parameters,
     double tiles, int coreSlices);
-  /// Before the `fresh` bricks are computed: smooths again (SmoothTiles) unless every tile they
-  /// read is held. False only when that fails.
+  /// Before the `fresh` bricks are computed: makes the tiles again (FillTiles) unless every tile
+  /// they read is held. False only when that fails.
   bool EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& fresh);
   /// G_sigma * f (P when Local()) over brick b's voxels and their neighbours within the box, into
   /// `values` (x fastest over the returned box): a pointer into Smooth, or gathered from the

@@ -130,7 +130,8 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(const VoxelBox& box, const Ima
 /// GradientMaximum, a piece's part of the field (dsPieceField.h).
 /// `inSlabs`: G_sigma * f is smoothed in slabs and kept near the surface only
 /// (FieldBricks::InitializeInSlabs; not with a piece's hooks), else over all of `part`. With the
-/// local edge normalisation its P is always computed at the tiles near the surface only.
+/// local edge normalisation P is always kept in tiles near the surface only: made over `part` in
+/// one pass, or in slabs at the tiles' voxels with `inSlabs`.
 /// `checkAsAdded`: the bricks added as the surface moves are checked against the memory
 /// available (FieldBricks::CheckMemoryAsAdded; the first ones too, false with its message).
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,

@@ -12,6 +12,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -976,11 +977,11 @@ void SlabRatioCandidates(
 
 namespace
 {
-/// Slices of a slab's core: coreSlices, by default four times the reach (the whole image when
-/// the reach is the whole axis).
-int SlabCore(int reach, int slices, int coreSlices)
+/// Slices of a slab's core when both Gaussians along z are sampled (reach >= 0): coreSlices, by
+/// default four times the reach.
+int SlabCore(int reach, int coreSlices)
 {
-  return reach < 0 ? slices : std::max(1, coreSlices > 0 ? coreSlices : 4 * reach);
+  return std::max(1, coreSlices > 0 ? coreSlices : 4 * reach);
 }
 } // namespace
 
@@ -1005,13 +1006,14 @@ double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParame
   {
     // G_sigma * f, g and G_2sigma * g of a slab, and its candidates for the largest ratio (two
     // floats each, at most its voxels).
-    const int slab = std::min(nz, SlabCore(reach, nz, coreSlices) + 2 * std::max(0, reach));
+    const int slab = std::min(nz, SlabCore(reach, coreSlices) + 2 * reach);
     return 5 * sizeof(float) * slab * slice + kept;
   }
   // ScanRecursiveSlabs: G_2sigma * g of a core, G_sigma * f and g of its slab (two slices more),
   // the slices smoothed along x and y that either Gaussian's pass along z reads (a sampled one's
   // reach on either side), the core's candidates; the recorded states of both passes along z
-  // and a recursive pass's own (6 doubles a line).
+  // and what a pass along z holds besides while it runs: the state carried between slabs, the
+  // states it records and a RecursiveAxisPass's own (21 doubles a line, as SmoothInSlabsBytes).
   const int core = coreSlices > 0 ? coreSlices : DefaultSlabCore(geometry.Dimensions, 2 * sigmaZ);
   const std::vector<int> cores = SlabCores(nz, core);
   int longest = 0;
@@ -1023,7 +1025,7 @@ double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParame
   const double floats = 6.0 * longest + 6 + 2 * std::max(0, smoothReach);
   const double boundaries = static_cast<double>(cores.size()) - 2;
   const double states = 2.0 * RecursiveAxisPass::States * (smoothReach < 0 ? 2 : 1) * boundaries;
-  return sizeof(float) * floats * slice + sizeof(double) * (states + 12) * slice + kept;
+  return sizeof(float) * floats * slice + sizeof(double) * (states + 21) * slice + kept;
 }
 
 namespace
@@ -1195,11 +1197,14 @@ void ScanRecursiveSlabs(const ImageView& image, const ScaleSpaceParameters& para
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   const std::vector<int> cores = SlabCores(dims[2], core);
   SmoothedSlabs smoothed(image, sv, cores);
-  std::vector<float> smooth, g; // the slab's G_sigma * f (the last asked for), its g
+  std::vector<float> smooth, g; // G_sigma * f of slab `made` (the last asked for), its g
+  int made = -1;
   const auto wideInput = [&](int z0, int z1, float* out)
   {
-    smoothed.Slab(
-      static_cast<int>(std::lower_bound(cores.begin(), cores.end(), z0) - cores.begin()), smooth);
+    // wideZ's slabs are the cores themselves (margin 0): z0 starts one.
+    made = static_cast<int>(std::lower_bound(cores.begin(), cores.end(), z0) - cores.begin());
+    assert(cores[made] == z0 && cores[made + 1] == z1);
+    smoothed.Slab(made, smooth);
     CoreEdges(smooth.data(), dims, toWorld, z0, z1, out);
     const int coreDims[3] = { dims[0], dims[1], z1 - z0 };
     SmoothGaussianSeparable(out, out, coreDims, wideXY);
@@ -1208,6 +1213,7 @@ void ScanRecursiveSlabs(const ImageView& image, const ScaleSpaceParameters& para
   wideZ.Prepare(
     [&](int s, const std::vector<float>& wide)
     {
+      assert(made == s); // the pass made this slab's G_2sigma * g just now, from `smooth`
       const int z0 = cores[s], z1 = cores[s + 1], f0 = std::max(0, z0 - 1);
       const int slabDims[3] = { dims[0], dims[1], std::min(dims[2], z1 + 1) - f0 };
       g.resize(smooth.size());
@@ -1257,8 +1263,7 @@ bool LocalPotentialAt(const ImageView& image, const ScaleSpaceParameters& parame
       }
       else
       {
-        ScanSampledSlabs(
-          image, parameters, wanted, SlabCore(reach, nz, coreSlices), std::max(0, reach), scan);
+        ScanSampledSlabs(image, parameters, wanted, SlabCore(reach, coreSlices), reach, scan);
       }
     });
 

@@ -205,7 +205,8 @@ DEFORMABLESURFACEFILTERS_EXPORT void ForceOfPotentialInBox(const float* potentia
 /// either side, and only the maxima and the wanted voxels' values are kept: 12 bytes a voxel of
 /// one slab and 8 a wanted voxel (12 with an image term), instead of 12 bytes a voxel of the
 /// image. Where the second Gaussian is recursive along z (2 sigma of 3 voxels or more: it
-/// reads whole lines) each slab is computed twice, its passes along z started from the
+/// reads whole lines) each slab's g is made twice (its G_sigma * f twice more when that is
+/// recursive along z too), its passes along z started from the
 /// states recorded by passes up and down the slabs (dsSmoothSlabs.h's RecursiveSlabsZ; slabs of
 /// `coreSlices`, 0: about sqrt(10 nz)); that holds a few slabs and 80 bytes a line a slab
 /// boundary for each recursive pass along z. The largest

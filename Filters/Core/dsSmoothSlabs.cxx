@@ -4,6 +4,7 @@
 #include "dsGaussianSmoother.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <vector>
 
@@ -157,6 +158,10 @@ RecursiveSlabsZ::RecursiveSlabsZ(
   , Produce(std::move(input))
 {
   std::copy(dims, dims + 3, this->Dims);
+  // A margin of one slice at most, and cores that cover the volume (SlabCores): the recorded
+  // positions lie inside the slabs only then (RecursiveAxisPass ignores one outside).
+  assert(margin >= 0 && margin <= 1);
+  assert(this->Cores.size() >= 2 && this->Cores.front() == 0 && this->Cores.back() == dims[2]);
   this->Starts.resize(this->Slabs());
   this->Aheads.resize(this->Slabs());
 }
@@ -191,10 +196,12 @@ void RecursiveSlabsZ::Prepare(const Visit& visit)
     {
       record.push_back(this->Begin(s + 1) - 1 - this->Cores[s]);
     }
+    assert(this->Cores[s + 1] - this->Cores[s] >= 2);
     pass.Forward(s > 0 ? carry.data() : nullptr, record, recorded);
     carry = std::move(recorded[0]);
     this->Starts[s + 1] = this->Margin > 0 ? std::move(recorded[1]) : carry;
   }
+  this->Prepared = true;
   for (int s = this->Slabs() - 1; s >= (visit ? 0 : 1); --s)
   {
     this->Run(s, buffer, true);
@@ -230,6 +237,7 @@ void RecursiveSlabsZ::Run(int s, std::vector<float>& values, bool recordBelow)
 
 void RecursiveSlabsZ::Slab(int s, std::vector<float>& values)
 {
+  assert(this->Prepared);
   this->Run(s, values, false);
 }
 

@@ -96,6 +96,7 @@ private:
   int Margin;
   Input Produce;
   std::vector<std::vector<double>> Starts, Aheads; ///< per slab (empty where not needed)
+  bool Prepared = false;
 };
 } // namespace dsurf
 

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The sigma_0 probe's potential computed slab by slab at chosen voxels only (LocalPotentialAt,
 // dsScaleSpace.h; docs/METHOD.md §9.7) equals the whole field's P there bit for bit (tolerance
-// 0): on a noisy uint16 image with two edges of different contrast, for one slab and for slabs
-// of 1, 5 and 17 slices, with both Gaussians sampled along z and with the second or both
-// recursive along z, with both maxima over the whole image and over a box of it, on one and on
-// two threads, through the reductions' callback too; and its memory estimate counts one slab and
-// the wanted voxels, less than the whole field.
+// 0): on a noisy uint16 image with two edges of different contrast, in one slab (100 slices,
+// more than the image's 61), in slabs of 1, 5 and 17 slices and of the default, with both
+// Gaussians sampled along z and with the second or both recursive along z, with both maxima over
+// the whole image and over a box of it, on one and on two threads, through the reductions'
+// callback too; and its memory estimate counts one slab and the wanted voxels, less than the
+// whole field.
 #include "DSTestHelpers.h"
 
 #include "dsScaleSpace.h"
@@ -130,7 +131,7 @@ int TestSigmaProbeSlabs(int, char*[])
         }
         // The whole field normalises over the box only through the callback.
         p.GradientMaximum = box ? [](double m) { return m; } : std::function<double(double)>();
-        for (int core : { 0, 1, 5, 17 })
+        for (int core : { 0, 1, 5, 17, 100 })
         {
           int calls = 0;
           const double d = Difference(view, p, wanted, core, &calls);
