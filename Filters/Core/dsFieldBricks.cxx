@@ -211,7 +211,7 @@ bool FieldBricks::LocalPotentialOfBox(
     local.MaximumBegin[a] = 0;
     local.MaximumEnd[a] = this->Grid.Dimensions[a];
   }
-  if (this->SlabCore >= 0)
+  if (this->SlabCore != LocalOnePass)
   {
     return LocalPotentialAt(this->Source, local, wanted, potential, error, this->SlabCore);
   }
@@ -398,7 +398,7 @@ bool FieldBricks::EnsureTiles(const TriangleMesh& mesh, const std::vector<int>& 
 double FieldBricks::TileMakingBytes(
   const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double tiles, int coreSlices)
 {
-  if (LocallyNormalised(parameters) && coreSlices < 0)
+  if (LocallyNormalised(parameters) && coreSlices == LocalOnePass)
   {
     // P over the box and its scratch (ComputeScaleSpaceForce without the force), the set of the
     // tiles' voxels (a quarter of a byte a voxel of the box) and P at them.

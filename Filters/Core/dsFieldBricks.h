@@ -41,6 +41,9 @@ public:
   /// trilinear cell lies in one brick).
   static constexpr int BrickSize = 8;
 
+  /// InitializeInSlabs's coreSlices for the local normalisation's P made over the whole box in
+  /// one pass (a box of at most half the image).
+  static constexpr int LocalOnePass = -1;
   /// Bytes a computed brick holds at most (P and -grad P over (BrickSize + 1)^3 voxels), and a
   /// tile (G_sigma * f over at most (BrickSize + 1)^3).
   static constexpr double BrickBytes =
@@ -59,7 +62,7 @@ public:
   /// as wide each time. The values equal Initialize's (the whole box's) bit for bit. `image` must
   /// outlive the bricks. With the local edge normalisation (for any box) the tiles hold P instead,
   /// computed at their voxels by LocalPotentialAt (coreSlices its slabs' cores) or, coreSlices
-  /// negative, read off the box's whole P made in one pass (12 bytes a voxel of the box, then
+  /// LocalOnePass, read off the box's whole P made in one pass (12 bytes a voxel of the box, then
   /// freed), and again, with the wider margin, when the surface goes past them. Not for a piece's
   /// hooks (dsPieceField.h).
   bool InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
@@ -82,7 +85,7 @@ public:
   const std::string& Shortfall() const { return this->ShortfallMessage; }
   /// The bytes a field in bricks over `grid` (a level's box of an image) holds once made and
   /// covering `surface`: G_sigma * f over the box or (inSlabs) the tiles near the surface and
-  /// what making them holds (TileMakingBytes; coreSlices: InitializeInSlabs's, negative for the
+  /// what making them holds (TileMakingBytes; coreSlices: InitializeInSlabs's, LocalOnePass for the
   /// local normalisation's one pass), and the bricks
   /// within `reach` of its vertices. MultilevelSolver::MakeField checks it; Cover checks the rest
   /// as it is added.
@@ -147,7 +150,7 @@ private:
   /// The voxels of the `keep` bricks' tiles, whose ids go into `kept`.
   VoxelSet TileVoxels(const std::vector<char>& keep, std::vector<int>& kept) const;
   /// The box's locally normalised P at the `wanted` voxels (by rank): LocalPotentialAt in slabs
-  /// of SlabCore slices, or for SlabCore negative the box's whole P made in one pass.
+  /// of SlabCore slices, or for LocalOnePass the box's whole P made in one pass.
   bool LocalPotentialOfBox(
     const VoxelSet& wanted, std::vector<float>& potential, std::string* error) const;
   /// Calls row(v, n, at) for each row of brick `id`'s tile: its first voxel's id v in the box,
@@ -176,7 +179,7 @@ private:
   /// Whether the field is locally normalised: its tiles hold P, not G_sigma * f.
   bool Local() const { return LocallyNormalised(this->Parameters); }
   /// Bytes making the `tiles` kept tiles holds besides them, at most (the slabs' smoothing, or
-  /// LocalPotentialAt's, or the box's whole P for coreSlices negative).
+  /// LocalPotentialAt's, or the box's whole P for LocalOnePass).
   static double TileMakingBytes(const ImageGeometry& grid, const ScaleSpaceParameters& parameters,
     double tiles, int coreSlices);
   /// Before the `fresh` bricks are computed: makes the tiles again (FillTiles) unless every tile

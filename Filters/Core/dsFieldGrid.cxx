@@ -271,7 +271,8 @@ double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
     // The field's first bricks and G_sigma * f (the locally normalised P's tiles, made in slabs
     // or in one pass: ComputeBrickedForce); Cover checks the bricks added later.
     return FieldBricks::InitialBytes(BoxGeometry(whole, cut), parameters,
-      BrickReachSigmas * parameters.Sigma, *surface, inSlabs || local, local && !inSlabs ? -1 : 0);
+      BrickReachSigmas * parameters.Sigma, *surface, inSlabs || local,
+      local && !inSlabs ? FieldBricks::LocalOnePass : 0);
   }
   const double slabs =
     inSlabs ? SmoothInSlabsBytes(BoxGeometry(whole, cut), parameters.Sigma, 0) : 0.0;
@@ -287,8 +288,8 @@ bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& para
   // slabs over a box of more than half the image, in one pass over a smaller one, as G_sigma * f
   // is smoothed (docs/METHOD.md §9.7).
   const bool local = LocallyNormalised(parameters);
-  if (!(inSlabs || local ? bricks->InitializeInSlabs(
-                             part, parameters, reach, surface, local && !inSlabs ? -1 : 0, error)
+  if (!(inSlabs || local ? bricks->InitializeInSlabs(part, parameters, reach, surface,
+                             local && !inSlabs ? FieldBricks::LocalOnePass : 0, error)
                          : bricks->Initialize(part, parameters, reach, error)))
   {
     return false;

@@ -61,60 +61,20 @@ void SampledSlabs(const ImageView& image, const double sv[3], int core,
   }
 }
 
-/// The recursive filter along z, in two passes (the header's comment). Slab s covers slices
-/// [f0, f1) = its core and one slice on either side within the image; its forward recursion
-/// starts from the state after slice f0 - 1 (recorded by the first pass) and its backward one
-/// from the state after slice f1 (recorded by the slab above it, whose slices include f1).
+/// The recursive filter along z, in two passes (the header's comment): slab s covers its core
+/// and one slice on either side within the image, and is visited on the pass down.
 void RecursiveSlabs(const ImageView& image, const double sv[3], int core,
   const std::function<void(const SmoothSlab&)>& visit)
 {
-  const int nx = image.Geometry.Dimensions[0], ny = image.Geometry.Dimensions[1];
-  const int nz = image.Geometry.Dimensions[2];
-  const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(nx) * ny;
-  const std::vector<int> cores = SlabCores(nz, core);
-  const int slabs = static_cast<int>(cores.size()) - 1;
-  std::vector<float> buffer;
-  std::vector<std::vector<double>> starts(slabs), recorded;
-  std::vector<double> carry; // the forward state after the previous core's last slice
-  for (int s = 0; s < slabs; ++s)
-  {
-    const int n = cores[s + 1] - cores[s];
-    buffer.resize(static_cast<std::size_t>(n * slice));
-    SmoothSlicesXY(image, cores[s], cores[s + 1], sv, buffer.data());
-    const int dims[3] = { nx, ny, n };
-    RecursiveAxisPass pass(buffer.data(), dims, 2, sv[2]);
-    // After the core's last slice (the next core's start) and after its last but one (the
-    // start of the next slab, which begins a slice before its core; cores have 2 or more
-    // slices when there are several).
-    pass.Forward(s > 0 ? carry.data() : nullptr, { n - 1, n - 2 }, recorded);
-    carry = std::move(recorded[0]);
-    if (s + 1 < slabs)
+  const std::vector<int> cores = SlabCores(image.Geometry.Dimensions[2], core);
+  RecursiveSlabsZ slabs(image.Geometry.Dimensions, sv[2], cores, 1,
+    [&](int z0, int z1, float* out) { SmoothSlicesXY(image, z0, z1, sv, out); });
+  slabs.Prepare(
+    [&](int s, const std::vector<float>& values)
     {
-      starts[s + 1] = std::move(recorded[1]);
-    }
-  }
-  std::vector<double>().swap(carry);
-  std::vector<double> ahead; // the backward state after slice f1 of the slab below
-  for (int s = slabs - 1; s >= 0; --s)
-  {
-    const int f0 = std::max(0, cores[s] - 1), f1 = std::min(nz, cores[s + 1] + 1);
-    buffer.resize(static_cast<std::size_t>((f1 - f0) * slice));
-    SmoothSlicesXY(image, f0, f1, sv, buffer.data());
-    const int dims[3] = { nx, ny, f1 - f0 };
-    RecursiveAxisPass pass(buffer.data(), dims, 2, sv[2]);
-    pass.Forward(s > 0 ? starts[s].data() : nullptr, {}, recorded);
-    std::vector<double>().swap(starts[s]);
-    // The slab below ends at slice cores[s] + 1 (exclusive): its backward recursion starts
-    // from the state after that slice, unless it reaches the image's end.
-    std::vector<int> record;
-    if (s > 0 && cores[s] + 1 < nz)
-    {
-      record.push_back(cores[s] + 1 - f0);
-    }
-    pass.Backward(f1 < nz ? ahead.data() : nullptr, record, recorded);
-    ahead = record.empty() ? std::vector<double>() : std::move(recorded[0]);
-    visit(SmoothSlab{ buffer.data(), f0, f1 - f0, cores[s], cores[s + 1] });
-  }
+      visit(SmoothSlab{
+        values.data(), slabs.Begin(s), slabs.End(s) - slabs.Begin(s), cores[s], cores[s + 1] });
+    });
 }
 } // namespace
 
@@ -201,12 +161,17 @@ void RecursiveSlabsZ::Prepare(const Visit& visit)
     carry = std::move(recorded[0]);
     this->Starts[s + 1] = this->Margin > 0 ? std::move(recorded[1]) : carry;
   }
-  this->Prepared = true;
+  // With a visitor the pass down is the last: each slab's states are freed once it ran, so
+  // that the pass holds one backward state at a time (Slab may not follow).
+  this->Prepared = !visit;
+  std::vector<double>().swap(carry);
   for (int s = this->Slabs() - 1; s >= (visit ? 0 : 1); --s)
   {
     this->Run(s, buffer, true);
     if (visit)
     {
+      std::vector<double>().swap(this->Starts[s]);
+      std::vector<double>().swap(this->Aheads[s]);
       visit(s, buffer);
     }
   }
@@ -239,12 +204,6 @@ void RecursiveSlabsZ::Slab(int s, std::vector<float>& values)
 {
   assert(this->Prepared);
   this->Run(s, values, false);
-}
-
-double RecursiveSlabsZ::StateBytes() const
-{
-  return 2.0 * sizeof(double) * StateDoubles * static_cast<double>(this->Dims[0]) * this->Dims[1] *
-    std::max(0, this->Slabs() - 1);
 }
 
 int DefaultSlabCore(const int dims[3], double sigmaVoxelsZ)

@@ -65,8 +65,9 @@ DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlicesXY(
 /// that is never held whole: `input(z0, z1, out)` gives its slices [z0, z1), already smoothed
 /// along x and y, whenever asked. Prepare runs a forward pass up the slabs' cores and a pass
 /// down the slabs, recording each slab's forward start and backward start (5 doubles a line a
-/// slab each); the pass down computes each slab's final values, handed to `visit` when given.
-/// Then Slab gives any slab's values, in any order. Every value is bit for bit the whole lines'
+/// slab each); the pass down computes each slab's final values, handed to `visit` when given
+/// (the states then freed as it goes, as SmoothInSlabs does). Without a visitor, Slab then gives
+/// any slab's values, in any order. Every value is bit for bit the whole lines'
 /// (the pieces' arithmetic, RecursiveAxisPass). Slab s spans its core [cores[s], cores[s + 1])
 /// and `margin` (0 or 1) slices on either side within the volume. In the caller's SMP scope.
 class DEFORMABLESURFACEFILTERS_EXPORT RecursiveSlabsZ
@@ -82,8 +83,6 @@ public:
   void Prepare(const Visit& visit = nullptr);
   /// Slab s's values (End(s) - Begin(s) slices, x fastest) into `values`.
   void Slab(int s, std::vector<float>& values);
-  /// Bytes of the recorded states (5 doubles a line, two a slab boundary).
-  double StateBytes() const;
 
 private:
   /// Slab s filtered into `values`; with `recordBelow`, the backward state the slab below starts
