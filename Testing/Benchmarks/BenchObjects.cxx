@@ -199,6 +199,58 @@ std::vector<std::array<double, 3>> ReadClicks(const std::string& path)
   return clicks;
 }
 
+/// The 5, 25, 50, 75 and 95 % quantiles of `t1` over the voxels `in` holds that are not CSF
+/// (60 or brighter, as the references), and their count.
+std::vector<double> Quantiles(vtkDataArray* t1, const std::function<bool(vtkIdType)>& in)
+{
+  std::vector<double> values;
+  for (vtkIdType v = 0; v < t1->GetNumberOfTuples(); ++v)
+  {
+    const double value = t1->GetComponent(v, 0);
+    if (value >= 60.0 && in(v))
+      values.push_back(value);
+  }
+  std::sort(values.begin(), values.end());
+  std::vector<double> q;
+  for (double share : { 0.05, 0.25, 0.5, 0.75, 0.95 })
+    q.push_back(
+      values.empty() ? 0.0 : values[static_cast<std::size_t>(share * (values.size() - 1))]);
+  q.push_back(static_cast<double>(values.size()));
+  return q;
+}
+
+/// Why no intensity range gives the caudates: the T1 of the grey matter around them (AAL labels,
+/// without CSF) spans the caudates' own values.
+void CaudateNeighbours(vtkImageData* head, vtkImageData* aal)
+{
+  vtkDataArray* t1 = head->GetPointData()->GetScalars();
+  vtkDataArray* labels = aal->GetPointData()->GetScalars();
+  auto labelIn = [labels](double low, double high)
+  {
+    return [labels, low, high](vtkIdType v)
+    {
+      const double l = labels->GetComponent(v, 0);
+      return l >= low && l <= high;
+    };
+  };
+  std::printf(
+    "\nColin27's T1 (ch2) in AAL labels, voxels of 60 or more: quantiles 5 / 25 / 50 / 75 / "
+    "95 %%\n| labels | voxels | T1 |\n|---|---|---|\n");
+  const struct
+  {
+    const char* Name;
+    double Low, High;
+  } groups[] = { { "caudate, left (71)", 71, 71 }, { "caudate, right (72)", 72, 72 },
+    { "putamina (73, 74)", 73, 74 }, { "pallida (75, 76)", 75, 76 }, { "thalami (77, 78)", 77, 78 },
+    { "cortex (1-70)", 1, 70 } };
+  for (const auto& g : groups)
+  {
+    const std::vector<double> q = Quantiles(t1, labelIn(g.Low, g.High));
+    std::printf("| %s | %.0f | %.0f / %.0f / %.0f / %.0f / %.0f |\n", g.Name, q[5], q[0], q[1],
+      q[2], q[3], q[4]);
+  }
+}
+
 /// Colin27's caudate heads: AAL 71 (left, x < 0 in the template's RAS) and 72 without CSF.
 void Caudates(const std::vector<std::string>& filters)
 {
@@ -230,6 +282,7 @@ void Caudates(const std::vector<std::string>& filters)
       p.Ours.SurfaceMean <= 1.5 && p.Ours.ReferenceMean <= 1.5 &&
         std::abs(p.Ours.VolumeRatio - 1.0) <= 0.15);
   }
+  CaudateNeighbours(head, aal);
 }
 
 double Median(std::vector<double> v)
