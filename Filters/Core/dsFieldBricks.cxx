@@ -56,20 +56,26 @@ bool FieldBricks::Initialize(
 }
 
 bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
-  double reach, const TriangleMesh& surface, int coreSlices, std::string* error)
+  double reach, const TriangleMesh& surface, int coreSlices, std::string* error,
+  const SlabSource& source)
 {
-  // A piece's part of a distributed image needs the other pieces' states and maximum (its
-  // hooks), which Reset drops: refused here, not smoothed without them.
-  if (parameters.Smooth || parameters.GradientMaximum)
+  // A piece's part of a distributed image smooths in slabs from the states of the other pieces
+  // (`source`), not through its Smooth hook, which runs over a volume held whole.
+  // Nor is a piece's maximum taken with the local normalisation here (dsPieceField.h refuses it).
+  if (parameters.Smooth || (parameters.GradientMaximum && LocallyNormalised(parameters)))
   {
     if (error)
     {
-      *error = "only the field of a whole image is smoothed in slabs";
+      *error = parameters.Smooth
+        ? "a piece's field is smoothed in slabs from its source, not its Smooth hook"
+        : "a piece's locally normalised field is not made in slabs";
     }
     return false;
   }
   this->Reset(image.Geometry, parameters, reach);
   this->Source = image;
+  this->Slabs = source;
+  this->FirstMaximum = parameters.GradientMaximum;
   this->SlabCore = coreSlices;
   this->Tiles.assign(this->Slots.size(), std::vector<float>());
   // The tiles the bricks within reach read (a brick's values read its neighbours' voxels: one
@@ -97,6 +103,8 @@ void FieldBricks::Reset(
   this->MissCount = 0;
   this->Smooth.reset();
   this->Source = ImageView();
+  this->Slabs = nullptr;
+  this->FirstMaximum = nullptr;
   this->Tiles.clear();
   this->Smoothings = 0;
   this->CheckGrowth = false;
@@ -171,10 +179,21 @@ bool FieldBricks::SmoothTiles(const std::vector<char>& keep, std::string* error)
         });
     }
   };
-  ++this->Smoothings;
+  // A piece's maximum is reduced over every process once, by the first smoothing (the hook
+  // then goes: it holds its caller's locals); the gains found then are kept, and equal those of
+  // the smoothings after it on a whole image.
+  ScaleSpaceParameters parameters = this->Parameters;
+  parameters.GradientMaximum = this->FirstMaximum;
+  this->FirstMaximum = nullptr;
+  PotentialGains gains;
   // store runs in the SMP scope SmoothForPotentialInSlabs sets (the parameters' threads).
-  return SmoothForPotentialInSlabs(
-    this->Source, this->Parameters, this->SlabCore, store, this->Gains, error);
+  const bool ok = SmoothForPotentialInSlabs(
+    this->Source, parameters, this->SlabCore, store, gains, error, this->Slabs);
+  if (this->Smoothings++ == 0)
+  {
+    this->Gains = gains;
+  }
+  return ok;
 }
 
 VoxelSet FieldBricks::TileVoxels(const std::vector<char>& keep, std::vector<int>& kept) const

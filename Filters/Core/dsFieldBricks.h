@@ -23,6 +23,7 @@
 #include "dsTriangleMesh.h"
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -63,10 +64,13 @@ public:
   /// outlive the bricks. With the local edge normalisation (for any box) the tiles hold P instead,
   /// computed at their voxels by LocalPotentialAt (coreSlices its slabs' cores) or, coreSlices
   /// LocalOnePass, read off the box's whole P made in one pass (12 bytes a voxel of the box, then
-  /// freed), and again, with the wider margin, when the surface goes past them. Not for a piece's
-  /// hooks (dsPieceField.h).
+  /// freed), and again, with the wider margin, when the surface goes past them. A process's
+  /// region of a distributed image (dsPieceField.h) passes its slabs as `source`
+  /// (dsPieceSlabs.h) and its maximum as parameters.GradientMaximum, which the first smoothing
+  /// calls; the gains found then are kept when the box is smoothed again. Not parameters.Smooth.
   bool InitializeInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
-    double reach, const TriangleMesh& surface, int coreSlices, std::string* error);
+    double reach, const TriangleMesh& surface, int coreSlices, std::string* error,
+    const SlabSource& source = nullptr);
   /// Computes the bricks within the reach of a vertex of `mesh` that are not computed yet (in
   /// parallel, NumberOfThreads of the parameters); returns how many. Between sweeps only. With
   /// CheckMemoryAsAdded, bricks (or tiles smoothed again) that the memory available cannot hold
@@ -209,6 +213,9 @@ private:
   /// (empty where not kept), the margin past the reach the tiles were kept within, and the
   /// smoothings.
   ImageView Source;
+  SlabSource Slabs; ///< the slabs of the image, when not SmoothInSlabs's
+  /// A piece's GradientMaximum (dsPieceField.h), for the first smoothing only.
+  std::function<double(double)> FirstMaximum;
   int SlabCore = 0;
   std::vector<std::vector<float>> Tiles;
   double TileMargin = 0;

@@ -280,7 +280,8 @@ double FieldBytes(const VoxelBox& box, const ImageGeometry& whole,
 }
 
 bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& parameters,
-  const TriangleMesh& surface, ForceField& out, std::string* error, bool inSlabs, bool checkAsAdded)
+  const TriangleMesh& surface, ForceField& out, std::string* error, bool inSlabs, bool checkAsAdded,
+  const SlabSource& source)
 {
   auto bricks = std::make_shared<FieldBricks>();
   const double reach = BrickReachSigmas * parameters.Sigma;
@@ -289,7 +290,7 @@ bool ComputeBrickedForce(const ImageView& part, const ScaleSpaceParameters& para
   // is smoothed (docs/METHOD.md §9.7).
   const bool local = LocallyNormalised(parameters);
   if (!(inSlabs || local ? bricks->InitializeInSlabs(part, parameters, reach, surface,
-                             local && !inSlabs ? FieldBricks::LocalOnePass : 0, error)
+                             local && !inSlabs ? FieldBricks::LocalOnePass : 0, error, source)
                          : bricks->Initialize(part, parameters, reach, error)))
   {
     return false;

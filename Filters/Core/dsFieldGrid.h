@@ -129,14 +129,16 @@ DEFORMABLESURFACEFILTERS_EXPORT double FieldBytes(const VoxelBox& box, const Ima
 /// BrickReachSigmas sigma of `surface`'s vertices (dsFieldBricks.h). With parameters.Smooth and
 /// GradientMaximum, a piece's part of the field (dsPieceField.h).
 /// `inSlabs`: G_sigma * f is smoothed in slabs and kept near the surface only
-/// (FieldBricks::InitializeInSlabs; not with a piece's hooks), else over all of `part`. With the
-/// local edge normalisation P is always kept in tiles near the surface only: made over `part` in
-/// one pass, or in slabs at the tiles' voxels with `inSlabs`.
+/// (FieldBricks::InitializeInSlabs: a piece passes its slabs as `source`, dsPieceSlabs.h, and no
+/// Smooth hook), else over all of `part`. With the local edge normalisation P is always kept in
+/// tiles near the surface only: made over `part` in one pass, or in slabs at the tiles' voxels
+/// with `inSlabs`.
 /// `checkAsAdded`: the bricks added as the surface moves are checked against the memory
 /// available (FieldBricks::CheckMemoryAsAdded; the first ones too, false with its message).
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,
   const ScaleSpaceParameters& parameters, const TriangleMesh& surface, ForceField& out,
-  std::string* error, bool inSlabs = false, bool checkAsAdded = false);
+  std::string* error, bool inSlabs = false, bool checkAsAdded = false,
+  const SlabSource& source = nullptr);
 
 /// A bricked field smooths its cut in slabs (ComputeBrickedForce's inSlabs) when the cut holds
 /// more than this share of the image's voxels, so that no float field of the whole image is made

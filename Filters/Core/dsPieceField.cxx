@@ -3,10 +3,12 @@
 
 #include "dsGaussianSmoother.h"
 #include "dsPieceGaussian.h"
+#include "dsPieceSlabs.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace dsurf
 {
@@ -295,6 +297,15 @@ VoxelBox FineRegion(const ImagePiece& piece, const VoxelBox& cut, double sigma, 
   return region;
 }
 
+/// Whether a fine field over `region` (FineRegion) is smoothed in slabs: when it holds more than
+/// SlabSmoothingShare of the piece's voxels, as a serial field is over more than that share of
+/// the image (dsFieldGrid.h).
+bool PieceFieldInSlabs(const ImagePiece& piece, const VoxelBox& region)
+{
+  return static_cast<double>(region.NumberOfVoxels()) >
+    SlabSmoothingShare * static_cast<double>(piece.Held.NumberOfVoxels());
+}
+
 /// Fine scales: the field on the owned voxels and their ghosts, normalised by the largest edge
 /// strength of all pieces; with a `surface`, P and -grad P only in the bricks around it (as the
 /// serial field's). A failed piece still takes part in the reduction (with an infinite maximum,
@@ -356,9 +367,25 @@ bool FinePieceForce(const ImagePiece& piece, const VoxelBox& cut,
     gMax = reduce.Max(ownedMaximum);
     return gMax;
   };
+  // A region of more than half the piece is smoothed in slabs and kept near the surface only,
+  // from the states the pieces pass (the same sums as SmoothPieceGaussian's, so the processes
+  // need not agree on which way each takes).
+  SlabSource slabs;
+  const bool inSlabs = problem.empty() && surface && PieceFieldInSlabs(piece, region);
+  if (inSlabs)
+  {
+    smoothed = true;
+    const auto smoothing = std::make_shared<const PieceSmoothing>(GatherPieceSmoothing(
+      piece, cut, region, &regionImage, sigmaVoxels, 0, parameters.NumberOfThreads, reduce));
+    slabs = [regionImage, smoothing](
+              int coreSlices, const std::function<void(const SmoothSlab&)>& visit)
+    { SmoothPieceInSlabs(regionImage, *smoothing, coreSlices, visit); };
+    pieceParameters.Smooth = nullptr;
+  }
   if (problem.empty() && surface)
   {
-    ComputeBrickedForce(regionImage, pieceParameters, *surface, out, &problem);
+    ComputeBrickedForce(
+      regionImage, pieceParameters, *surface, out, &problem, inSlabs, false, slabs);
   }
   else if (problem.empty())
   {
@@ -431,8 +458,18 @@ double PieceFieldBytes(
     return FieldGridVoxels(cut, f) * (FieldBytesPerVoxel(false) + sizeof(double));
   }
   std::string ignored;
-  return static_cast<double>(FineRegion(piece, cut, parameters.Sigma, ignored).NumberOfVoxels()) *
-    FieldBytesPerVoxel(FieldInBricks(box, piece.Whole, parameters));
+  const VoxelBox region = FineRegion(piece, cut, parameters.Sigma, ignored);
+  const bool bricked = FieldInBricks(box, piece.Whole, parameters);
+  const double bytes = static_cast<double>(region.NumberOfVoxels()) * FieldBytesPerVoxel(bricked);
+  if (!bricked || !PieceFieldInSlabs(piece, region))
+  {
+    return bytes;
+  }
+  // In slabs: the tiles at most the region's voxels (counted above as its G_sigma * f: a bound,
+  // since the tiles near the surface are fewer), the slabs while they are smoothed, and the
+  // pieces' states at the region's ends.
+  return bytes + SmoothInSlabsBytes(BoxGeometry(piece.Whole, region), parameters.Sigma, 0) +
+    PieceSmoothingBytes(region);
 }
 
 std::string PieceProblem(const ImagePiece& piece)

@@ -15,7 +15,9 @@
 //   strength over all processes (ScaleSpaceParameters::GradientMaximum). The sampled Gaussian
 //   (sigma below 3 voxels) needs its radius of ghost layers; the recursive one passes its state
 //   from piece to piece (dsPieceGaussian.h) and needs one layer, for the differences. Both give
-//   the serial field bit for bit.
+//   the serial field bit for bit. With a surface, a part of more than half the piece is smoothed
+//   in slabs from those states and kept in tiles near the surface (dsPieceSlabs.h), as a serial
+//   box of more than half the image is.
 // Only the default potential is distributed (EdgeWeight alone, ImageWeight 0, the global
 // maximum normalisation): the image term's range and the local normalisation's second Gaussian
 // would need more reductions; they are refused with a message.
@@ -112,7 +114,8 @@ DEFORMABLESURFACEFILTERS_EXPORT double PieceFieldBytes(
 /// piece's part; FieldInBricks tells when), equal to the serial bricks on every owned voxel.
 /// False with a message when the piece holds too few ghost layers for sigma or the potential is
 /// not the default one; the processes still make the same reductions then, so none is left
-/// waiting.
+/// waiting. A field in bricks reads piece.Image as the surface moves: its values must outlive
+/// `out`.
 DEFORMABLESURFACEFILTERS_EXPORT bool ComputePieceForce(const ImagePiece& piece, const VoxelBox& box,
   const ScaleSpaceParameters& parameters, const PieceReductions& reduce, ForceField& out,
   std::string* error, const TriangleMesh* surface = nullptr);

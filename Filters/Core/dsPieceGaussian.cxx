@@ -122,9 +122,9 @@ struct Records
 };
 
 /// The recursive filter along axis a in rounds: forward from the cut's first voxel on, then
-/// backward from its last (see the header). `pass` is null on a process with no region.
+/// backward from its last (see the header). `axisRun` is null on a process with no region.
 void RecursiveRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBox& region, int a,
-  const RegionEnds& ends, RecursiveAxisPass* pass, const PieceReductions& reduce)
+  const RegionEnds& ends, PieceAxisRun* axisRun, const PieceReductions& reduce)
 {
   for (const bool forward : { true, false })
   {
@@ -134,7 +134,7 @@ void RecursiveRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBo
     const int mine = forward ? region.Begin[a] : region.End[a] - 1;
     const int cutEnd = forward ? cut.Begin[a] : cut.End[a] - 1;
     Records records;
-    for (std::size_t t = 1; t < starts.size() && pass; ++t)
+    for (std::size_t t = 1; t < starts.size() && axisRun; ++t)
     {
       const int p = starts[t] + (forward ? -1 : 1);
       if (p >= region.Begin[a] && p < region.End[a])
@@ -146,15 +146,15 @@ void RecursiveRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBo
     {
       if (forward)
       {
-        pass->Forward(from, records.Local, records.States);
+        axisRun->Forward(from, records.Local, records.States);
       }
       else
       {
-        pass->Backward(from, records.Local, records.States);
+        axisRun->Backward(from, records.Local, records.States);
       }
     };
     bool ran = false;
-    if (pass && mine == cutEnd)
+    if (axisRun && mine == cutEnd)
     {
       run(nullptr);
       ran = true;
@@ -165,7 +165,7 @@ void RecursiveRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBo
       const int slot = ran ? records.SlotOf(p - region.Begin[a]) : -1;
       const std::vector<double> lines = ExchangePlane(
         piece, cut, region, a, p, slot >= 0 ? &records.States[slot] : nullptr, reduce);
-      if (pass && mine == starts[t] && mine != cutEnd)
+      if (axisRun && mine == starts[t] && mine != cutEnd)
       {
         run(lines.data());
         ran = true;
@@ -173,7 +173,51 @@ void RecursiveRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBo
     }
   }
 }
+
+/// RecursiveAxisPass over the region held whole.
+class WholeRegionRun : public PieceAxisRun
+{
+public:
+  WholeRegionRun(float* volume, const int dims[3], int a, double sigmaVoxels)
+    : Pass(volume, dims, a, sigmaVoxels)
+  {
+  }
+  void Forward(const double* start, const std::vector<int>& record,
+    std::vector<std::vector<double>>& recorded) override
+  {
+    this->Pass.Forward(start, record, recorded);
+  }
+  void Backward(const double* ahead, const std::vector<int>& record,
+    std::vector<std::vector<double>>& recorded) override
+  {
+    this->Pass.Backward(ahead, record, recorded);
+  }
+
+private:
+  RecursiveAxisPass Pass;
+};
 } // namespace
+
+void PieceGaussianRounds(const ImagePiece& piece, const VoxelBox& cut, const VoxelBox& region,
+  bool hasRegion, const double sigmaVoxels[3],
+  const std::function<std::unique_ptr<PieceAxisRun>(int axis)>& runOf,
+  const std::function<void(int axis)>& uncut, const PieceReductions& reduce)
+{
+  const bool recursive = std::any_of(sigmaVoxels, sigmaVoxels + 3, IsRecursive);
+  const RegionEnds ends = recursive ? GatherEnds(cut, region, hasRegion, reduce) : RegionEnds();
+  // The axes in the serial order (x, y, z), each pass reading the previous one's floats.
+  for (int a = 0; a < 3; ++a)
+  {
+    // A sampled axis, or a recursive one no piece is cut along: the serial pass itself.
+    if (!IsRecursive(sigmaVoxels[a]) || (ends.Firsts[a].size() <= 1 && ends.Lasts[a].size() <= 1))
+    {
+      uncut(a);
+      continue;
+    }
+    std::unique_ptr<PieceAxisRun> run = hasRegion ? runOf(a) : nullptr;
+    RecursiveRounds(piece, cut, region, a, ends, run.get(), reduce);
+  }
+}
 
 void SmoothPieceGaussian(const ImagePiece& piece, const VoxelBox& cut, const VoxelBox& region,
   float* volume, const double sigmaVoxels[3], const PieceReductions& reduce)
@@ -183,27 +227,17 @@ void SmoothPieceGaussian(const ImagePiece& piece, const VoxelBox& cut, const Vox
   {
     dims[a] = region.End[a] - region.Begin[a];
   }
-  // The axes in the serial order (x, y, z), each pass reading the previous one's floats.
-  const bool recursive = std::any_of(sigmaVoxels, sigmaVoxels + 3, IsRecursive);
-  const RegionEnds ends =
-    recursive ? GatherEnds(cut, region, volume != nullptr, reduce) : RegionEnds();
-  for (int a = 0; a < 3; ++a)
-  {
-    // A sampled axis, or a recursive one no piece is cut along: the serial pass itself.
-    if (!IsRecursive(sigmaVoxels[a]) || (ends.Firsts[a].size() <= 1 && ends.Lasts[a].size() <= 1))
+  PieceGaussianRounds(
+    piece, cut, region, volume != nullptr, sigmaVoxels,
+    [&](int a) -> std::unique_ptr<PieceAxisRun>
+    { return std::unique_ptr<PieceAxisRun>(new WholeRegionRun(volume, dims, a, sigmaVoxels[a])); },
+    [&](int a)
     {
       if (volume)
       {
         SmoothGaussianAxis(volume, dims, a, sigmaVoxels[a]);
       }
-      continue;
-    }
-    std::unique_ptr<RecursiveAxisPass> pass;
-    if (volume)
-    {
-      pass.reset(new RecursiveAxisPass(volume, dims, a, sigmaVoxels[a]));
-    }
-    RecursiveRounds(piece, cut, region, a, ends, pass.get(), reduce);
-  }
+    },
+    reduce);
 }
 } // namespace dsurf

@@ -24,8 +24,37 @@
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "dsPieceField.h"
 
+#include <functional>
+#include <memory>
+#include <vector>
+
 namespace dsurf
 {
+/// One recursive pass along an axis over a process's region, as the rounds run it: Forward, then
+/// Backward, each from the state at the region's end (null: the cut's end, the serial start),
+/// recording each line's state after the given positions along the axis (region indices), as
+/// RecursiveAxisPass does on a volume held whole (dsPieceSlabs.h runs it slab by slab).
+class DEFORMABLESURFACEFILTERS_EXPORT PieceAxisRun
+{
+public:
+  virtual ~PieceAxisRun() = default;
+  virtual void Forward(const double* start, const std::vector<int>& record,
+    std::vector<std::vector<double>>& recorded) = 0;
+  virtual void Backward(const double* ahead, const std::vector<int>& record,
+    std::vector<std::vector<double>>& recorded) = 0;
+};
+
+/// The rounds of SmoothPieceGaussian without its arithmetic: for each axis a in order whose
+/// filter is recursive and along which the pieces' regions start or end at different voxels,
+/// the runs and the sums that pass the states between them, runOf(a) making this process's run
+/// along a (called once per such axis; null with no region); `uncut(a)` is called for every
+/// other axis (the serial pass there). Every process makes the same sums whatever its runs do.
+/// Collective.
+DEFORMABLESURFACEFILTERS_EXPORT void PieceGaussianRounds(const ImagePiece& piece,
+  const VoxelBox& cut, const VoxelBox& region, bool hasRegion, const double sigmaVoxels[3],
+  const std::function<std::unique_ptr<PieceAxisRun>(int axis)>& runOf,
+  const std::function<void(int axis)>& uncut, const PieceReductions& reduce);
+
 /// G_sigma * f, sigmaVoxels[a] voxels along axis a, of the voxels `region` (whole-image indices,
 /// within `cut`) that this process holds of `piece`, in place in `volume` (region's voxels, x
 /// fastest): on the region's voxels farther than the sampled Gaussian's radius from the

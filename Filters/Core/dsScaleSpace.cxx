@@ -498,27 +498,39 @@ EdgeStatistics EdgeMagnitude(
   return slices.Total();
 }
 
+/// The largest g^2 of slice k (its values at `slice`, its neighbours a slice away) over the rows
+/// and columns [MaximumBegin, MaximumEnd) of `parameters`, in double as EdgeMagnitude computes it.
+double SliceBoxSquareMaximum(const float* slice, const int dims[3], const GradientToWorld& toWorld,
+  int k, const ScaleSpaceParameters& parameters)
+{
+  const int* b = parameters.MaximumBegin;
+  const int* e = parameters.MaximumEnd;
+  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
+  double gm2 = 0.0;
+  ForEachRowSquaresOfSlice(slice, dims, toWorld, k,
+    [&](std::ptrdiff_t row, const double* squares)
+    {
+      const std::ptrdiff_t j = (row - k * sz) / nx;
+      for (std::ptrdiff_t i = std::max(0, b[0]);
+           j >= b[1] && j < e[1] && i < std::min(nx, std::ptrdiff_t(e[0])); ++i)
+      {
+        gm2 = std::max(gm2, squares[i]);
+      }
+    });
+  return gm2;
+}
+
 /// The largest g over the voxels [MaximumBegin, MaximumEnd) of `parameters` (a piece's own,
 /// ScaleSpaceParameters::GradientMaximum), in double as EdgeMagnitude computes it.
 double BoxGradientMaximum(const float* smooth, const int dims[3], const GradientToWorld& toWorld,
   const ScaleSpaceParameters& parameters)
 {
-  const int* b = parameters.MaximumBegin;
-  const int* e = parameters.MaximumEnd;
-  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
+  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   double gm2 = 0.0; // the largest g^2, rooted once (as in EdgeMagnitude)
-  for (int k = std::max(0, b[2]); k < std::min(dims[2], e[2]); ++k)
+  for (int k = std::max(0, parameters.MaximumBegin[2]);
+       k < std::min(dims[2], parameters.MaximumEnd[2]); ++k)
   {
-    ForEachRowSquares(smooth, dims, toWorld, k,
-      [&](std::ptrdiff_t row, const double* squares)
-      {
-        const std::ptrdiff_t j = (row - k * sz) / nx;
-        for (std::ptrdiff_t i = std::max(0, b[0]);
-             j >= b[1] && j < e[1] && i < std::min(nx, std::ptrdiff_t(e[0])); ++i)
-        {
-          gm2 = std::max(gm2, squares[i]);
-        }
-      });
+    gm2 = std::max(gm2, SliceBoxSquareMaximum(smooth + k * sz, dims, toWorld, k, parameters));
   }
   return std::sqrt(gm2);
 }
@@ -1434,15 +1446,15 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
 
 bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
   int coreSlices, const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains,
-  std::string* error)
+  std::string* error, const SlabSource& source)
 {
   float probe = 0.0f;
   std::string problem = CheckForceInputs(image, parameters, &probe, &probe);
   if (problem.empty() &&
     ((parameters.NormalizePotential && parameters.EdgeNormalization == EdgeNormalization::Local) ||
-      parameters.Smooth || parameters.GradientMaximum))
+      parameters.Smooth))
   {
-    problem = "only the globally normalised field of a whole image is smoothed in slabs";
+    problem = "only the globally normalised field is smoothed in slabs";
   }
   if (!Unproblematic(problem, error))
   {
@@ -1454,24 +1466,44 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
   const int* dims = image.Geometry.Dimensions;
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   SliceStatistics slices(dims[2]); // as EdgeMagnitude takes them
+  // A piece's own voxels' largest g^2 per slice (BoxGradientMaximum's, slice by slice).
+  std::vector<double> boxSquares(parameters.GradientMaximum ? dims[2] : 0, 0.0);
+  const auto visit = [&](const SmoothSlab& slab)
+  {
+    vtkSMPTools::For(slab.Core0, slab.Core1,
+      [&](int kb, int ke)
+      {
+        for (int k = kb; k < ke; ++k)
+        {
+          const float* values = slab.Values + (k - slab.First) * sz;
+          slices.Add(values, dims, toWorld, k, nullptr);
+          if (!boxSquares.empty() && k >= parameters.MaximumBegin[2] &&
+            k < parameters.MaximumEnd[2])
+          {
+            boxSquares[k] = SliceBoxSquareMaximum(values, dims, toWorld, k, parameters);
+          }
+        }
+      });
+    keep(slab);
+  };
   WithThreads(parameters.NumberOfThreads,
     [&]()
     {
-      SmoothInSlabs(image, sv, coreSlices,
-        [&](const SmoothSlab& slab)
-        {
-          vtkSMPTools::For(slab.Core0, slab.Core1,
-            [&](int kb, int ke)
-            {
-              for (int k = kb; k < ke; ++k)
-              {
-                slices.Add(slab.Values + (k - slab.First) * sz, dims, toWorld, k, nullptr);
-              }
-            });
-          keep(slab);
-        });
+      if (source)
+      {
+        source(coreSlices, visit);
+      }
+      else
+      {
+        SmoothInSlabs(image, sv, coreSlices, visit);
+      }
     });
-  const EdgeStatistics stats = slices.Total();
+  EdgeStatistics stats = slices.Total();
+  if (parameters.GradientMaximum)
+  {
+    stats.GradientMax = parameters.GradientMaximum(
+      std::sqrt(*std::max_element(boxSquares.begin(), boxSquares.end())));
+  }
   gains = GainsOf(stats, stats.GradientMax, parameters);
   return GainsFinite(gains, error);
 }

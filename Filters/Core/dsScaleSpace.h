@@ -29,6 +29,7 @@
 
 #include "DeformableSurfaceFiltersModule.h" // for export macro
 #include "dsImageView.h"
+#include "dsSmoothSlabs.h"
 
 #include <functional>
 #include <memory>
@@ -89,7 +90,6 @@ inline bool LocallyNormalised(const ScaleSpaceParameters& parameters)
 
 class FieldBricks;
 class VoxelSet;
-struct SmoothSlab;
 
 /// P and -grad P on the voxel grid.
 struct DEFORMABLESURFACEFILTERS_EXPORT ForceField
@@ -170,10 +170,14 @@ DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
 /// SmoothForPotential without G_sigma * f over the whole image: the image is smoothed slab by
 /// slab along z (dsSmoothSlabs.h, coreSlices slices each, 0: the default) and keep(slab) is
 /// called with each slab's values, which are gone after the call; the gains are the same bit for
-/// bit. Neither the local edge normalisation nor a piece's hooks (Smooth, GradientMaximum).
+/// bit. The slabs come from `source` when given (a process's region of a distributed image,
+/// smoothed from its pieces' states: dsPieceSlabs.h; parameters.GradientMaximum then gives the
+/// whole image's maximum), else SmoothInSlabs of the image. Not the local edge normalisation, nor
+/// parameters.Smooth.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotentialInSlabs(const ImageView& image,
   const ScaleSpaceParameters& parameters, int coreSlices,
-  const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains, std::string* error);
+  const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains, std::string* error,
+  const SlabSource& source = nullptr);
 /// Then P and -grad P at the voxels of `part` (a box within `box`) of the image of `geometry`
 /// whose G_sigma * f is `smooth`, stored where they lie in `box` (x fastest): bit for bit what
 /// ComputeScaleSpaceForceInto gives there. potential holds box.NumberOfVoxels() floats, force

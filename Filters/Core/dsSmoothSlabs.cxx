@@ -14,6 +14,12 @@ namespace
 {
 constexpr int StateDoubles = RecursiveAxisPass::States;
 
+/// The states a pass starts from, or null (the lines' own end) when there are none.
+const double* StatesOrNull(const std::vector<double>& states)
+{
+  return states.empty() ? nullptr : states.data();
+}
+
 /// The most slices a core has.
 int LongestCore(const std::vector<int>& cores)
 {
@@ -29,10 +35,9 @@ int LongestCore(const std::vector<int>& cores)
 /// window of the slices the slab's z pass reads (its radius on either side of the slab; the
 /// window's later slices move to its front for the next slab), and the z pass computes the
 /// slab's slices alone.
-void SampledSlabs(const ImageView& image, const double sv[3], int core,
-  const std::function<void(const SmoothSlab&)>& visit)
+void SampledSlabs(const int dims[3], const double sv[3], int core,
+  const RecursiveSlabsZ::Input& slicesXY, const std::function<void(const SmoothSlab&)>& visit)
 {
-  const int* dims = image.Geometry.Dimensions;
   const int nz = dims[2];
   const int radius = std::max(0, GaussianAxisReach(sv[2]));
   const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
@@ -52,7 +57,7 @@ void SampledSlabs(const ImageView& image, const double sv[3], int core,
     {
       std::copy_n(window.data() + (i0 - w0) * slice, kept * slice, window.data());
     }
-    SmoothSlicesXY(image, i0 + kept, i1, sv, window.data() + kept * slice);
+    slicesXY(i0 + kept, i1, window.data() + kept * slice);
     w0 = i0;
     w1 = i1;
     const int wdims[3] = { dims[0], dims[1], w1 - w0 };
@@ -62,13 +67,13 @@ void SampledSlabs(const ImageView& image, const double sv[3], int core,
 }
 
 /// The recursive filter along z, in two passes (the header's comment): slab s covers its core
-/// and one slice on either side within the image, and is visited on the pass down.
-void RecursiveSlabs(const ImageView& image, const double sv[3], int core,
+/// and one slice on either side within the volume, and is visited on the pass down.
+void RecursiveSlabs(const int dims[3], const double sv[3], int core,
+  const RecursiveSlabsZ::Input& slicesXY, const AxisEnds& z,
   const std::function<void(const SmoothSlab&)>& visit)
 {
-  const std::vector<int> cores = SlabCores(image.Geometry.Dimensions[2], core);
-  RecursiveSlabsZ slabs(image.Geometry.Dimensions, sv[2], cores, 1,
-    [&](int z0, int z1, float* out) { SmoothSlicesXY(image, z0, z1, sv, out); });
+  const std::vector<int> cores = SlabCores(dims[2], core);
+  RecursiveSlabsZ slabs(dims, sv[2], cores, 1, slicesXY, z);
   slabs.Prepare(
     [&](int s, const std::vector<float>& values)
     {
@@ -110,8 +115,8 @@ void SmoothSlicesXY(const ImageView& image, int z0, int z1, const double sigmaVo
   }
 }
 
-RecursiveSlabsZ::RecursiveSlabsZ(
-  const int dims[3], double sigmaVoxelsZ, std::vector<int> cores, int margin, Input input)
+RecursiveSlabsZ::RecursiveSlabsZ(const int dims[3], double sigmaVoxelsZ, std::vector<int> cores,
+  int margin, Input input, AxisEnds ends)
   : Sigma(sigmaVoxelsZ)
   , Cores(std::move(cores))
   , Margin(margin)
@@ -124,6 +129,9 @@ RecursiveSlabsZ::RecursiveSlabsZ(
   assert(this->Cores.size() >= 2 && this->Cores.front() == 0 && this->Cores.back() == dims[2]);
   this->Starts.resize(this->Slabs());
   this->Aheads.resize(this->Slabs());
+  // The first slab starts, and the last ends, where the volume does: from the states given there.
+  this->Starts.front() = std::move(ends.Start);
+  this->Aheads.back() = std::move(ends.Ahead);
 }
 
 int RecursiveSlabsZ::Begin(int s) const
@@ -157,7 +165,7 @@ void RecursiveSlabsZ::Prepare(const Visit& visit)
       record.push_back(this->Begin(s + 1) - 1 - this->Cores[s]);
     }
     assert(this->Cores[s + 1] - this->Cores[s] >= 2);
-    pass.Forward(s > 0 ? carry.data() : nullptr, record, recorded);
+    pass.Forward(s > 0 ? carry.data() : StatesOrNull(this->Starts[0]), record, recorded);
     carry = std::move(recorded[0]);
     this->Starts[s + 1] = this->Margin > 0 ? std::move(recorded[1]) : carry;
   }
@@ -185,7 +193,10 @@ void RecursiveSlabsZ::Run(int s, std::vector<float>& values, bool recordBelow)
   const int dims[3] = { this->Dims[0], this->Dims[1], f1 - f0 };
   RecursiveAxisPass pass(values.data(), dims, 2, this->Sigma);
   std::vector<std::vector<double>> recorded;
-  pass.Forward(f0 > 0 ? this->Starts[s].data() : nullptr, {}, recorded);
+  // A slab's start is recorded unless it starts the volume's lines (as is its ahead state, below).
+  assert(s == 0 || !this->Starts[s].empty());
+  assert(s + 1 == this->Slabs() || !this->Aheads[s].empty());
+  pass.Forward(StatesOrNull(this->Starts[s]), {}, recorded);
   // The slab below ends at End(s - 1) (exclusive): its backward recursion starts from the state
   // after that slice, unless it reaches the volume's end.
   std::vector<int> record;
@@ -193,7 +204,7 @@ void RecursiveSlabsZ::Run(int s, std::vector<float>& values, bool recordBelow)
   {
     record.push_back(this->End(s - 1) - f0);
   }
-  pass.Backward(f1 < this->Dims[2] ? this->Aheads[s].data() : nullptr, record, recorded);
+  pass.Backward(StatesOrNull(this->Aheads[s]), record, recorded);
   if (!record.empty())
   {
     this->Aheads[s - 1] = std::move(recorded[0]);
@@ -216,19 +227,28 @@ int DefaultSlabCore(const int dims[3], double sigmaVoxelsZ)
   return std::max(32, 4 * reach);
 }
 
-void SmoothInSlabs(const ImageView& image, const double sigmaVoxels[3], int coreSlices,
+void SmoothSlabsOf(const int dims[3], const double sigmaVoxels[3], int coreSlices,
+  const std::function<void(int z0, int z1, float* out)>& slicesXY, const AxisEnds& z,
   const std::function<void(const SmoothSlab&)>& visit)
 {
-  const int* dims = image.Geometry.Dimensions;
   const int core = std::max(2, coreSlices > 0 ? coreSlices : DefaultSlabCore(dims, sigmaVoxels[2]));
   if (GaussianAxisReach(sigmaVoxels[2]) < 0)
   {
-    RecursiveSlabs(image, sigmaVoxels, core, visit);
+    RecursiveSlabs(dims, sigmaVoxels, core, slicesXY, z, visit);
   }
   else
   {
-    SampledSlabs(image, sigmaVoxels, core, visit);
+    SampledSlabs(dims, sigmaVoxels, core, slicesXY, visit);
   }
+}
+
+void SmoothInSlabs(const ImageView& image, const double sigmaVoxels[3], int coreSlices,
+  const std::function<void(const SmoothSlab&)>& visit)
+{
+  SmoothSlabsOf(
+    image.Geometry.Dimensions, sigmaVoxels, coreSlices,
+    [&](int z0, int z1, float* out) { SmoothSlicesXY(image, z0, z1, sigmaVoxels, out); },
+    AxisEnds(), visit);
 }
 
 double SmoothInSlabsBytes(const ImageGeometry& geometry, double sigma, int coreSlices)

@@ -34,6 +34,22 @@ struct SmoothSlab
   int First = 0, Count = 0, Core0 = 0, Core1 = 0;
 };
 
+/// The recursive filter's states at a volume's two ends along an axis whose lines go on beyond
+/// it (a process's region of a distributed image, dsPieceSlabs.h): Start is the forward state
+/// after the position before its first, Ahead the backward state after the position past its
+/// last (RecursiveAxisPass::States doubles a line each, in RecursiveAxisPass's order of lines);
+/// empty where the lines end with the volume (the serial filter's start there).
+struct AxisEnds
+{
+  std::vector<double> Start, Ahead;
+};
+
+/// Smooths a volume in slabs: visit(slab) for slabs whose own slices cover it, coreSlices each
+/// (0: DefaultSlabCore), as SmoothInSlabs does for an image (or SmoothPieceInSlabs for a
+/// process's region of a distributed one, dsPieceSlabs.h).
+using SlabSource =
+  std::function<void(int coreSlices, const std::function<void(const SmoothSlab&)>& visit)>;
+
 /// The slices of a slab's own part by default: about sqrt(10 nz) with the recursive filter along
 /// z (its recorded states, 40 bytes a line a slab, against 4 bytes a voxel of a slab), 32 or
 /// four times the sampled Gaussian's radius otherwise.
@@ -45,6 +61,14 @@ DEFORMABLESURFACEFILTERS_EXPORT int DefaultSlabCore(const int dims[3], double si
 /// scope (the passes run in parallel; the slabs one after another, so the visits need no lock).
 DEFORMABLESURFACEFILTERS_EXPORT void SmoothInSlabs(const ImageView& image,
   const double sigmaVoxels[3], int coreSlices, const std::function<void(const SmoothSlab&)>& visit);
+
+/// SmoothInSlabs of a volume of `dims` voxels that is never held whole: `slicesXY(z0, z1, out)`
+/// gives its slices [z0, z1) already smoothed along x and y, whenever asked; `z` the recursive
+/// filter's states at its ends along z (a region of a distributed image; empty for an image's
+/// own lines).
+DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlabsOf(const int dims[3], const double sigmaVoxels[3],
+  int coreSlices, const std::function<void(int z0, int z1, float* out)>& slicesXY,
+  const AxisEnds& z, const std::function<void(const SmoothSlab&)>& visit);
 
 /// Bytes SmoothInSlabs holds at most for an image of `geometry` at `sigma` (world units).
 DEFORMABLESURFACEFILTERS_EXPORT double SmoothInSlabsBytes(
@@ -69,13 +93,15 @@ DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlicesXY(
 /// (the states then freed as it goes, as SmoothInSlabs does). Without a visitor, Slab then gives
 /// any slab's values, in any order. Every value is bit for bit the whole lines'
 /// (the pieces' arithmetic, RecursiveAxisPass). Slab s spans its core [cores[s], cores[s + 1])
-/// and `margin` (0 or 1) slices on either side within the volume. In the caller's SMP scope.
+/// and `margin` (0 or 1) slices on either side within the volume. `ends`: the states at the
+/// volume's ends when its lines go on beyond it (empty: they end with it). In the caller's SMP
+/// scope.
 class DEFORMABLESURFACEFILTERS_EXPORT RecursiveSlabsZ
 {
 public:
   using Input = std::function<void(int z0, int z1, float* out)>;
-  RecursiveSlabsZ(
-    const int dims[3], double sigmaVoxelsZ, std::vector<int> cores, int margin, Input input);
+  RecursiveSlabsZ(const int dims[3], double sigmaVoxelsZ, std::vector<int> cores, int margin,
+    Input input, AxisEnds ends = AxisEnds());
   int Slabs() const { return static_cast<int>(this->Cores.size()) - 1; }
   int Begin(int s) const;
   int End(int s) const;
@@ -94,7 +120,8 @@ private:
   std::vector<int> Cores;
   int Margin;
   Input Produce;
-  std::vector<std::vector<double>> Starts, Aheads; ///< per slab (empty where not needed)
+  /// Per slab (empty where not needed, and where the slab starts or ends the lines).
+  std::vector<std::vector<double>> Starts, Aheads;
   bool Prepared = false;
 };
 } // namespace dsurf

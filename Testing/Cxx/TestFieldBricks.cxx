@@ -225,13 +225,13 @@ void InSlabs()
   {
     ScaleSpaceParameters hooked;
     hooked.Sigma = 2.0;
-    hooked.GradientMaximum = [](double m) { return m; };
+    hooked.Smooth = [](float*, const double*) {};
     std::string error;
     FieldBricks refused;
     DS_CHECK(
       !refused.InitializeInSlabs(ImageView::Of(ball.data(), g), hooked, 4.0, surface, 0, &error) &&
         !error.empty(),
-      "a piece's hooks are not smoothed in slabs: " + error);
+      "a piece's Smooth hook is not smoothed in slabs: " + error);
   }
 
   // A larger ball against its image, sigma 1.5 voxels (reach 3): the tiles kept (the bricks of
@@ -261,6 +261,35 @@ void InSlabs()
       LargestDifference(slabs, whole, PointsWithinReach(away, moved, reach, false)) == 0.0 &&
       bricks->Misses() == misses,
     "a surface moved past the tiles smooths again, and equals the whole field");
+
+  // A piece's maximum (dsPieceField.h) is asked for by the first smoothing only: the gains it
+  // gave are kept when the tiles are smoothed again (here the image's own maximum, so the field
+  // is still the whole one).
+  ScaleSpaceParameters hooked;
+  hooked.Sigma = sigma;
+  hooked.NumberOfThreads = 2;
+  for (int a = 0; a < 3; ++a)
+  {
+    hooked.MaximumEnd[a] = big.Dimensions[a];
+  }
+  int asked = 0;
+  hooked.GradientMaximum = [&asked](double m)
+  {
+    ++asked;
+    return m;
+  };
+  auto piece = std::make_shared<FieldBricks>();
+  std::string error;
+  DS_CHECK(piece->InitializeInSlabs(view, hooked, reach, sphere, 0, &error), error);
+  piece->Cover(sphere);
+  piece->Cover(away);
+  ForceField pieceField;
+  pieceField.Geometry = big;
+  pieceField.Sigma = sigma;
+  pieceField.Bricks = piece;
+  DS_CHECK(asked == 1 && piece->SlabSmoothings() == 2 &&
+      LargestDifference(pieceField, whole, PointsWithinReach(away, moved, reach, false)) == 0.0,
+    "a piece's maximum asked for once over two smoothings in slabs, the field the whole one");
 }
 /// The locally normalised field (EdgeNormalization::Local) in bricks whose tiles hold P
 /// (LocalPotentialAt at their voxels) against the whole image's: bit for bit within the reach,
