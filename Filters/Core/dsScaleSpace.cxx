@@ -437,15 +437,36 @@ void ForEachRowSquares(
     toWorld, k, std::forward<Visit>(visit));
 }
 
+/// The largest of a row's g^2 (`squares`, the row j of a grid nx wide) over the rows and
+/// columns [MaximumBegin, MaximumEnd) of `parameters` (a piece's own voxels), 0 outside them.
+double RowBoxSquareMaximum(std::ptrdiff_t j, const double* squares, std::ptrdiff_t nx,
+  const ScaleSpaceParameters& parameters)
+{
+  const int* b = parameters.MaximumBegin;
+  const int* e = parameters.MaximumEnd;
+  double gm2 = 0.0;
+  for (std::ptrdiff_t i = std::max(0, b[0]);
+       j >= b[1] && j < e[1] && i < std::min(nx, std::ptrdiff_t(e[0])); ++i)
+  {
+    gm2 = std::max(gm2, squares[i]);
+  }
+  return gm2;
+}
+
 /// Per slice of a grid, the largest g and the range of the smoothed values: EdgeMagnitude's
-/// reduction, slice by slice (a volume's, or the slabs' of SmoothForPotentialInSlabs).
+/// reduction, slice by slice (a volume's, or the slabs' of SmoothForPotentialInSlabs); with a
+/// `box` (a piece's parameters), also the largest g^2 over its voxels [MaximumBegin,
+/// MaximumEnd), from the same squares (BoxGradientMaximum's, slice by slice).
 struct SliceStatistics
 {
-  std::vector<double> GradientMax, SmoothMin, SmoothMax;
-  explicit SliceStatistics(int slices)
+  std::vector<double> GradientMax, SmoothMin, SmoothMax, BoxSquareMax;
+  const ScaleSpaceParameters* Box = nullptr;
+  explicit SliceStatistics(int slices, const ScaleSpaceParameters* box = nullptr)
     : GradientMax(slices, 0.0)
     , SmoothMin(slices, std::numeric_limits<double>::max())
     , SmoothMax(slices, std::numeric_limits<double>::lowest())
+    , BoxSquareMax(box ? slices : 0, 0.0)
+    , Box(box)
   {
   }
   /// Slice k, whose values start at `slice` (its neighbours a slice away); g into `edges` (the
@@ -455,8 +476,9 @@ struct SliceStatistics
   {
     // The largest g^2, rooted once: the root is correctly rounded and monotonic, so the root
     // of the largest square is the largest root bit for bit.
-    const std::ptrdiff_t first = k * (static_cast<std::ptrdiff_t>(dims[0]) * dims[1]);
-    double gm2 = 0.0, lo = this->SmoothMin[k], hi = this->SmoothMax[k];
+    const std::ptrdiff_t nx = dims[0], first = k * (nx * dims[1]);
+    const bool inBox = this->Box && k >= this->Box->MaximumBegin[2] && k < this->Box->MaximumEnd[2];
+    double gm2 = 0.0, box2 = 0.0, lo = this->SmoothMin[k], hi = this->SmoothMax[k];
     ForEachRowSquaresOfSlice(slice, dims, toWorld, k,
       [&](std::ptrdiff_t row, const double* squares)
       {
@@ -472,10 +494,18 @@ struct SliceStatistics
           lo = std::min(lo, static_cast<double>(values[i]));
           hi = std::max(hi, static_cast<double>(values[i]));
         }
+        if (inBox)
+        {
+          box2 = std::max(box2, RowBoxSquareMaximum((row - first) / nx, squares, nx, *this->Box));
+        }
       });
     this->GradientMax[k] = std::sqrt(gm2);
     this->SmoothMin[k] = lo;
     this->SmoothMax[k] = hi;
+    if (this->Box)
+    {
+      this->BoxSquareMax[k] = box2;
+    }
   }
   /// Over every slice.
   EdgeStatistics Total() const
@@ -498,39 +528,19 @@ EdgeStatistics EdgeMagnitude(
   return slices.Total();
 }
 
-/// The largest g^2 of slice k (its values at `slice`, its neighbours a slice away) over the rows
-/// and columns [MaximumBegin, MaximumEnd) of `parameters`, in double as EdgeMagnitude computes it.
-double SliceBoxSquareMaximum(const float* slice, const int dims[3], const GradientToWorld& toWorld,
-  int k, const ScaleSpaceParameters& parameters)
-{
-  const int* b = parameters.MaximumBegin;
-  const int* e = parameters.MaximumEnd;
-  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
-  double gm2 = 0.0;
-  ForEachRowSquaresOfSlice(slice, dims, toWorld, k,
-    [&](std::ptrdiff_t row, const double* squares)
-    {
-      const std::ptrdiff_t j = (row - k * sz) / nx;
-      for (std::ptrdiff_t i = std::max(0, b[0]);
-           j >= b[1] && j < e[1] && i < std::min(nx, std::ptrdiff_t(e[0])); ++i)
-      {
-        gm2 = std::max(gm2, squares[i]);
-      }
-    });
-  return gm2;
-}
-
 /// The largest g over the voxels [MaximumBegin, MaximumEnd) of `parameters` (a piece's own,
 /// ScaleSpaceParameters::GradientMaximum), in double as EdgeMagnitude computes it.
 double BoxGradientMaximum(const float* smooth, const int dims[3], const GradientToWorld& toWorld,
   const ScaleSpaceParameters& parameters)
 {
-  const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const std::ptrdiff_t nx = dims[0], sz = nx * dims[1];
   double gm2 = 0.0; // the largest g^2, rooted once (as in EdgeMagnitude)
   for (int k = std::max(0, parameters.MaximumBegin[2]);
        k < std::min(dims[2], parameters.MaximumEnd[2]); ++k)
   {
-    gm2 = std::max(gm2, SliceBoxSquareMaximum(smooth + k * sz, dims, toWorld, k, parameters));
+    ForEachRowSquares(smooth, dims, toWorld, k,
+      [&](std::ptrdiff_t row, const double* squares)
+      { gm2 = std::max(gm2, RowBoxSquareMaximum((row - k * sz) / nx, squares, nx, parameters)); });
   }
   return std::sqrt(gm2);
 }
@@ -1465,9 +1475,8 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
   const GradientToWorld toWorld(image.Geometry);
   const int* dims = image.Geometry.Dimensions;
   const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
-  SliceStatistics slices(dims[2]); // as EdgeMagnitude takes them
-  // A piece's own voxels' largest g^2 per slice (BoxGradientMaximum's, slice by slice).
-  std::vector<double> boxSquares(parameters.GradientMaximum ? dims[2] : 0, 0.0);
+  // As EdgeMagnitude takes them; a piece's own voxels' largest g too (BoxGradientMaximum's).
+  SliceStatistics slices(dims[2], parameters.GradientMaximum ? &parameters : nullptr);
   const auto visit = [&](const SmoothSlab& slab)
   {
     vtkSMPTools::For(slab.Core0, slab.Core1,
@@ -1475,13 +1484,7 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
       {
         for (int k = kb; k < ke; ++k)
         {
-          const float* values = slab.Values + (k - slab.First) * sz;
-          slices.Add(values, dims, toWorld, k, nullptr);
-          if (!boxSquares.empty() && k >= parameters.MaximumBegin[2] &&
-            k < parameters.MaximumEnd[2])
-          {
-            boxSquares[k] = SliceBoxSquareMaximum(values, dims, toWorld, k, parameters);
-          }
+          slices.Add(slab.Values + (k - slab.First) * sz, dims, toWorld, k, nullptr);
         }
       });
     keep(slab);
@@ -1502,7 +1505,7 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
   if (parameters.GradientMaximum)
   {
     stats.GradientMax = parameters.GradientMaximum(
-      std::sqrt(*std::max_element(boxSquares.begin(), boxSquares.end())));
+      std::sqrt(*std::max_element(slices.BoxSquareMax.begin(), slices.BoxSquareMax.end())));
   }
   gains = GainsOf(stats, stats.GradientMax, parameters);
   return GainsFinite(gains, error);
