@@ -205,7 +205,9 @@ private:
     std::vector<float> buffer;
     std::vector<std::vector<double>> states;
     std::vector<double> carry; // the forward state after the previous slab's last slice
-    for (int s = 0; s < this->Slabs(); ++s)
+    // Only for the slabs' starts (nothing recorded), the last slab need not run.
+    const int slabs = starts && record.empty() ? this->Slabs() - 1 : this->Slabs();
+    for (int s = 0; s < slabs; ++s)
     {
       const int n = this->Cores[s + 1] - this->Cores[s];
       std::unique_ptr<RecursiveAxisPass> pass = this->SlabZ(s, buffer);
