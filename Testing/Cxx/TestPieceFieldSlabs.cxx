@@ -38,19 +38,13 @@ using namespace dsurf;
 
 namespace
 {
-/// The image's geometry, and the ellipsoid's centre (world) and radii.
+/// The image's geometry (the pieces' tests' one, spacings 1, 2 and 0.5), and the ellipsoid's centre
+/// (world) and radii.
 ImageGeometry Geometry()
 {
-  ImageGeometry g;
-  g.Dimensions[0] = 49;
-  g.Dimensions[1] = 47;
-  g.Dimensions[2] = 160;
-  g.Spacing[0] = 1.0;
+  ImageGeometry g = dstest::AnisotropicGeometry(49, 47, 160);
   g.Spacing[1] = 2.0;
   g.Spacing[2] = 0.5;
-  g.Origin[0] = -3.0;
-  g.Origin[1] = 2.0;
-  g.Origin[2] = 5.0;
   return g;
 }
 const Vec3 Centre{ 21.0, 48.0, 45.0 };
