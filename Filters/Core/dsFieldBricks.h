@@ -30,10 +30,11 @@
 
 namespace dsurf
 {
-/// How far, in sigmas, the bricks reach past the surface's vertices: the 2 sigma a surface may
-/// move in a level (NeighbourhoodSigmas less the Gaussian's support, which the level's box
-/// leaves around it for G_sigma * f).
-constexpr double BrickReachSigmas = 2.0;
+/// How far, in sigmas, the bricks reach past the surface's vertices. A batch of sweeps ends once
+/// a vertex may have moved half of it, and Cover then follows the surface (dsMultilevel.cxx), so
+/// the reach need not hold a level's whole travel: one sigma keeps the bricks to a thin shell
+/// (the near start at 512^3 held 0.68 GiB with 2 sigma, 0.59 with 1: BENCHMARKS.md).
+constexpr double BrickReachSigmas = 1.0;
 
 class DEFORMABLESURFACEFILTERS_EXPORT FieldBricks
 {

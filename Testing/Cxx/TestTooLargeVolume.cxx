@@ -175,14 +175,12 @@ int TestTooLargeVolume(int, char*[])
     std::cout << "available memory unknown on this system: nothing to refuse" << std::endl;
     return dstest::Result("TestTooLargeVolume");
   }
-  // uint8 input, read in place: the Scale-Space Gradient's field is 16 bytes a voxel, so
-  // available / 8 voxels need 2x what is available. A sphere reaching 0.45 of the image from its
-  // centre, at sigma 8 voxels (given: no probe), has its first field over the sphere and 10 sigma
-  // around it (the whole image, or nearly) on the image's own grid; with the local edge
-  // normalisation that field is whole over its box, counted at 20 bytes a voxel: about 2.5x. (With
-  // the default normalisation it would be counted as made around the sphere, bricks and tiles near
-  // it, and fit: TestFieldBricks checks that count and the bricks added later.)
-  const int n = static_cast<int>(std::ceil(std::cbrt(available / 8.0)));
+  // uint8 input, read in place, available / 3 voxels: the Scale-Space Gradient's field is 16
+  // bytes a voxel, about 5x what is available. A sphere reaching 0.45 of the image from its
+  // centre, at sigma 8 voxels (given: no probe), has its first field on the image's own grid,
+  // counted as made around the sphere: the locally normalised P in tiles and the bricks near it
+  // (TestFieldBricks checks that count), about 1.7x what is available.
+  const int n = static_cast<int>(std::ceil(std::cbrt(available / 3.0)));
   const std::size_t voxels = static_cast<std::size_t>(n) * n * n;
   unsigned char* zeros = MapZeros(voxels);
   DS_CHECK(zeros != nullptr, "the lazily mapped volume");
