@@ -79,7 +79,8 @@ bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpacePara
   this->SlabCore = coreSlices;
   this->Tiles.assign(this->Slots.size(), std::vector<float>());
   // The tiles the bricks within reach read (a brick's values read its neighbours' voxels: one
-  // brick more), and as far again: a level moves a vertex about its reach (BrickReachSigmas).
+  // brick more), and as far again, so that Cover computes bricks for a surface that moved up to
+  // a reach before the tiles are smoothed again (a pass over the box).
   this->TileMargin = reach;
   std::vector<char> keep;
   this->MarkNearSurface(surface, reach + this->TileMargin, keep);

@@ -303,9 +303,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT LevelRecord
   UntangleResult Folds; ///< intersecting triangle pairs after the sweeps, and after smoothing
   /// Force samples of a field in bricks that fell in a brick not computed yet, or beyond the
   /// field's box but inside the image (no force there; the bricks and a following box follow the
-  /// surface between batches of sweeps, and a batch ends once the sum of its sweeps' largest
-  /// corrections reaches half the bricks' reach, so this stays 0 unless one sweep moves a vertex
-  /// more than BrickReachSigmas / 2 sigma). This process's samples: a piece of a distributed
+  /// surface between batches of sweeps, and a batch goes on only while the sum of its sweeps'
+  /// largest corrections is below half the bricks' reach; a vertex is sampled before its own
+  /// move, so no sample falls beyond the bricks). This process's samples: a piece of a distributed
   /// image also counts the vertices beyond its part, which other pieces sample.
   long long FieldMisses = 0;
   /// The boxes the level's force field covered: 1, or on a first level whose box follows the
