@@ -87,7 +87,7 @@ bool FieldBricks::InitializeInSlabs(const ImageView& image, const ScaleSpacePara
   return this->FillTiles(keep, error);
 }
 
-void FieldBricks::Reset(
+void FieldBricks::SetBox(
   const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach)
 {
   this->Grid = grid;
@@ -97,6 +97,22 @@ void FieldBricks::Reset(
   this->Parameters.Smooth = nullptr;
   this->Parameters.GradientMaximum = nullptr;
   this->Reach = reach;
+  // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Bricks[a] = (this->Grid.Dimensions[a] - 2) / BrickSize + 1;
+  }
+}
+
+std::size_t FieldBricks::BrickCount() const
+{
+  return static_cast<std::size_t>(this->Bricks[0]) * this->Bricks[1] * this->Bricks[2];
+}
+
+void FieldBricks::Reset(
+  const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach)
+{
+  this->SetBox(grid, parameters, reach);
   this->Potential.clear();
   this->Force.clear();
   this->BrickFinite.clear();
@@ -111,13 +127,7 @@ void FieldBricks::Reset(
   this->CheckGrowth = false;
   this->Available = -1.0;
   this->ShortfallMessage.clear();
-  // Brick b along an axis holds the cells whose lower corner is b * BrickSize ... + BrickSize - 1.
-  for (int a = 0; a < 3; ++a)
-  {
-    this->Bricks[a] = (this->Grid.Dimensions[a] - 2) / BrickSize + 1;
-  }
-  this->Slots.assign(
-    static_cast<std::size_t>(this->Bricks[0]) * this->Bricks[1] * this->Bricks[2], -1);
+  this->Slots.assign(this->BrickCount(), -1);
 }
 
 VoxelBox FieldBricks::TileBox(const int b[3]) const
@@ -290,7 +300,7 @@ bool FieldBricks::LocalTiles(const std::vector<char>& keep, std::string* error)
 void FieldBricks::MarkNear(
   const std::vector<Vec3>& points, double reach, int grow, std::vector<char>& mark) const
 {
-  mark.assign(this->Slots.size(), 0);
+  mark.assign(this->BrickCount(), 0);
   for (const Vec3& p : points)
   {
     double ijk[3];
@@ -328,7 +338,7 @@ void FieldBricks::MarkNearSurface(
   const double h = 0.5 * BrickSize *
     std::min({ this->Grid.Spacing[0], this->Grid.Spacing[1], this->Grid.Spacing[2] });
   const double r = reach + h;
-  mark.assign(this->Slots.size(), 0);
+  mark.assign(this->BrickCount(), 0);
   const auto markPoint = [&](const Vec3& p)
   {
     double ijk[3];
@@ -454,7 +464,7 @@ double FieldBricks::InitialBytes(const ImageGeometry& grid, const ScaleSpacePara
   double reach, const TriangleMesh& surface, bool inSlabs, int coreSlices)
 {
   FieldBricks counter;
-  counter.Reset(grid, parameters, reach);
+  counter.SetBox(grid, parameters, reach);
   std::vector<char> mark;
   counter.MarkNear(surface.Points, reach, 0, mark);
   // The bricks near the surface, and the bookkeeping of every brick of the box (its slot, its

@@ -137,6 +137,11 @@ private:
   bool Affords(double bytes, const char* what);
   /// Forgets every brick and tile, for a box of `grid`.
   void Reset(const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach);
+  /// The box, its parameters and the bricks along each axis, and nothing held per brick: all the
+  /// marks need (InitialBytes counts a field of a box that may be refused, without its slots).
+  void SetBox(const ImageGeometry& grid, const ScaleSpaceParameters& parameters, double reach);
+  /// The bricks of the box.
+  std::size_t BrickCount() const;
   /// The voxels whose G_sigma * f brick b's tile holds in slabs: its own, and the last voxel
   /// along an axis for the last brick along it (the tiles partition the box).
   VoxelBox TileBox(const int b[3]) const;
