@@ -7,7 +7,7 @@
 // edge normalisation, would not fit, by a margin (a field counted below what is available would
 // be made, and the solve would run for minutes). The volumes are
 // real vtkImageData whose 8-bit voxels live in a lazily mapped zero region: large enough to need
-// about twice the machine's available memory, yet they cost nothing until written. Distributed
+// 1.7 to 5 times the machine's available memory, yet they cost nothing until written. Distributed
 // (processes emulated by threads, EmulatedRanks.h), a field that fits on one process but not on
 // another fails both before either allocates it: the one names its need and what is available, the
 // other the size another process lacks, and neither waits for the other (a hang would hit the ctest
