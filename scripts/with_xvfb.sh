@@ -11,7 +11,11 @@
 # Any other failure is reported as it is.
 set -u
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+dfile=$(mktemp)
+xlog=$(mktemp)
+alive=unknown
+display=none
+trap 'rm -f "$log" "$dfile" "$xlog"' EXIT
 
 probe() {
   /usr/bin/python3 -c "import ctypes, sys
@@ -21,42 +25,45 @@ sys.exit(0 if x.XOpenDisplay(b':$1') else 1)" 2>/dev/null
 }
 
 run_once() {
-  local display server ready rc
-  for _ in 1 2 3 4 5 6 7 8; do
-    display=$(( 200 + RANDOM % 700 ))
-    if [ -e "/tmp/.X${display}-lock" ] || [ -e "/tmp/.X11-unix/X${display}" ]; then
-      continue
+  local server ready rc
+  # -displayfd: the server takes the first free display itself (its lock file is made
+  # atomically) and writes the number once it accepts clients; choosing a number here and
+  # checking its lock file left a window in which two runs could share one server.
+  : >"$dfile"
+  Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$dfile" >"$xlog" 2>&1 &
+  server=$!
+  ready=0
+  for _ in $(seq 1 100); do
+    kill -0 "$server" 2>/dev/null || break
+    display=$(head -n 1 "$dfile" 2>/dev/null)
+    if [ -n "$display" ] && probe "$display"; then
+      ready=1
+      break
     fi
-    Xvfb ":${display}" -screen 0 1280x1024x24 -nolisten tcp >/dev/null 2>&1 &
-    server=$!
-    ready=0
-    for _ in $(seq 1 100); do
-      kill -0 "$server" 2>/dev/null || break
-      if probe "$display"; then
-        ready=1
-        break
-      fi
-      sleep 0.1
-    done
-    if [ "$ready" = 1 ]; then
-      DISPLAY=":${display}" "$@" >"$log" 2>&1
-      rc=$?
-      kill "$server" 2>/dev/null
-      wait "$server" 2>/dev/null
-      return "$rc"
-    fi
+    sleep 0.1
+  done
+  if [ "$ready" != 1 ]; then
     kill "$server" 2>/dev/null
     wait "$server" 2>/dev/null
-  done
-  echo "with_xvfb.sh: could not start an Xvfb server" >"$log"
-  return 1
+    { echo "with_xvfb.sh: could not start an Xvfb server"; cat "$xlog"; } >"$log"
+    return 1
+  fi
+  DISPLAY=":${display}" "$@" >"$log" 2>&1
+  rc=$?
+  # For the retry message: whether the server outlived the command.
+  if kill -0 "$server" 2>/dev/null; then alive=yes; else alive=no; fi
+  kill "$server" 2>/dev/null
+  wait "$server" 2>/dev/null
+  return "$rc"
 }
 
 for attempt in 1 2 3; do
   run_once "$@"
   rc=$?
   if [ "$rc" -ne 0 ] && grep -q "bad X server connection" "$log" && [ "$attempt" -lt 3 ]; then
-    echo "with_xvfb.sh: the display could not be opened (attempt $attempt); retrying with a new server" >&2
+    echo "with_xvfb.sh: the display :$display could not be opened (attempt $attempt; the server" \
+      "was alive after the command: $alive); retrying with a new server" >&2
+    sed 's/^/with_xvfb.sh: Xvfb: /' "$xlog" >&2
     continue
   fi
   cat "$log"
