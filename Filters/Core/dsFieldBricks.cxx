@@ -192,19 +192,14 @@ bool FieldBricks::SmoothTiles(const std::vector<char>& keep, std::string* error)
   };
   // A piece's maximum is reduced over every process once, by the first smoothing (the hook
   // then goes: it holds its caller's locals); the gains found then are kept, and equal those of
-  // the smoothings after it on a whole image.
+  // the smoothings after it on a whole image, which therefore gather no edge statistics.
   ScaleSpaceParameters parameters = this->Parameters;
   parameters.GradientMaximum = this->FirstMaximum;
   this->FirstMaximum = nullptr;
-  PotentialGains gains;
+  const bool first = this->Smoothings++ == 0;
   // store runs in the SMP scope SmoothForPotentialInSlabs sets (the parameters' threads).
-  const bool ok = SmoothForPotentialInSlabs(
-    this->Source, parameters, this->SlabCore, store, gains, error, this->Slabs);
-  if (this->Smoothings++ == 0)
-  {
-    this->Gains = gains;
-  }
-  return ok;
+  return SmoothForPotentialInSlabs(
+    this->Source, parameters, this->SlabCore, store, this->Gains, error, this->Slabs, first);
 }
 
 VoxelSet FieldBricks::TileVoxels(const std::vector<char>& keep, std::vector<int>& kept) const

@@ -1456,7 +1456,7 @@ bool SmoothForPotential(const ImageView& image, const ScaleSpaceParameters& para
 
 bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
   int coreSlices, const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains,
-  std::string* error, const SlabSource& source)
+  std::string* error, const SlabSource& source, bool findGains)
 {
   float probe = 0.0f;
   std::string problem = CheckForceInputs(image, parameters, &probe, &probe);
@@ -1479,6 +1479,11 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
   SliceStatistics slices(dims[2], parameters.GradientMaximum ? &parameters : nullptr);
   const auto visit = [&](const SmoothSlab& slab)
   {
+    if (!findGains)
+    {
+      keep(slab);
+      return;
+    }
     vtkSMPTools::For(slab.Core0, slab.Core1,
       [&](int kb, int ke)
       {
@@ -1501,6 +1506,10 @@ bool SmoothForPotentialInSlabs(const ImageView& image, const ScaleSpaceParameter
         SmoothInSlabs(image, sv, coreSlices, visit);
       }
     });
+  if (!findGains)
+  {
+    return true;
+  }
   EdgeStatistics stats = slices.Total();
   if (parameters.GradientMaximum)
   {

@@ -173,11 +173,12 @@ DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotential(const ImageView& image,
 /// bit. The slabs come from `source` when given (a process's region of a distributed image,
 /// smoothed from its pieces' states: dsPieceSlabs.h; parameters.GradientMaximum then gives the
 /// whole image's maximum), else SmoothInSlabs of the image. Not the local edge normalisation, nor
-/// parameters.Smooth.
+/// parameters.Smooth. Without `findGains` (the same box smoothed again, whose gains are known)
+/// the edge statistics are not gathered and `gains` is left as it is.
 DEFORMABLESURFACEFILTERS_EXPORT bool SmoothForPotentialInSlabs(const ImageView& image,
   const ScaleSpaceParameters& parameters, int coreSlices,
   const std::function<void(const SmoothSlab&)>& keep, PotentialGains& gains, std::string* error,
-  const SlabSource& source = nullptr);
+  const SlabSource& source = nullptr, bool findGains = true);
 /// Then P and -grad P at the voxels of `part` (a box within `box`) of the image of `geometry`
 /// whose G_sigma * f is `smooth`, stored where they lie in `box` (x fastest): bit for bit what
 /// ComputeScaleSpaceForceInto gives there. potential holds box.NumberOfVoxels() floats, force
