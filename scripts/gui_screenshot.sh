@@ -11,12 +11,19 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$(realpath -m "${1:-gui_one_click.png}")"
 script="$(realpath "${2:-$root/Examples/gui_one_click.py}")"
 plugins="$root/build/lib/paraview-5.11/plugins"
-display=$(( 300 + RANDOM % 500 ))
 size="${DS_GUI_SIZE:-1600x1000}"
-Xvfb ":${display}" -screen 0 "${size}x24" -nolisten tcp >/dev/null 2>&1 &
+# The server takes a free display itself and writes its number once it accepts clients (as in
+# scripts/with_xvfb.sh).
+dfile=$(mktemp)
+Xvfb -displayfd 3 -screen 0 "${size}x24" -nolisten tcp 3>"$dfile" >/dev/null 2>&1 &
 server=$!
-trap 'kill "$server" 2>/dev/null || true' EXIT
-sleep 2
+trap 'kill "$server" 2>/dev/null || true; rm -f "$dfile"' EXIT
+for _ in $(seq 1 100); do
+  [ -s "$dfile" ] && break
+  sleep 0.1
+done
+display=$(head -n 1 "$dfile")
+[ -n "$display" ] || { echo "gui_screenshot.sh: could not start an Xvfb server" >&2; exit 1; }
 cd "$root"
 DISPLAY=":${display}" DS_SOURCE_DIR="$root" DS_PLUGIN="$plugins/DeformableSurface/DeformableSurface.so" \
   PV_PLUGIN_PATH="$plugins/DeformableSurface:$plugins/DeformableSurfaceGUI" \
