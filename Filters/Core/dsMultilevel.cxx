@@ -525,16 +525,19 @@ struct MultilevelSolver::RunState
 
 namespace
 {
-/// Tells a level whose vertices step back and forth in place (StallWindowSweeps, StallNetShare):
-/// the mean net displacement since the window began against the mean corrections summed over
-/// it. Checked between batches, where the mesh holds the solver's positions; the same on every
-/// process of a distributed solve (each holds the whole mesh and the reduced statistics).
+/// Tells a level whose vertices step back and forth in place (StallWindowSweeps, StallNetShare,
+/// StallVolumeShare): the mean net displacement since the window began against the mean
+/// corrections summed over it, and each object's enclosed volume then and now (a closed start
+/// only). Checked between batches, where the mesh holds the solver's positions; the same on
+/// every process of a distributed solve (each holds the whole mesh and the reduced statistics).
 class StallWatch
 {
 public:
-  StallWatch(const TriangleMesh& mesh, double sigma)
+  StallWatch(const TriangleMesh& mesh, double sigma, bool closed)
     : Anchor(mesh.Points)
     , Sigma(sigma)
+    , Closed(closed)
+    , Volumes(closed ? ObjectVolumes(mesh) : std::vector<double>())
   {
   }
   void Add(const SweepStatistics& st)
@@ -544,8 +547,9 @@ public:
     this->Moved = st.MovedVertices;
   }
   /// After a batch that ended at the level's sweep `s`: true when a window ended there (s a
-  /// multiple of StallWindowSweeps) with the vertices back near where it began; else a window
-  /// that ended starts again from here.
+  /// multiple of StallWindowSweeps) with the vertices back near where it began and, for a closed
+  /// start, no object's volume changed by more than StallVolumeShare; else a window that ended
+  /// starts again from here.
   bool Rests(const TriangleMesh& mesh, int s)
   {
     if (s % StallWindowSweeps != 0 || this->Sweeps == 0)
@@ -558,7 +562,17 @@ public:
       net += Norm(mesh.Points[v] - this->Anchor[v]);
     }
     net /= std::max(1, this->Moved);
-    const bool rests = net < StallNetShare * this->Travel && net < StallSigmaShare * this->Sigma;
+    bool rests = net < StallNetShare * this->Travel && net < StallSigmaShare * this->Sigma;
+    if (this->Closed)
+    {
+      const std::vector<double> volumes = ObjectVolumes(mesh);
+      for (std::size_t o = 0; o < volumes.size() && o < this->Volumes.size(); ++o)
+      {
+        rests = rests &&
+          std::abs(volumes[o] - this->Volumes[o]) <= StallVolumeShare * std::abs(this->Volumes[o]);
+      }
+      this->Volumes = volumes;
+    }
     this->Anchor = mesh.Points;
     this->Sweeps = 0;
     this->Travel = 0;
@@ -568,6 +582,8 @@ public:
 private:
   std::vector<Vec3> Anchor;
   double Sigma;
+  bool Closed;
+  std::vector<double> Volumes;
   int Sweeps = 0, Moved = 0;
   double Travel = 0;
 };
@@ -601,7 +617,7 @@ bool MultilevelSolver::SolveLevel(
   std::vector<SweepStatistics> batchStats;
   state.EarlierMisses = 0;
   state.MissesBase = field.Bricks ? field.Bricks->Misses() : 0;
-  StallWatch stall(mesh, rec.Sigma);
+  StallWatch stall(mesh, rec.Sigma, state.ClosedStart);
   for (int s = 0; s < cap && !stop && !rec.Converged;)
   {
     // MaxSweeps: the run stops exactly there (the batch is cut short to reach it).
@@ -695,8 +711,10 @@ bool MultilevelSolver::SolveLevel(
       this->Collapse = CollapsedObject(mesh, state.StartVolumes, state.VoxelVolume);
       stop = !this->Collapse.empty();
     }
-    // A front level has its own rest (its fastest vertex) and cap.
-    if (!stop && !rec.Converged && rec.FrontRest <= 0 && rec.Level == 0 && stall.Rests(mesh, s))
+    // A front level has its own rest (its fastest vertex) and cap. An open start has no volume
+    // to tell stepping in place from slow drift that gains ground: its first level only.
+    if (!stop && !rec.Converged && rec.FrontRest <= 0 && (rec.Level == 0 || state.ClosedStart) &&
+      stall.Rests(mesh, s))
     {
       rec.Converged = true;
       rec.Stalled = true;

@@ -205,15 +205,18 @@ constexpr int MaxFrontLevels = 64;
 /// A front level sweeps at most this many times (a horn's took 60-80 sweeps each); noise can
 /// keep one vertex stepping back and forth for ever.
 constexpr int FrontLevelSweeps = 200;
-/// The first level rests when its vertices step back and forth in place (docs/METHOD.md §9.7):
-/// every StallWindowSweeps sweeps, the vertices' mean net displacement over the window is below
-/// StallNetShare of their mean corrections summed over it and below StallSigmaShare of sigma.
+/// A level rests when its vertices step back and forth in place (docs/METHOD.md §9.7): every
+/// StallWindowSweeps sweeps, the vertices' mean net displacement over the window is below
+/// StallNetShare of their mean corrections summed over it and below StallSigmaShare of sigma,
+/// and (a closed start) no object's enclosed volume changed by more than StallVolumeShare of it.
 /// A surface that travels or settles keeps most of what it moves; one held where a force
-/// changes sign at noise (the region force at its range's end) cancels most of it, and the slow
-/// drift left is far inside the next level's basin (about its sigma).
+/// changes sign at noise (the region force at its range's end) cancels most of it, and slow
+/// drift under that noise that still gains ground (a click growing) changes its volume. An open
+/// start's first level only, without the volume.
 constexpr int StallWindowSweeps = 32;
 constexpr double StallNetShare = 0.3;
 constexpr double StallSigmaShare = 0.1;
+constexpr double StallVolumeShare = 0.001;
 /// Front levels follow a front of at most this share of its object's triangles.
 constexpr double FrontShare = 0.1;
 /// Front levels split the triangles around the front down to this many voxels: a horn two
