@@ -51,6 +51,11 @@
 // whose mesh resolves their sigma (dsUntangle.h); a start far finer than sigma_0 begins on a
 // coarse copy (CoarsenStart); a click whose range came from the classes around it takes front
 // levels at sigma's floor while the object lies beyond part of it (FrontTriangles).
+//
+// The class's sources: dsMultilevel.cxx (the levels, their sweeps and fields, when a level
+// rests), dsMultilevelStart.cxx (sigma_0 and the start's preparation), dsMultilevelRegion.cxx
+// (the region ranges, models and front) and dsMultilevelRefine.cxx (refinement between levels);
+// the state they share across a run is in dsMultilevelRunState.h.
 #ifndef dsMultilevel_h
 #define dsMultilevel_h
 
