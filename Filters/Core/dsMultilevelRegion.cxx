@@ -5,9 +5,9 @@
 #include "dsMultilevel.h"
 
 #include "dsFrontGrid.h"
+#include "dsMultilevelRunState.h"
 #include "dsObjects.h"
 #include "dsRegion.h"
-#include "dsMultilevelRunState.h"
 #include "dsThreads.h"
 
 #include "vtkSMPTools.h"

@@ -5,9 +5,9 @@
 #include "dsMultilevel.h"
 
 #include "dsInitialSigma.h"
+#include "dsMultilevelRunState.h"
 #include "dsObjects.h"
 #include "dsPieceInitialSigma.h"
-#include "dsMultilevelRunState.h"
 
 #include <algorithm>
 #include <cmath>
