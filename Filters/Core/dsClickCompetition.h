@@ -4,7 +4,7 @@
 // its range comes from the classes of intensity around it instead: a Gaussian mixture of its
 // neighbourhood (dsMixture.h), the click's class in it, and the decision boundaries between that
 // class (or the click's own model) and the classes that compete with it on either side. Plain
-// C++, used by dsRegion.cxx only.
+// C++, used by dsRegion.cxx (and its ghost rule by dsMultilevel.cxx).
 #ifndef dsClickCompetition_h
 #define dsClickCompetition_h
 
@@ -14,6 +14,12 @@
 
 namespace dsurf
 {
+/// A class of a click's mixture is the partial volume between two others only where its voxels
+/// lie on ramps between them: another class's voxel, darker one way and brighter the other, within
+/// this many voxels along an axis (dsClickCompetition.cxx, BetweenShares). A distributed image's
+/// pieces keep at least this many ghost layers (MultilevelSolver::DistributedGhostVoxels).
+constexpr int BlendReachVoxels = 3;
+
 /// A start inside one region (a click): its competitors are the other classes of intensity
 /// around it. The voxels within `reach` of the start's bounding box are fitted as a Gaussian
 /// mixture (dsMixture.h, 256 bins between their MixtureTailShare quantiles); the object's class

@@ -2,6 +2,8 @@
 #include "dsMultilevel.h"
 #include "dsMultilevelRunState.h"
 
+#include "dsClickCompetition.h"
+
 #include "dsGaussianSmoother.h"
 
 #include "dsFieldBricks.h"
@@ -899,6 +901,9 @@ int MultilevelSolver::DistributedGhostVoxels(
       std::min(sigma / whole.Spacing[a], std::nextafter(GaussianRecursiveFromSigmaVoxels, 0.0));
     ghost = std::max(ghost, FineGhostVoxels(sampled));
   }
+  // A click's classes are told from their blends along ramps of a few voxels
+  // (dsClickCompetition.h).
+  ghost = std::max(ghost, BlendReachVoxels);
   return std::min(ghost, whole.Dimensions[a]);
 }
 

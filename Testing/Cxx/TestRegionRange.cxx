@@ -14,6 +14,8 @@
 // - clicks in a CT: a soft tissue, which the whole span's fit merges with its neighbours, and a
 //   ventricle's CSF, which the fit near it merges with the brain, end between their own class
 //   and each neighbour; the air keeps its class.
+// - a click beside a dark tissue that lies between two brighter ones (CSF between brain and
+//   scalp, the image's empty margin beyond) ends its range at that tissue: it is no blend.
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -219,6 +221,32 @@ int TestRegionRange(int, char*[])
       "narrow tissue: the low end between the dark class and the click's");
     DS_CHECK(t.Range[1] > 90.0 && t.Range[1] < 113.0,
       "narrow tissue: the high end below the narrow tissue, which competes");
+  }
+
+  // A dark tissue between two brighter ones is no blend of the darker class beyond it
+  // (docs/METHOD.md §9.3, BlendBetweenShare): the README's brain click, whose CSF and bone (22
+  // +- 8.5) lie between the brain and the scalp, with the image's empty margin (0) beyond. Slabs
+  // along x: 0 exactly, 168 +- 15 (scalp), 22 +- 8 (CSF), the click's 110 +- 3. By its spread the
+  // dark class passed for the blend of the margin and the click's class, the margin competed, and
+  // the range ran down to 23, into the dark class (101 now).
+  {
+    const std::vector<float> head = NoisyImage(n, 27,
+      [](int i, int, int, auto& noise)
+      {
+        float v = i < 10 ? 0.f : 168.f + 15.f * noise();
+        if (i >= 12)
+          v = 22.f + 8.f * noise();
+        if (i >= 14)
+          v = 110.f + 3.f * noise();
+        return v;
+      });
+    RangeEstimate t;
+    DS_CHECK(
+      EstimateIntensityRange(ImageView::Of(head.data(), g), click, 1.0, t, &error, 40.0), error);
+    std::cout << "click beside a dark tissue between brighter ones: " << t.Classes
+              << " classes, range [" << t.Range[0] << ", " << t.Range[1] << "]" << std::endl;
+    DS_CHECK(t.Contrast && t.Range[0] > 22.0 + 3 * 8.0 && t.Range[0] < 110.0,
+      "dark tissue: the low end between it and the click's class, which it competes with");
   }
 
   // A soft tissue in a CT (docs/METHOD.md §9.3): slabs along x of air (-1000 +- 5 HU), fat
