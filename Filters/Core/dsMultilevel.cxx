@@ -824,7 +824,9 @@ bool MultilevelSolver::RunLevels(
     {
       // A front of more than FrontShare of an object's triangles is no thin part left behind but
       // an object that runs on beyond its surface: pushing on would only spread it (FrontOf).
-      state.Front = this->FrontOf(mesh, this->FrontTriangles(image, mesh), state.FrontObjects);
+      state.Front = this->FrontOf(
+        mesh, this->FrontTriangles(image, mesh), state.FrontObjects, state.FrontHistory);
+      this->WarnOfGrowingFront(mesh, state);
     }
     state.FrontLevel = !state.Front.empty();
     frontLevels += state.FrontLevel ? 1 : 0;

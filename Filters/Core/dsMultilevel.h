@@ -186,6 +186,10 @@ DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, doubl
 
 /// The region force's fade at level sigma: min(1, sigma / sigma_0) (dsRegion.h; the force
 /// shrinks with sigma once below sigma_0).
+/// Whether a front's sizes at its front levels so far (triangles, oldest first) grew at each of
+/// the last FrontGrowthLevels levels to more than FrontGrowthFactor times the size before them.
+DEFORMABLESURFACEFILTERS_EXPORT bool FrontGrows(const std::vector<long long>& sizes);
+
 DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigma);
 
 /// A click's competitors (EstimateIntensityRange) are looked for within this many sigma_0 of
@@ -224,6 +228,15 @@ constexpr double StallSigmaShare = 0.1;
 constexpr double StallVolumeShare = 0.001;
 /// Front levels follow a front of at most this share of its object's triangles.
 constexpr double FrontShare = 0.1;
+/// Front levels stop following an object whose front grew at each of its last FrontGrowthLevels
+/// front levels to more than FrontGrowthFactor times what it was before them (FrontGrows). A thin
+/// part left behind keeps a front of about its tip, which shrinks as the tip is reached (the
+/// horned phantom: 38 triangles, then 23-32, 10-20 and 4-8; a click along a capsule 37, then
+/// 12-16); a network of thin parts branches at every level (a click in Colin27's lateral
+/// ventricle: 70, 87, 146, 220, ..., 103 605 at the seventeenth, 660 000 vertices and half a
+/// litre of CSF and grey matter, the levels running on for tens of minutes).
+constexpr int FrontGrowthLevels = 3;
+constexpr double FrontGrowthFactor = 2.0;
 /// Front levels split the triangles around the front down to this many voxels: a horn two
 /// voxels wide needs edges below a voxel around it (with a voxel, the committed horned
 /// phantom's narrowest horn stayed unentered: reference -> surface 2.6 voxels; 0.88 with half).
@@ -485,6 +498,9 @@ private:
   /// Whether an object's range is a click's competition range (ObjectRegion::FollowsFront):
   /// after the schedule and its front levels, one more level rests it at the local midpoint.
   bool MidpointLevelWanted(const RunState& state) const;
+  /// Warns (once a run) that front levels stopped following an object whose front grew
+  /// (FrontGrows on its FrontHistory).
+  void WarnOfGrowingFront(const TriangleMesh& mesh, RunState& state);
   /// After a level kept apart: its remaining folds smoothed open (SmoothFolds) on any mesh.
   void SmoothKeptApart(TriangleMesh& mesh, LevelRecord& rec);
   /// Each object's region model for a level at sigma: its range, its fade (its own sigma_0's
@@ -521,10 +537,13 @@ private:
   /// distributed, false unless this process owns x's cell.
   bool InObjectAt(const ImageView& image, const Vec3& x, const ObjectRegion& region) const;
   /// Per vertex: 1 on a corner of a front triangle (`triangles`, FrontTriangles) of an object
-  /// whose front holds at most FrontShare of its triangles; empty when there is none.
+  /// whose front holds at most FrontShare of its triangles and has not grown at each of its last
+  /// front levels (FrontGrows); empty when there is none.
   /// `followed` (per object): whether its front is followed.
+  /// `history` (per object): its front's triangles at each front level so far, appended to;
+  /// an object whose front grows (FrontGrows) is not followed.
   std::vector<char> FrontOf(const TriangleMesh& mesh, const std::vector<char>& triangles,
-    std::vector<char>& followed) const;
+    std::vector<char>& followed, std::vector<std::vector<long long>>& history) const;
   /// Steps 3-4: mark, check MaxVertices, record the level, refine (refined: whether it did)
   /// and check the invariants.
   bool RefineLevel(

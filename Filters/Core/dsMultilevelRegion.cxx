@@ -254,8 +254,27 @@ std::vector<char> MultilevelSolver::FrontTriangles(
   return front;
 }
 
-std::vector<char> MultilevelSolver::FrontOf(
-  const TriangleMesh& mesh, const std::vector<char>& triangles, std::vector<char>& followed) const
+bool FrontGrows(const std::vector<long long>& sizes)
+{
+  const std::size_t n = sizes.size();
+  if (n <= static_cast<std::size_t>(FrontGrowthLevels))
+  {
+    return false;
+  }
+  for (std::size_t i = n - FrontGrowthLevels; i < n; ++i)
+  {
+    if (!(sizes[i] > sizes[i - 1]))
+    {
+      return false;
+    }
+  }
+  return static_cast<double>(sizes[n - 1]) >
+    FrontGrowthFactor * static_cast<double>(sizes[n - 1 - FrontGrowthLevels]);
+}
+
+std::vector<char> MultilevelSolver::FrontOf(const TriangleMesh& mesh,
+  const std::vector<char>& triangles, std::vector<char>& followed,
+  std::vector<std::vector<long long>>& history) const
 {
   // Per object: its front triangles against all of its triangles.
   const int objects = mesh.NumberOfObjects();
@@ -268,10 +287,19 @@ std::vector<char> MultilevelSolver::FrontOf(
     onFront[objectOf(t)] += triangles[t] ? 1 : 0;
   }
   followed.assign(objects, 0);
+  history.resize(objects);
   bool any = false;
   for (int o = 0; o < objects; ++o)
   {
     followed[o] = onFront[o] > 0 && onFront[o] <= FrontShare * all[o] ? 1 : 0;
+    // A thin part's front is about its tip; one that branches on at every level is a network of
+    // thin parts (FrontGrowthLevels): pushing on would spread the surface through it. An object
+    // stopped so is not followed again.
+    if (followed[o] && !FrontGrows(history[o]))
+    {
+      history[o].push_back(onFront[o]);
+    }
+    followed[o] = followed[o] && !FrontGrows(history[o]) ? 1 : 0;
     any = any || followed[o];
   }
   std::vector<char> front(any ? mesh.NumberOfPoints() : 0, 0);
@@ -286,6 +314,25 @@ std::vector<char> MultilevelSolver::FrontOf(
     }
   }
   return front;
+}
+
+void MultilevelSolver::WarnOfGrowingFront(const TriangleMesh& mesh, RunState& state)
+{
+  for (std::size_t o = 0; o < state.FrontHistory.size() && !state.FrontGrowthWarned; ++o)
+  {
+    if (FrontGrows(state.FrontHistory[o]))
+    {
+      const std::string which = mesh.ObjectIds.size() > o
+        ? "object " + std::to_string(mesh.ObjectIds[o]) + "'s surface"
+        : "the surface";
+      this->Warnings.push_back("the levels that follow thin parts left behind stopped following " +
+        which + ": its front grew at each of the last " + std::to_string(FrontGrowthLevels) +
+        " of them (" + std::to_string(state.FrontHistory[o].back()) +
+        " triangles), a network of thin parts its intensity range runs on through, not the end "
+        "of a part left behind (docs/METHOD.md §9.3); a narrower range keeps it in its object");
+      state.FrontGrowthWarned = true;
+    }
+  }
 }
 
 bool MultilevelSolver::EstimateRegions(

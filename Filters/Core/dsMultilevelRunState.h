@@ -57,6 +57,9 @@ struct MultilevelSolver::RunState
   bool MidpointLevel = false;
   /// Per object, on a front level: whether its front is followed (FrontOf).
   std::vector<char> FrontObjects;
+  /// Per object: its front's triangles at each front level so far (FrontOf, FrontGrows).
+  std::vector<std::vector<long long>> FrontHistory;
+  bool FrontGrowthWarned = false; ///< the warning that a front grew is given once
   /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
   /// apart (SolveLevelKeptApart).
   bool KeepApart = false;

@@ -9,6 +9,9 @@
 //   them: its front is not followed) and is not spread by the tube's front levels: it encloses
 //   at most 2 % more voxels, with at most 25 % more vertices, than the slab clicked alone, which
 //   has no front level.
+// - A front that grew at each of its last FrontGrowthLevels levels to more than twice its size is
+//   no longer followed (FrontGrows), on the fronts measured: a network of thin parts (a click in
+//   Colin27's lateral ventricle) grows; the horned phantom's and a capsule's tips do not.
 #include "DSTestHelpers.h"
 #include "SeveralObjects.h"
 #include "dsFrontGrid.h"
@@ -83,6 +86,31 @@ long long VoxelsInside(vtkPolyData* surface, vtkImageData* image)
   const std::vector<unsigned char> inside = SurfaceInterior(surface, image);
   return std::count(inside.begin(), inside.end(), 1);
 }
+void FrontGrowth()
+{
+  using dsurf::FrontGrows;
+  // Triangles on the front at each front level, as the runs measured them (docs/METHOD.md §9.3).
+  const std::vector<long long> ventricle = { 70, 87, 146, 220, 315, 467, 708 };
+  const std::vector<long long> horned = { 38, 23, 26, 26, 24, 30, 30, 27, 25, 25, 32, 30, 28, 28,
+    27, 30, 20, 20, 16, 10, 11, 11, 13, 11, 15, 17, 12, 6, 4, 5, 6, 4, 5, 7, 6, 7, 5, 6, 5, 4, 5, 5,
+    4, 8, 6, 5, 5, 5, 5, 5, 5, 7, 5 };
+  const std::vector<long long> capsule = { 37, 16, 14, 13, 14, 14, 12 };
+  int first = -1;
+  for (std::size_t n = 1; n <= ventricle.size() && first < 0; ++n)
+  {
+    first = FrontGrows({ ventricle.begin(), ventricle.begin() + n }) ? static_cast<int>(n) : -1;
+  }
+  DS_CHECK(first == 4, "a front that branches on: followed for three levels, then not");
+  for (const auto* sizes : { &horned, &capsule })
+  {
+    for (std::size_t n = 1; n <= sizes->size(); ++n)
+    {
+      DS_CHECK(!FrontGrows({ sizes->begin(), sizes->begin() + n }),
+        "a thin part's tip: followed to its end (" + std::to_string(n) + " levels)");
+    }
+  }
+}
+
 } // namespace
 
 int TestFrontShare(int, char*[])
@@ -116,6 +144,7 @@ int TestFrontShare(int, char*[])
   DS_CHECK_LE(double(slabVoxels) / aloneVoxels, 1.02, "slab: voxels inside against alone");
   DS_CHECK_LE(double(slab->GetNumberOfPoints()) / alone.Surface->GetNumberOfPoints(), 1.25,
     "slab: vertices against alone");
+  FrontGrowth();
   return dstest::Result("TestFrontShare");
 }
 
