@@ -186,11 +186,11 @@ DEFORMABLESURFACEFILTERS_EXPORT double NextHierarchicalSigma(double sigma, doubl
 
 /// The region force's fade at level sigma: min(1, sigma / sigma_0) (dsRegion.h; the force
 /// shrinks with sigma once below sigma_0).
+DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigma);
+
 /// Whether a front's sizes at its front levels so far (triangles, oldest first) grew at each of
 /// the last FrontGrowthLevels levels to more than FrontGrowthFactor times the size before them.
 DEFORMABLESURFACEFILTERS_EXPORT bool FrontGrows(const std::vector<long long>& sizes);
-
-DEFORMABLESURFACEFILTERS_EXPORT double RegionFade(double sigma, double firstSigma);
 
 /// A click's competitors (EstimateIntensityRange) are looked for within this many sigma_0 of
 /// it: sigma_0 from a click is its distance to the nearest edges (dsInitialSigma.h), so the
