@@ -638,17 +638,21 @@ void MultilevelSolver::SmoothFolds(TriangleMesh& mesh, LevelRecord& rec)
   }
 }
 
-bool MultilevelSolver::SolveFrontLevelOfKeptApart(
+bool MultilevelSolver::SolveFrontLevel(
   const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec)
 {
-  // A surface already kept apart has met itself around a gap of its object (a sinus's bony
-  // septa, docs/METHOD.md §9.3). A front level pushes at the floor's sigma with the region force
-  // at full strength and is not kept apart (SolveLevelKeptApart): where it made such a surface
-  // cross itself, it pushed through its own other side, not into a thin part (a click in a
-  // head CT's sphenoid sinus: 0 crossing pairs before its first front level, 130 after and 71
-  // at the end, or, from the committed click, a surface inside out). That level's moves are
-  // undone, also when they turned an object inside out (a collapse), and the front is followed
-  // no further; kept apart, it ran all 64 front levels (37 s against 1.6 s) and never ended.
+  // A front level pushes a few thin parts at the floor's sigma with the region force at full
+  // strength, and is not kept apart (SolveLevelKeptApart). Where it made the surface cross
+  // itself, it pushed it through its own other side, or folded it where the front branched, not
+  // into a thin part (docs/METHOD.md §9.3). A click in a head CT's sphenoid sinus, whose surface
+  // already met itself around the septum: 0 crossing pairs before its first front level, 130
+  // after and 71 at the end, or, from the committed click, a surface inside out. Clicks in
+  // Colin27's lateral ventricles, whose fronts branched into the CSF's network: 8-204 pairs
+  // after the second front level, 1 000-1 400 at the last, 114-187 left at the end. That level's
+  // moves are undone, also when they turned an object inside out (a collapse), and the front is
+  // followed no further. Kept apart instead (SelfContact on front levels too), the ventricles
+  // ended without crossing pairs as well but took 3-4 times as long, reaching 0.2-0.9 ml
+  // further, and the sinus took 9.5 s against 2.4 s.
   const std::vector<Vec3> start = mesh.Points;
   const int crossingBefore = CountSelfIntersections(mesh);
   const bool stop = this->SolveLevel(image, mesh, state, rec);
@@ -673,16 +677,17 @@ bool MultilevelSolver::SolveLevelKeptApart(
   // is solved as the paper does, and solved again from where it started, its parts kept apart,
   // when its sweeps left more crossing pairs than it began with. From there every level keeps
   // them apart. Not the front levels, which push a few thin parts at the floor's sigma (the
-  // walls of a horn face each other all along it, and horns did not fold), nor several objects,
-  // whose folds within one object are smoothed as before (solved again, the engine phantom's
-  // pistons of TestSeveralObjectsMeet ended 0.51 voxel from their boundaries, 0.42 without).
+  // walls of a horn face each other all along it) and are undone where they cross
+  // (SolveFrontLevel), nor several objects, whose folds within one object are smoothed as
+  // before (solved again, the engine phantom's pistons of TestSeveralObjectsMeet ended 0.51
+  // voxel from their boundaries, 0.42 without).
   // Every process holds the whole mesh, so every process decides alike.
   const bool watch =
     state.Region && !state.FrontLevel && !state.KeepApart && mesh.NumberOfObjects() == 1;
   this->SelfContact = state.Region && !state.FrontLevel && state.KeepApart;
-  if (state.FrontLevel && state.KeepApart)
+  if (state.FrontLevel)
   {
-    return this->SolveFrontLevelOfKeptApart(image, mesh, state, rec);
+    return this->SolveFrontLevel(image, mesh, state, rec);
   }
   if (!watch)
   {

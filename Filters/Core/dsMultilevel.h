@@ -482,13 +482,13 @@ private:
   /// Levels 0..MaxLevels: set up, SolveLevel, EndSweeps, RefineLevel, the next sigma.
   bool RunLevels(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
   /// SolveLevel, solved again with the surface kept off itself (SelfContact) when its sweeps
-  /// made it cross itself; returns SolveLevel's stop.
+  /// made it cross itself (a front level: SolveFrontLevel); returns SolveLevel's stop.
   bool SolveLevelKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
-  /// A front level of a surface already kept apart: SolveLevel, its moves undone (and no
-  /// front level after it) when they made the surface cross itself or an object collapse;
-  /// returns SolveLevel's stop, but for such a collapse.
-  bool SolveFrontLevelOfKeptApart(
+  /// A front level: SolveLevel, its moves undone (and no front level after it) when they made
+  /// the surface cross itself or an object collapse; returns SolveLevel's stop, but for such a
+  /// collapse.
+  bool SolveFrontLevel(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// The schedule's last level (before any front levels): sigma at its floor with the
   /// hierarchical sigma, or level MaxLevels.

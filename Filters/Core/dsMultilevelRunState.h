@@ -63,8 +63,8 @@ struct MultilevelSolver::RunState
   /// A level's sweeps made the surface cross itself: from that level on, its parts are kept
   /// apart (SolveLevelKeptApart).
   bool KeepApart = false;
-  /// A front level made such a surface cross itself or turned an object inside out: its moves
-  /// were undone and no front level follows (SolveFrontLevelOfKeptApart).
+  /// A front level made the surface cross itself or turned an object inside out: its moves were
+  /// undone and no front level follows (SolveFrontLevel).
   bool FrontCrossed = false;
 };
 } // namespace dsurf

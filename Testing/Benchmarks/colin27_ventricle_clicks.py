@@ -26,7 +26,7 @@ CLICKS = os.path.join(here, "..", "..", "Examples", "colin27_ventricle_clicks.cs
 
 def solve_clicks(plugin):
     """Yields, per click of CLICKS: its centre, range (None without one), seconds, vertices,
-    volume (ml), SelfIntersections and FrontLevels."""
+    volume (ml), SelfIntersections, FrontLevels and the surface (a vtkPolyData)."""
     demo.load_plugin(plugin)
     image = demo.nifti_source(ds_scoring.HEADS["colin27"]["image"])
     image.UpdatePipeline()
@@ -47,7 +47,8 @@ def solve_clicks(plugin):
         yield {"centre": centre, "range": used.GetTuple2(0) if used else None, "seconds": seconds,
                "vertices": poly.GetNumberOfPoints(),
                "volume": ds_scoring._volume(poly) / 1000.0 if poly.GetNumberOfPoints() else 0.0,
-               "self_intersections": value("SelfIntersections"), "front_levels": value("FrontLevels")}
+               "self_intersections": value("SelfIntersections"), "front_levels": value("FrontLevels"),
+               "surface": poly}
         for source in (surface, seed, point):
             simple.Delete(source)
 
