@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The separable Gaussian G_sigma of the scale space (docs/METHOD.md §2, §6 item 6, §6c):
-// plain C++, used by dsScaleSpace.cxx only.
+// plain C++, used by the scale space (dsScaleSpace.cxx, dsLocalPotential.cxx) and its slabs and
+// pieces (dsSmoothSlabs.cxx, dsPieceGaussian.cxx and their kin).
 //
 // Along each axis, with s = sigma in voxels of that axis:
 //   s < 3:   the sampled Gaussian exp(-k^2 / 2 s^2), |k| <= ceil(4 s), normalised to unit sum
