@@ -19,8 +19,8 @@
 
 namespace dsurf
 {
-// The helpers of this file are in scalespace, those dsLocalPotential.cxx shares declared in
-// dsScaleSpaceKernels.h.
+// The helpers dsLocalPotential.cxx shares are declared in dsScaleSpaceKernels.h, namespace
+// scalespace; the others are this file's own.
 using namespace scalespace;
 
 bool ForceField::SampleForce(const double x[3], double f[3]) const
@@ -69,7 +69,7 @@ double ForceField::SamplePotential(const double x[3]) const
                                  : SampleVolume(this->Potential.data(), this->Geometry, x, nullptr);
 }
 
-namespace scalespace
+namespace
 {
 bool Validate(const ImageGeometry& g, double sigma, std::string* error)
 {
@@ -175,9 +175,9 @@ void ForEachVoxelSlice(const int dims[3], Body&& body)
       }
     });
 }
-} // namespace scalespace
+} // namespace
 
-namespace scalespace
+namespace
 {
 // g <- g / (G_2sigma * g + floor) in place (EdgeNormalization::Local); `scratch` holds one
 // volume. Returns the new maximum (on a piece of a distributed image, that of every piece:
@@ -281,7 +281,11 @@ long long CountNonFinite(const ImageView& image)
   return bad;
 }
 
-/// Why ComputeScaleSpaceForceInto cannot run on these inputs; empty when it can.
+} // namespace
+
+// Shared with dsLocalPotential.cxx (dsScaleSpaceKernels.h).
+namespace scalespace
+{
 std::string CheckForceInputs(const ImageView& image, const ScaleSpaceParameters& parameters,
   const float* potential, const float* force)
 {
@@ -308,6 +312,10 @@ std::string CheckForceInputs(const ImageView& image, const ScaleSpaceParameters&
   }
   return std::string();
 }
+} // namespace scalespace
+
+namespace
+{
 
 /// The largest of a row's g^2 (`squares`, the row j of a grid nx wide) over the rows and
 /// columns [MaximumBegin, MaximumEnd) of `parameters` (a piece's own voxels), 0 outside them.
@@ -432,8 +440,11 @@ EdgeStatistics EdgeStatisticsOf(const float* smooth, const int dims[3],
   return stats;
 }
 
-/// The gains of P = -(Edge g + Image s + Offset) (docs/METHOD.md §2, with the optional
-/// normalisation of both terms), g divided by gNorm when normalised.
+} // namespace
+
+// Shared with dsLocalPotential.cxx (dsScaleSpaceKernels.h).
+namespace scalespace
+{
 PotentialGains GainsOf(
   const EdgeStatistics& stats, double gNorm, const ScaleSpaceParameters& parameters)
 {
@@ -450,6 +461,10 @@ PotentialGains GainsOf(
   }
   return gains;
 }
+} // namespace scalespace
+
+namespace
+{
 
 /// The index-space gradient gi (Diff) and Hessian H (row-major: SecondDiff on the diagonal,
 /// MixedDiff off it) of `v` at grid position p. Inside the grid the same arithmetic without
@@ -578,9 +593,11 @@ void CombinePotential(float* potential, const float* smooth, float* scratch, con
     });
 }
 
-/// G_sigma * f of `image` into `smooth`: an image of another type (or a box of a larger one)
-/// is converted there first and smoothed in place, with the same result; on a piece of a
-/// distributed image by `pieceSmooth` (ScaleSpaceParameters::Smooth). In the caller's SMP scope.
+} // namespace
+
+// Shared with dsLocalPotential.cxx (dsScaleSpaceKernels.h).
+namespace scalespace
+{
 void SmoothImage(const ImageView& image, const double sigmaVoxels[3], float* smooth,
   const std::function<void(float*, const double*)>& pieceSmooth)
 {
@@ -601,7 +618,6 @@ void SmoothImage(const ImageView& image, const double sigmaVoxels[3], float* smo
   }
 }
 
-/// sigma in voxels along each axis.
 void SigmaVoxels(double sigma, const ImageGeometry& geometry, double sv[3])
 {
   for (int a = 0; a < 3; ++a)
@@ -610,12 +626,15 @@ void SigmaVoxels(double sigma, const ImageGeometry& geometry, double sv[3])
   }
 }
 
-/// The local edge normalisation asked for P alone (ScaleSpaceParameters::ComputeForce).
 bool PotentialOnly(const ScaleSpaceParameters& parameters)
 {
   return !parameters.ComputeForce && parameters.NormalizePotential &&
     parameters.EdgeNormalization == EdgeNormalization::Local;
 }
+} // namespace scalespace
+
+namespace
+{
 
 /// P and -grad P with the local edge normalisation (EdgeNormalization::Local), in the caller's
 /// SMP scope: P = -(Edge g / (G_2sigma * g + floor) + ...) and -grad P by central differences
@@ -650,7 +669,7 @@ void LocallyNormalisedField(const ImageView& image, const ScaleSpaceParameters& 
         });
     });
 }
-} // namespace scalespace
+} // namespace
 
 //------------------------------------------------------------------------------
 bool SmoothGaussian(float* volume, const ImageGeometry& geometry, double sigma, int numberOfThreads,
