@@ -657,11 +657,18 @@ bool MultilevelSolver::SolveFrontLevel(
   const int crossingBefore = CountSelfIntersections(mesh);
   const bool stop = this->SolveLevel(image, mesh, state, rec);
   const bool collapsed = !this->Collapse.empty();
-  if (collapsed || CountSelfIntersections(mesh) > crossingBefore)
+  const int crossingAfter = collapsed ? crossingBefore : CountSelfIntersections(mesh);
+  if (collapsed || crossingAfter > crossingBefore)
   {
     mesh.Points = start;
     state.FrontCrossed = true;
     this->Collapse.clear();
+    this->Warnings.push_back("level " + std::to_string(rec.Level) +
+      ", which followed thin parts left behind, was undone and no such level follows: its moves " +
+      (collapsed ? std::string("turned an object inside out")
+                 : "made the surface cross itself (" + std::to_string(crossingAfter) +
+            " intersecting pairs of triangles, " + std::to_string(crossingBefore) + " before it)") +
+      " (docs/METHOD.md §9.3)");
     return stop && !collapsed;
   }
   return stop;

@@ -482,7 +482,8 @@ private:
   /// Levels 0..MaxLevels: set up, SolveLevel, EndSweeps, RefineLevel, the next sigma.
   bool RunLevels(const ImageView& image, TriangleMesh& mesh, RunState& state, std::string* error);
   /// SolveLevel, solved again with the surface kept off itself (SelfContact) when its sweeps
-  /// made it cross itself (a front level: SolveFrontLevel); returns SolveLevel's stop.
+  /// made it cross itself; a front level is undone instead (SolveFrontLevel). Returns
+  /// SolveLevel's stop.
   bool SolveLevelKeptApart(
     const ImageView& image, TriangleMesh& mesh, RunState& state, LevelRecord& rec);
   /// A front level: SolveLevel, its moves undone (and no front level after it) when they made
