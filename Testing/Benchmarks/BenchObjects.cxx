@@ -14,9 +14,11 @@
 //                 RegionWeight 1 and IntensityRange 62 130 (the README's click); the brain
 //                 mask (ch2bet.nii.gz > 0); one row of medians and worst values
 //
-//   BenchObjects [--wm-clicks N] [--verbose] [--write DIR] [CASE ...]
+//   BenchObjects [--wm-clicks N] [--max-sweeps-per-level N] [--verbose] [--write DIR] [CASE ...]
 // CASE: a part of a case's name (e.g. `spine`, `caudate`); none: every case. --wm-clicks: the
-// first N white-matter clicks only; --verbose: a row per white-matter click; --write: each
+// first N white-matter clicks only; --max-sweeps-per-level: the filter's MaxSweepsPerLevel for
+// every case (docs/METHOD.md §9.7: what a click's first level does with more than the default's
+// 2 000); --verbose: a row per white-matter click; --write: each
 // surface as DIR/CASE_ours.vtp and DIR/CASE_threshold.vtp, its image as DIR/CASE_image.vti.
 #include "../Cxx/ObjectPhantoms.h"
 #include "../Cxx/ObjectScore.h"
@@ -65,6 +67,13 @@ std::string& WriteDirectory()
   return directory;
 }
 
+/// --max-sweeps-per-level N: the filter's MaxSweepsPerLevel for every case; 0: its default.
+int& MaxSweepsOption()
+{
+  static int sweeps = 0;
+  return sweeps;
+}
+
 void Write(vtkPolyData* surface, const std::string& name)
 {
   if (WriteDirectory().empty())
@@ -96,7 +105,9 @@ struct Pair
 Pair RunCase(const ObjectCase& c, const std::string& name)
 {
   Pair p;
-  const ClickResult click = RunOneClick(c.Image, c.Click, c.Settings);
+  ClickSettings settings = c.Settings;
+  settings.MaxSweepsPerLevel = MaxSweepsOption();
+  const ClickResult click = RunOneClick(c.Image, c.Click, settings);
   Write(click.Surface, name + "_ours");
   WriteImage(c.Image, name + "_image");
   p.Ours = Score(click.Surface, SurfaceInterior(click.Surface, c.Image), c.Reference,
@@ -403,12 +414,16 @@ int main(int argc, char* argv[])
       wmClicks = std::atoi(argv[++a]);
     else if (arg == "--write" && a + 1 < argc)
       WriteDirectory() = argv[++a];
+    else if (arg == "--max-sweeps-per-level" && a + 1 < argc)
+      MaxSweepsOption() = std::atoi(argv[++a]);
     else if (arg == "--verbose")
       verbose = true;
     else if (!arg.empty() && arg[0] == '-')
     {
-      std::fprintf(
-        stderr, "usage: %s [--wm-clicks N] [--verbose] [--write DIR] [CASE ...]\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--wm-clicks N] [--max-sweeps-per-level N] [--verbose] [--write DIR] "
+        "[CASE ...]\n",
+        argv[0]);
       return EXIT_FAILURE;
     }
     else

@@ -30,6 +30,7 @@ struct ClickSettings
   double SeedRadius = 5.0;
   double RegionWeight = -1.0;
   double IntensityRange[2] = { 0.0, 0.0 };
+  int MaxSweepsPerLevel = 0; ///< 0: the filter's default
 };
 
 struct ClickResult
@@ -65,6 +66,8 @@ inline ClickResult RunOneClick(
     filter->SetRegionWeight(settings.RegionWeight);
   if (settings.IntensityRange[0] < settings.IntensityRange[1])
     filter->SetIntensityRange(settings.IntensityRange[0], settings.IntensityRange[1]);
+  if (settings.MaxSweepsPerLevel > 0)
+    filter->SetMaxSweepsPerLevel(settings.MaxSweepsPerLevel);
   const auto t0 = std::chrono::steady_clock::now();
   filter->Update();
   ClickResult r;
