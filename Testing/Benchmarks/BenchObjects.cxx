@@ -431,6 +431,8 @@ int main(int argc, char* argv[])
   }
   std::printf("One click, every default unless said; distances: mm (horned: voxels of "
               "1 mm); threshold: the filter's range, the 6-connected component of the click\n");
+  if (MaxSweepsOption() > 0)
+    std::printf("Every case with MaxSweepsPerLevel %d (not the default)\n", MaxSweepsOption());
   Header();
   if (Wanted(filters, "spine"))
     Spine();
