@@ -45,7 +45,7 @@ namespace
 #ifndef DS_EXAMPLES_DIR
 #define DS_EXAMPLES_DIR "Examples"
 #endif
-const std::string Templates = "/usr/share/mricron/templates/";
+const std::string& Templates = MricronTemplates();
 
 /// One object: its image, reference mask and boundary, the click and how the user runs it.
 struct ObjectCase
@@ -193,23 +193,6 @@ void Horned()
     p.Ours.ReferenceMean <= 0.5 && p.Ours.ReferenceP95 <= 1.5 && p.Ours.SelfIntersections == 0);
 }
 
-std::vector<std::array<double, 3>> ReadClicks(const std::string& path)
-{
-  std::vector<std::array<double, 3>> clicks;
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line); // x,y,z
-  while (std::getline(in, line))
-  {
-    std::array<double, 3> p;
-    char comma;
-    std::istringstream row(line);
-    if (row >> p[0] >> comma >> p[1] >> comma >> p[2])
-      clicks.push_back(p);
-  }
-  return clicks;
-}
-
 /// The 5, 25, 50, 75 and 95 % quantiles of `t1` over the voxels `in` holds that are not CSF
 /// (60 or brighter, as the references), and their count.
 std::vector<double> Quantiles(vtkDataArray* t1, const std::function<bool(vtkIdType)>& in)
@@ -272,7 +255,6 @@ void Caudates(const std::vector<std::string>& filters)
     std::printf("| caudate | | missing or misaligned ch2.nii.gz / aal.nii.gz (mricron-data) |\n");
     return;
   }
-  vtkDataArray* t1 = head->GetPointData()->GetScalars();
   for (const auto& click : ReadClicks(DS_EXAMPLES_DIR "/colin27_caudate_clicks.csv"))
   {
     const int label = click[0] < 0 ? 71 : 72;
@@ -281,8 +263,7 @@ void Caudates(const std::vector<std::string>& filters)
       continue;
     ObjectCase c;
     c.Image = head;
-    c.Reference = MaskOf(aal,
-      [t1, label](double l, vtkIdType v) { return l == label && t1->GetComponent(v, 0) >= 60.0; });
+    c.Reference = NucleusWithoutCSF(aal, head, label);
     c.ReferenceBoundary = MaskBoundary(c.Reference, head);
     c.Click = click;
     c.Settings.SeedRadius = 3.0;

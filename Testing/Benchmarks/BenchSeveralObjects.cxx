@@ -127,7 +127,7 @@ Case Engine()
 
 bool Nuclei(Case& c)
 {
-  const std::string templates = "/usr/share/mricron/templates/";
+  const std::string& templates = MricronTemplates();
   c.Name = "nuclei";
   c.Unit = "mm";
   c.Phantom.Phantom.Image = ReadNifti(templates + "ch2.nii.gz");
@@ -135,21 +135,7 @@ bool Nuclei(Case& c)
   if (c.Phantom.Phantom.Image->GetNumberOfPoints() == 0 ||
     !SameGrid(c.Phantom.Phantom.Image, c.Phantom.Phantom.Label))
     return false;
-  std::ifstream in(DS_EXAMPLES_DIR "/colin27_nuclei_clicks.csv");
-  std::string line;
-  std::getline(in, line); // x,y,z,ObjectId
-  while (std::getline(in, line))
-  {
-    Point3 p;
-    int id = 0;
-    char comma;
-    std::istringstream row(line);
-    if (row >> p[0] >> comma >> p[1] >> comma >> p[2] >> comma >> id)
-    {
-      c.Points.push_back(p);
-      c.Ids.push_back(id);
-    }
-  }
+  c.Points = ReadClicks(DS_EXAMPLES_DIR "/colin27_nuclei_clicks.csv", &c.Ids);
   c.Phantom.Labels = Distinct(c.Ids); // the ObjectIds are the AAL labels
   vtkDataArray* t1 = c.Phantom.Phantom.Image->GetPointData()->GetScalars();
   c.Keep = [t1](double, vtkIdType v) { return t1->GetComponent(v, 0) >= 60.0; };
