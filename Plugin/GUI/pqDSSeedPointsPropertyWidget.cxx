@@ -3,6 +3,7 @@
 
 #include "pqDSPickKey.h"
 #include "pqRenderView.h"
+#include "vtkRenderer.h"
 #include "vtkSMNewWidgetRepresentationProxy.h"
 #include "vtkSMPropertyGroup.h"
 #include "vtkSMPropertyHelper.h"
@@ -25,6 +26,36 @@
 namespace
 {
 const int ObjectColumn = 3;
+
+/// The world point drawn at display position (x, y): the depth buffer there, back through the
+/// camera. An image shown as a Slice representation is drawn by a mapper that ParaView's surface
+/// selection (ConvertDisplayToPointOnSurface) does not see.
+bool DepthPick(pqRenderView* view, int x, int y, double world[3])
+{
+  vtkRenderer* renderer = view->getRenderViewProxy()->GetRenderer();
+  if (!renderer)
+  {
+    return false;
+  }
+  const double z = renderer->GetZ(x, y);
+  if (!(z < 1.0))
+  {
+    return false;
+  }
+  renderer->SetDisplayPoint(x, y, z);
+  renderer->DisplayToWorld();
+  double point[4];
+  renderer->GetWorldPoint(point);
+  if (point[3] == 0.0)
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    world[a] = point[a] / point[3];
+  }
+  return true;
+}
 
 QTableWidgetItem* NumberItem(double value)
 {
@@ -274,6 +305,10 @@ void pqDSSeedPointsPropertyWidget::pickAt(int x, int y, bool snapToMeshPoint)
   double world[3], normal[3];
   if (view->getRenderViewProxy()->ConvertDisplayToPointOnSurface(
         position, world, normal, snapToMeshPoint))
+  {
+    this->addPoint(world[0], world[1], world[2]);
+  }
+  else if (DepthPick(view, x, y, world))
   {
     this->addPoint(world[0], world[1], world[2]);
   }

@@ -8,7 +8,8 @@
  * - P with the cursor over the render view adds the point of the surface under the cursor (a
  *   slice, a volume's outline, any surface shown), Ctrl+P the nearest mesh point of it: the keys
  *   and the pick of ParaView's own point picking (pqPointPickingHelper), active while this panel
- *   is shown (pqDSPickKey);
+ *   is shown (pqDSPickKey); where that selection finds nothing, the point drawn there, from the
+ *   depth buffer (an image shown as a Slice representation, which the selection does not see);
  * - the new point seeds the object set in the "object" spin box (the ObjectId column);
  * - the table shows x, y, z and object per point; cells can be edited; Delete (or the remove
  *   button) removes the selected rows.

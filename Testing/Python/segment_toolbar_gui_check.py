@@ -1,0 +1,53 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The check of ctest Python.gui_segment_toolbar (gui_segment_toolbar.py explains the GUI part):
+run with pvpython after the client saved DS_TEST_OUTPUT/gui_segment_toolbar.pvsm.
+
+- the toolbar's button built the chain on the active image: Seed Points -> Delaunay Seed Surface
+  -> Deformable Surface, the image its Input, and showed the image as a Slice (it was an outline);
+- the one P over the ball's centre placed one point there, within half a voxel (0.5 mm);
+- Deformable Surface, every default as the button left it, grows it into one closed surface on
+  the ball: the centre of its bounding box within 0.5 mm of the ball's centre, the radius of a
+  ball of its volume within 0.5 mm of the ball's radius, no self-intersecting pair."""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paraview import servermanager, simple  # noqa: E402
+from vtkmodules.vtkFiltersCore import vtkMassProperties  # noqa: E402
+
+import ds_gui  # noqa: E402
+
+check = ds_gui.Check()
+setup = ds_gui.load_state("gui_segment_toolbar", check)
+centre, radius = setup["centre"], setup["radius"]
+image = simple.FindSource("ball")
+points = simple.FindSource("SeedPoints1")
+seed = simple.FindSource("DelaunaySeedSurface1")
+surface = simple.FindSource("DeformableSurface1")
+if not check(None not in (image, points, seed, surface),
+             "the state holds the ball, SeedPoints1, DelaunaySeedSurface1 and DeformableSurface1"):
+    check.exit()
+check(seed.Input.GetXMLName() == "SeedPoints" and surface.Input.GetXMLName() == "XMLImageDataReader"
+      and surface.InitialSurface.GetXMLName() == "DelaunaySeedSurface",
+      "the chain: Seed Points -> Delaunay Seed Surface -> Deformable Surface, the image its Input")
+shown = simple.GetDisplayProperties(image, simple.GetActiveView())
+check(shown.Representation == "Slice", "the image is shown as a Slice (%s)" % shown.Representation)
+placed = list(points.Points)
+check(len(placed) == 3 and math.dist(placed, [centre[0], centre[1], centre[2]]) <= 0.5,
+      "one point placed, within 0.5 mm of the ball's centre (%s)" % placed)
+grown = servermanager.Fetch(surface, idx=0)
+mass = vtkMassProperties()
+mass.SetInputData(grown)
+mass.Update()
+bounds = grown.GetBounds()
+middle = [0.5 * (bounds[2 * a] + bounds[2 * a + 1]) for a in range(3)]
+equivalent = (3.0 * mass.GetVolume() / (4.0 * math.pi)) ** (1.0 / 3.0)
+intersecting = grown.GetFieldData().GetArray("SelfIntersections")
+check(grown.GetNumberOfPoints() > 100 and math.dist(middle, centre) <= 0.5
+      and abs(equivalent - radius) <= 0.5,
+      "the surface on the ball: bounding box centre %.2f mm from its centre, radius of its volume "
+      "%.2f mm (the ball's %.1f), %d vertices" % (math.dist(middle, centre), equivalent, radius,
+                                                  grown.GetNumberOfPoints()))
+check(intersecting is not None and intersecting.GetValue(0) == 0, "no self-intersecting pair")
+check.exit()
