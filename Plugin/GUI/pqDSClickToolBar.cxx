@@ -7,16 +7,22 @@
 #include "pqObjectBuilder.h"
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
-#include "pqRenderView.h"
 #include "pqServer.h"
 #include "pqUndoStack.h"
+#include "pqView.h"
+#include "vtkNew.h"
 #include "vtkPVDataInformation.h"
+#include "vtkSMParaViewPipelineControllerWithRendering.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMRepresentationProxy.h"
+#include "vtkSMSessionProxyManager.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSMViewProxy.h"
 
 #include <QAction>
 #include <QDebug>
+#include <QPointer>
 
 #include <cstring>
 
@@ -34,6 +40,68 @@ vtkSMProxy* OutlineShown(pqOutputPort* port, pqView* view)
   const char* type = vtkSMPropertyHelper(proxy, "Representation", true).GetAsString();
   return type && std::strcmp(type, "Outline") == 0 ? proxy : nullptr;
 }
+
+/// Whether the server knows the DeformableSurface plugin's proxies (the base plugin is loaded).
+bool FiltersLoaded(pqServer* server)
+{
+  vtkSMSessionProxyManager* proxies = server->proxyManager();
+  return proxies->GetPrototypeProxy("sources", "SeedPoints") &&
+    proxies->GetPrototypeProxy("filters", "DelaunaySeedSurface") &&
+    proxies->GetPrototypeProxy("filters", "DeformableSurface");
+}
+
+/// Delaunay Seed Surface on `points` and Deformable Surface on it and `image`, shown in `view`
+/// as Apply would show them, once `points` has been applied with a point.
+class ChainOnFirstPoints : public QObject
+{
+public:
+  ChainOnFirstPoints(pqPipelineSource* points, pqOutputPort* image, pqView* view)
+    : QObject(points)
+    , Points(points)
+    , Image(image)
+    , View(view)
+  {
+    QObject::connect(points, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
+      &ChainOnFirstPoints::onUpdated);
+  }
+
+private:
+  void onUpdated()
+  {
+    vtkPVDataInformation* info = this->Points->getOutputPort(0)->getDataInformation();
+    if (!this->Image || !info || info->GetNumberOfPoints() < 1)
+    {
+      return; // applied without a point yet: wait for the next Apply
+    }
+    QObject::disconnect(this->Points, nullptr, this, nullptr);
+    BEGIN_UNDO_SET(tr("Deformable Surface on the seed points"));
+    pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
+    pqPipelineSource* seed = builder->createFilter("filters", "DelaunaySeedSurface", this->Points);
+    QMap<QString, QList<pqOutputPort*>> inputs;
+    inputs["Input"].push_back(this->Image);
+    inputs["InitialSurface"].push_back(seed->getOutputPort(0));
+    pqPipelineSource* surface =
+      builder->createFilter("filters", "DeformableSurface", inputs, this->Image->getServer());
+    if (this->View)
+    {
+      vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
+      controller->Show(surface->getSourceProxy(), 0, this->View->getViewProxy());
+    }
+    seed->setModifiedState(pqProxy::UNMODIFIED);
+    surface->setModifiedState(pqProxy::UNMODIFIED);
+    END_UNDO_SET();
+    if (this->View)
+    {
+      this->View->render();
+    }
+    pqActiveObjects::instance().setActiveSource(surface);
+    this->deleteLater();
+  }
+
+  pqPipelineSource* Points;
+  QPointer<pqOutputPort> Image;
+  QPointer<pqView> View;
+};
 }
 
 pqDSClickToolBar::pqDSClickToolBar(QWidget* parent)
@@ -42,9 +110,9 @@ pqDSClickToolBar::pqDSClickToolBar(QWidget* parent)
   this->setObjectName("DeformableSurfaceToolBar");
   QAction* segment = this->addAction(tr("Segment from points"));
   segment->setObjectName("actionDSSegmentFromPoints");
-  segment->setToolTip(tr("Seed Points -> Delaunay Seed Surface -> Deformable Surface on the "
-                         "active image: press P over the object (one click) or around it "
-                         "(picks), then Apply."));
+  segment->setToolTip(tr("Seed Points on the active image: press P over the object (one click) "
+                         "or around it (picks), then Apply: Delaunay Seed Surface and Deformable "
+                         "Surface follow."));
   // The test player finds a toolbar button by its object name (pqEventPlayer).
   if (QWidget* button = this->widgetForAction(segment))
   {
@@ -64,33 +132,23 @@ void pqDSClickToolBar::segmentActiveImage()
                   "reader first and select it)";
     return;
   }
-  // One step of Edit > Undo takes the whole chain (and the representation's change) back.
-  BEGIN_UNDO_SET(tr("Segment from points"));
-  pqServer* server = image->getServer();
-  pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
-  pqPipelineSource* points = builder->createSource("sources", "SeedPoints", server);
-  pqPipelineSource* seed =
-    points ? builder->createFilter("filters", "DelaunaySeedSurface", points) : nullptr;
-  if (!seed)
+  if (!FiltersLoaded(image->getServer()))
   {
-    if (points)
-    {
-      builder->destroy(points);
-    }
-    END_UNDO_SET();
     qWarning() << "Segment from points: the DeformableSurface plugin's filters are not loaded "
                   "(Tools > Manage Plugins)";
     return;
   }
-  QMap<QString, QList<pqOutputPort*>> inputs;
-  inputs["Input"].push_back(image);
-  inputs["InitialSurface"].push_back(seed->getOutputPort(0));
-  builder->createFilter("filters", "DeformableSurface", inputs, server);
-  if (vtkSMProxy* outline = OutlineShown(image, active.activeView()))
+  // One step of Edit > Undo takes the points (and the representation's change) back.
+  BEGIN_UNDO_SET(tr("Segment from points"));
+  pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
+  pqPipelineSource* points = builder->createSource("sources", "SeedPoints", image->getServer());
+  pqView* view = active.activeView();
+  if (vtkSMProxy* outline = OutlineShown(image, view))
   {
     vtkSMRepresentationProxy::SetRepresentationType(outline, "Slice");
-    active.activeView()->render();
+    view->render();
   }
   END_UNDO_SET();
+  new ChainOnFirstPoints(points, image, view);
   active.setActiveSource(points);
 }

@@ -5,12 +5,15 @@
  *
  * ITK-SNAP and 3D Slicer place a seed with one click and run their snake from it. Here the chain
  * is three proxies: Seed Points -> Delaunay Seed Surface -> Deformable Surface (the image as its
- * Input). The button "Segment from points" builds that chain on the active source, which must
- * give an image, every property at its default, shows the image as a Slice in the active render
- * view when it is shown as an outline (a surface for the P key), and makes Seed Points active,
- * so its panel takes P over the view. One P (a click: a sphere grown to the object) or several
- * (picks around it), then Apply applies the three. On a source that gives no image it does
- * nothing but say so in the Output Messages.
+ * Input). The button "Segment from points" starts it on the active source, which must give an
+ * image: it adds Seed Points, shows the image as a Slice in the active render view when it is
+ * shown as an outline (a surface for the P key), and makes Seed Points active, so its panel
+ * takes P over the view. The first Apply that gives Seed Points a point then adds Delaunay Seed
+ * Surface and Deformable Surface, every property at their defaults, and shows the surface: one P
+ * (a click: a sphere grown to the object) or several (picks around it). The two filters come
+ * after the points because a Delaunay Seed Surface applied together with still empty Seed Points
+ * ran on no points and logged an error. On a source that gives no image, or without the
+ * DeformableSurface plugin's filters, it does nothing but say so in the Output Messages.
  *
  * From a fresh client with the plugins loaded, the one-click workflow is then five actions: open
  * the volume, Apply, the button, P over the object, Apply (docs/GUI.md).

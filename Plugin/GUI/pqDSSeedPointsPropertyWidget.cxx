@@ -2,7 +2,9 @@
 #include "pqDSSeedPointsPropertyWidget.h"
 
 #include "pqDSPickKey.h"
+#include "pqDataRepresentation.h"
 #include "pqRenderView.h"
+#include "vtkPVDataInformation.h"
 #include "vtkRenderer.h"
 #include "vtkSMNewWidgetRepresentationProxy.h"
 #include "vtkSMPropertyGroup.h"
@@ -27,9 +29,39 @@ namespace
 {
 const int ObjectColumn = 3;
 
+/// Whether `p` lies within the bounds of a dataset the view shows (not on the orientation axes,
+/// a widget's handle or the background).
+bool OnShownData(pqRenderView* view, const double p[3])
+{
+  for (pqRepresentation* r : view->getRepresentations())
+  {
+    auto* shown = qobject_cast<pqDataRepresentation*>(r);
+    vtkPVDataInformation* info =
+      shown && shown->isVisible() ? shown->getInputDataInformation() : nullptr;
+    const double* b = info ? info->GetBounds() : nullptr;
+    if (!b)
+    {
+      continue;
+    }
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double slack = 1e-6 * (b[2 * a + 1] - b[2 * a] + 1.0);
+      inside = inside && p[a] >= b[2 * a] - slack && p[a] <= b[2 * a + 1] + slack;
+    }
+    if (inside)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 /// The world point drawn at display position (x, y): the depth buffer there, back through the
-/// camera. An image shown as a Slice representation is drawn by a mapper that ParaView's surface
-/// selection (ConvertDisplayToPointOnSurface) does not see.
+/// camera, when it lies on a dataset the view shows. An image shown as a Slice representation is
+/// drawn by a mapper that ParaView's surface selection (ConvertDisplayToPointOnSurface) does not
+/// see. The depth buffer holds what the client rendered: with remote rendering (client and
+/// server) it holds no geometry of the server's and nothing is picked this way.
 bool DepthPick(pqRenderView* view, int x, int y, double world[3])
 {
   vtkRenderer* renderer = view->getRenderViewProxy()->GetRenderer();
@@ -54,7 +86,7 @@ bool DepthPick(pqRenderView* view, int x, int y, double world[3])
   {
     world[a] = point[a] / point[3];
   }
-  return true;
+  return OnShownData(view, world);
 }
 
 QTableWidgetItem* NumberItem(double value)

@@ -9,7 +9,9 @@
  *   slice, a volume's outline, any surface shown), Ctrl+P the nearest mesh point of it: the keys
  *   and the pick of ParaView's own point picking (pqPointPickingHelper), active while this panel
  *   is shown (pqDSPickKey); where that selection finds nothing, the point drawn there, from the
- *   depth buffer (an image shown as a Slice representation, which the selection does not see);
+ *   depth buffer, if it lies on a dataset shown (an image shown as a Slice representation, which
+ *   the selection does not see; Ctrl+P does not snap there, and with remote rendering the
+ *   client's depth buffer holds nothing to pick);
  * - the new point seeds the object set in the "object" spin box (the ObjectId column);
  * - the table shows x, y, z and object per point; cells can be edited; Delete (or the remove
  *   button) removes the selected rows.

@@ -201,7 +201,7 @@ std::vector<double> Quantiles(vtkDataArray* t1, const std::function<bool(vtkIdTy
   for (vtkIdType v = 0; v < t1->GetNumberOfTuples(); ++v)
   {
     const double value = t1->GetComponent(v, 0);
-    if (value >= 60.0 && in(v))
+    if (value >= Colin27CSFBelow && in(v))
       values.push_back(value);
   }
   std::sort(values.begin(), values.end());
@@ -266,7 +266,7 @@ void Caudates(const std::vector<std::string>& filters)
     c.Reference = NucleusWithoutCSF(aal, head, label);
     c.ReferenceBoundary = MaskBoundary(c.Reference, head);
     c.Click = click;
-    c.Settings.SeedRadius = 3.0;
+    c.Settings.SeedRadius = CaudateSeedRadius;
     c.FallbackRange[0] = 75.0; // grey matter between CSF and white matter
     c.FallbackRange[1] = 100.0;
     const Pair p = RunCase(c, name);
@@ -299,12 +299,10 @@ void WhiteMatter(int limit, bool verbose)
   c.Image = head;
   c.Reference = MaskOf(brain, [](double v, vtkIdType) { return v > 0; });
   c.ReferenceBoundary = MaskBoundary(c.Reference, head);
-  c.ReferenceStride = 8; // ~45k of the boundary's 355k points: the statistics are the same
+  c.ReferenceStride = BrainBoundaryStride;
   c.Settings.RegionWeight = 1.0;
-  c.Settings.IntensityRange[0] = 62.0;
-  c.Settings.IntensityRange[1] = 130.0;
-  c.FallbackRange[0] = 62.0;
-  c.FallbackRange[1] = 130.0;
+  c.Settings.IntensityRange[0] = c.FallbackRange[0] = Colin27BrainRange[0];
+  c.Settings.IntensityRange[1] = c.FallbackRange[1] = Colin27BrainRange[1];
   std::vector<std::array<double, 3>> clicks = ReadClicks(DS_EXAMPLES_DIR "/colin27_wm_clicks.csv");
   if (limit > 0 && static_cast<int>(clicks.size()) > limit)
     clicks.resize(limit);

@@ -138,7 +138,7 @@ bool Nuclei(Case& c)
   c.Points = ReadClicks(DS_EXAMPLES_DIR "/colin27_nuclei_clicks.csv", &c.Ids);
   c.Phantom.Labels = Distinct(c.Ids); // the ObjectIds are the AAL labels
   vtkDataArray* t1 = c.Phantom.Phantom.Image->GetPointData()->GetScalars();
-  c.Keep = [t1](double, vtkIdType v) { return t1->GetComponent(v, 0) >= 60.0; };
+  c.Keep = [t1](double, vtkIdType v) { return NotCSF(t1, v); };
   return true;
 }
 

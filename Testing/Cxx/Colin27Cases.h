@@ -22,6 +22,23 @@
 
 namespace dsobjects
 {
+/// Colin27's T1 below this is CSF: the AAL labels of the deep nuclei take in 14-18 % of it from
+/// the ventricles beside them, so their references leave it out (docs/RESULTS.md).
+constexpr double Colin27CSFBelow = 60.0;
+/// The README's click range for the brain, read off the image (docs/RESULTS.md).
+constexpr double Colin27BrainRange[2] = { 62.0, 130.0 };
+/// The seed sphere of a caudate click (mm): the default 5 mm reaches past a caudate's head.
+constexpr double CaudateSeedRadius = 3.0;
+/// Every how many points of the brain mask's boundary (355 000) are measured: ~45 000 give the
+/// same statistics.
+constexpr int BrainBoundaryStride = 8;
+
+/// Voxels of `t1` (Colin27) that are not CSF (Colin27CSFBelow).
+inline bool NotCSF(vtkDataArray* t1, vtkIdType v)
+{
+  return t1->GetComponent(v, 0) >= Colin27CSFBelow;
+}
+
 /// Where Debian's mricron-data puts Colin27 (ch2), its brain mask (ch2bet) and the AAL labels.
 inline const std::string& MricronTemplates()
 {
@@ -56,14 +73,12 @@ inline bool SameGrid(vtkImageData* a, vtkImageData* b)
   return AxisAligned(a) && AxisAligned(b);
 }
 
-/// AAL label `label` of `aal` without its voxels darker than 60 in `t1` (the ventricles' CSF:
-/// 14-18 % of each caudate's label).
+/// AAL label `label` of `aal` without its CSF in `t1` (NotCSF).
 inline std::vector<unsigned char> NucleusWithoutCSF(vtkImageData* aal, vtkImageData* t1, int label)
 {
   vtkDataArray* values = t1->GetPointData()->GetScalars();
-  return MaskOf(aal,
-    [values, label](double l, vtkIdType v)
-    { return l == label && values->GetComponent(v, 0) >= 60.0; });
+  return MaskOf(
+    aal, [values, label](double l, vtkIdType v) { return l == label && NotCSF(values, v); });
 }
 
 /// The clicks of a CSV with the header x,y,z (and, with `ids`, a fourth column ObjectId).

@@ -3,7 +3,8 @@
 run with pvpython after the client saved DS_TEST_OUTPUT/gui_segment_toolbar.pvsm.
 
 - the toolbar's button built the chain on the active image: Seed Points -> Delaunay Seed Surface
-  -> Deformable Surface, the image its Input, and showed the image as a Slice (it was an outline);
+  -> Deformable Surface, the image its Input, showed the image as a Slice (it was an outline),
+  and, after the one Apply, the grown surface;
 - the one P over the ball's centre placed one point there, within half a voxel (0.5 mm);
 - Deformable Surface, every default as the button left it, grows it into one closed surface on
   the ball: the centre of its bounding box within 0.5 mm of the ball's centre, the radius of a
@@ -33,6 +34,10 @@ check(seed.Input.GetXMLName() == "SeedPoints" and surface.Input.GetXMLName() == 
       "the chain: Seed Points -> Delaunay Seed Surface -> Deformable Surface, the image its Input")
 shown = simple.GetDisplayProperties(image, simple.GetActiveView())
 check(shown.Representation == "Slice", "the image is shown as a Slice (%s)" % shown.Representation)
+view = simple.GetActiveView()
+representation = servermanager.GetRepresentation(surface, view)
+check(representation is not None and representation.Visibility == 1,
+      "the client shows the grown surface after the one Apply")
 placed = list(points.Points)
 check(len(placed) == 3 and math.dist(placed, [centre[0], centre[1], centre[2]]) <= 0.5,
       "one point placed, within 0.5 mm of the ball's centre (%s)" % placed)
