@@ -23,6 +23,7 @@
 #include <QAction>
 #include <QDebug>
 #include <QPointer>
+#include <QTimer>
 
 #include <cstring>
 
@@ -50,8 +51,9 @@ bool FiltersLoaded(pqServer* server)
     proxies->GetPrototypeProxy("filters", "DeformableSurface");
 }
 
-/// Delaunay Seed Surface on `points` and Deformable Surface on it and `image`, shown in `view`
-/// as Apply would show them, once `points` has been applied with a point.
+/// Delaunay Seed Surface on `points` and Deformable Surface on it and `image`, the surface shown
+/// in `view` (the image's slice left shown, for more points), once `points` has been applied with
+/// a point. Once only: filters undone afterwards are added again from the Filters menu.
 class ChainOnFirstPoints : public QObject
 {
 public:
@@ -74,19 +76,47 @@ private:
       return; // applied without a point yet: wait for the next Apply
     }
     QObject::disconnect(this->Points, nullptr, this, nullptr);
+    // After the Apply that updated the points has finished: an undo step of its own, and no
+    // proxy added while ParaView still shows the ones it applied.
+    QTimer::singleShot(0, this, &ChainOnFirstPoints::build);
+  }
+
+  void build()
+  {
+    this->deleteLater();
+    if (!this->Image)
+    {
+      return;
+    }
     BEGIN_UNDO_SET(tr("Deformable Surface on the seed points"));
     pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
     pqPipelineSource* seed = builder->createFilter("filters", "DelaunaySeedSurface", this->Points);
-    QMap<QString, QList<pqOutputPort*>> inputs;
-    inputs["Input"].push_back(this->Image);
-    inputs["InitialSurface"].push_back(seed->getOutputPort(0));
-    pqPipelineSource* surface =
-      builder->createFilter("filters", "DeformableSurface", inputs, this->Image->getServer());
+    pqPipelineSource* surface = nullptr;
+    if (seed)
+    {
+      QMap<QString, QList<pqOutputPort*>> inputs;
+      inputs["Input"].push_back(this->Image);
+      inputs["InitialSurface"].push_back(seed->getOutputPort(0));
+      surface =
+        builder->createFilter("filters", "DeformableSurface", inputs, this->Image->getServer());
+    }
+    if (!surface)
+    {
+      if (seed)
+      {
+        builder->destroy(seed);
+      }
+      END_UNDO_SET();
+      qWarning() << "Segment from points: Delaunay Seed Surface or Deformable Surface could not be "
+                    "made (is the DeformableSurface plugin still loaded?)";
+      return;
+    }
     if (this->View)
     {
       vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
       controller->Show(surface->getSourceProxy(), 0, this->View->getViewProxy());
     }
+    // Shown, so applied: the Properties panel does not offer them to Apply again.
     seed->setModifiedState(pqProxy::UNMODIFIED);
     surface->setModifiedState(pqProxy::UNMODIFIED);
     END_UNDO_SET();
@@ -95,7 +125,6 @@ private:
       this->View->render();
     }
     pqActiveObjects::instance().setActiveSource(surface);
-    this->deleteLater();
   }
 
   pqPipelineSource* Points;

@@ -23,6 +23,7 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace
@@ -43,10 +44,14 @@ bool OnShownData(pqRenderView* view, const double p[3])
     {
       continue;
     }
+    // The depth buffer's precision, not the bounds', limits the slack: a thousandth of the
+    // bounds' diagonal (a flat image's slice lies within it).
+    const double slack = 1e-3 *
+      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+        (b[5] - b[4]) * (b[5] - b[4]));
     bool inside = true;
     for (int a = 0; a < 3; ++a)
     {
-      const double slack = 1e-6 * (b[2 * a + 1] - b[2 * a] + 1.0);
       inside = inside && p[a] >= b[2 * a] - slack && p[a] <= b[2 * a + 1] + slack;
     }
     if (inside)

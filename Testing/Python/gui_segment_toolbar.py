@@ -6,9 +6,10 @@ The scene a user has after opening a volume and Apply: a noisy ball (120 in 70, 
 radius RADIUS mm; written to DS_TEST_OUTPUT/segment_toolbar_phantom.vti and opened with the XML
 image reader), shown as ParaView shows a volume (an outline), the reader active, the view looking
 down on the image's middle slice. The client then plays gui_segment_toolbar.xml, the rest of the
-one-click workflow: the toolbar's "Segment from points" (Seed Points -> Delaunay Seed Surface ->
-Deformable Surface on the reader, the image now shown as a Slice), the mouse over the ball's
-centre and P, Apply, File > Save State: three actions after open and Apply, none typing a number.
+one-click workflow: the toolbar's "Segment from points" (Seed Points on the reader, the image now
+shown as a Slice), the mouse over the ball's centre and P, Apply (Delaunay Seed Surface and
+Deformable Surface follow the point), File > Save State: three actions after open and Apply, none
+typing a number.
 segment_toolbar_gui_check.py checks the saved state."""
 import os
 import sys

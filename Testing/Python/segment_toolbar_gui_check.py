@@ -2,9 +2,9 @@
 """The check of ctest Python.gui_segment_toolbar (gui_segment_toolbar.py explains the GUI part):
 run with pvpython after the client saved DS_TEST_OUTPUT/gui_segment_toolbar.pvsm.
 
-- the toolbar's button built the chain on the active image: Seed Points -> Delaunay Seed Surface
-  -> Deformable Surface, the image its Input, showed the image as a Slice (it was an outline),
-  and, after the one Apply, the grown surface;
+- the toolbar's button added Seed Points on the active image and showed the image as a Slice (it
+  was an outline); the one Apply with a point added Delaunay Seed Surface and Deformable Surface
+  (the image its Input) and showed the grown surface;
 - the one P over the ball's centre placed one point there, within half a voxel (0.5 mm);
 - Deformable Surface, every default as the button left it, grows it into one closed surface on
   the ball: the centre of its bounding box within 0.5 mm of the ball's centre, the radius of a
