@@ -52,8 +52,9 @@ bool FiltersLoaded(pqServer* server)
 }
 
 /// Delaunay Seed Surface on `points` and Deformable Surface on it and `image`, the surface shown
-/// in `view` (the image's slice left shown, for more points), once `points` has been applied with
-/// a point. Once only: filters undone afterwards are added again from the Filters menu.
+/// in `view` (the image's slice left shown, for more points), whenever `points` has been applied
+/// with a point and feeds no filter: after the first such Apply, and again after those filters
+/// were undone or deleted. It lives as long as `points`.
 class ChainOnFirstPoints : public QObject
 {
 public:
@@ -71,20 +72,21 @@ private:
   void onUpdated()
   {
     vtkPVDataInformation* info = this->Points->getOutputPort(0)->getDataInformation();
-    if (!this->Image || !info || info->GetNumberOfPoints() < 1)
+    if (this->Pending || !this->Image || !info || info->GetNumberOfPoints() < 1 ||
+      this->Points->getNumberOfConsumers() > 0)
     {
-      return; // applied without a point yet: wait for the next Apply
+      return; // applied without a point yet, or the chain is there
     }
-    QObject::disconnect(this->Points, nullptr, this, nullptr);
     // After the Apply that updated the points has finished: an undo step of its own, and no
     // proxy added while ParaView still shows the ones it applied.
+    this->Pending = true;
     QTimer::singleShot(0, this, &ChainOnFirstPoints::build);
   }
 
   void build()
   {
-    this->deleteLater();
-    if (!this->Image)
+    this->Pending = false;
+    if (!this->Image || this->Points->getNumberOfConsumers() > 0)
     {
       return;
     }
@@ -130,6 +132,7 @@ private:
   pqPipelineSource* Points;
   QPointer<pqOutputPort> Image;
   QPointer<pqView> View;
+  bool Pending = false;
 };
 }
 

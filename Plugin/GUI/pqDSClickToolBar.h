@@ -12,9 +12,10 @@
  * Surface and Deformable Surface, every property at their defaults, and shows the surface: one P
  * (a click: a sphere grown to the object) or several (picks around it). The two filters come
  * after the points because a Delaunay Seed Surface applied together with still empty Seed Points
- * ran on no points and logged an error. They come once: filters undone afterwards are added
- * again from the Filters menu. On a source that gives no image, or without the
- * DeformableSurface plugin's filters, it does nothing but say so in the Output Messages.
+ * ran on no points and logged an error. They come again at the next Apply of the points when
+ * they were undone or deleted (Undo and Redo of the button itself leave the points without it). On
+ * a source that gives no image, or without the DeformableSurface plugin's filters, it does nothing
+ * but say so in the Output Messages.
  *
  * From a fresh client with the plugins loaded, the one-click workflow is then five actions: open
  * the volume, Apply, the button, P over the object, Apply (docs/GUI.md).

@@ -338,6 +338,10 @@ void pqDSSeedPointsPropertyWidget::pickAt(int x, int y, bool snapToMeshPoint)
   {
     return;
   }
+  // The depth first: the surface selection renders passes of its own into the same buffers, and
+  // read after one that ran (a second P once Seed Points shows its points) it was the background.
+  double drawn[3];
+  const bool onDrawn = DepthPick(view, x, y, drawn);
   const int position[2] = { x, y };
   double world[3], normal[3];
   if (view->getRenderViewProxy()->ConvertDisplayToPointOnSurface(
@@ -345,9 +349,9 @@ void pqDSSeedPointsPropertyWidget::pickAt(int x, int y, bool snapToMeshPoint)
   {
     this->addPoint(world[0], world[1], world[2]);
   }
-  else if (DepthPick(view, x, y, world))
+  else if (onDrawn)
   {
-    this->addPoint(world[0], world[1], world[2]);
+    this->addPoint(drawn[0], drawn[1], drawn[2]);
   }
   else
   {

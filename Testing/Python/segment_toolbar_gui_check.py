@@ -8,7 +8,9 @@ run with pvpython after the client saved DS_TEST_OUTPUT/gui_segment_toolbar.pvsm
 - the one P over the ball's centre placed one point there, within half a voxel (0.5 mm);
 - Deformable Surface, every default as the button left it, grows it into one closed surface on
   the ball: the centre of its bounding box within 0.5 mm of the ball's centre, the radius of a
-  ball of its volume within 0.5 mm of the ball's radius, no self-intersecting pair."""
+  ball of its volume within 0.5 mm of the ball's radius, no self-intersecting pair;
+- Undo takes the two filters back (an undo step of their own); a second P, on the image's slice
+  with the first point shown, and Apply bring them again, on the two points."""
 import math
 import os
 import sys
@@ -55,4 +57,14 @@ check(grown.GetNumberOfPoints() > 100 and math.dist(middle, centre) <= 0.5
       "%.2f mm (the ball's %.1f), %d vertices" % (math.dist(middle, centre), equivalent, radius,
                                                   grown.GetNumberOfPoints()))
 check(intersecting is not None and intersecting.GetValue(0) == 0, "no self-intersecting pair")
+
+# Undo took the filters back, a second P and Apply brought them again.
+simple.ResetSession()
+simple.LoadState(os.path.join(ds_gui.OUT_DIR, "gui_segment_toolbar_again.pvsm"))
+points, surfaces = simple.FindSource("SeedPoints1"), [
+    p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
+check(points is not None and len(list(points.Points)) == 6 and len(surfaces) == 1
+      and surfaces[0].InitialSurface.Input == points,
+      "after Undo, a second point and Apply: one Deformable Surface on the two points again (%d "
+      "Deformable Surface, points %s)" % (len(surfaces), list(points.Points) if points else None))
 check.exit()
