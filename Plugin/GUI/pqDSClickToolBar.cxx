@@ -55,17 +55,17 @@ bool FiltersLoaded(pqServer* server)
 /// in `view` (the image's slice left shown, for more points), whenever `points` has been applied
 /// with a point and feeds no filter: after the first such Apply, and again after those filters
 /// were undone or deleted. It lives as long as `points`.
-class ChainOnFirstPoints : public QObject
+class ChainOnPoints : public QObject
 {
 public:
-  ChainOnFirstPoints(pqPipelineSource* points, pqOutputPort* image, pqView* view)
+  ChainOnPoints(pqPipelineSource* points, pqOutputPort* image, pqView* view)
     : QObject(points)
     , Points(points)
     , Image(image)
     , View(view)
   {
     QObject::connect(points, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
-      &ChainOnFirstPoints::onUpdated);
+      &ChainOnPoints::onUpdated);
   }
 
 private:
@@ -80,7 +80,7 @@ private:
     // After the Apply that updated the points has finished: an undo step of its own, and no
     // proxy added while ParaView still shows the ones it applied.
     this->Pending = true;
-    QTimer::singleShot(0, this, &ChainOnFirstPoints::build);
+    QTimer::singleShot(0, this, &ChainOnPoints::build);
   }
 
   void build()
@@ -174,6 +174,12 @@ void pqDSClickToolBar::segmentActiveImage()
   BEGIN_UNDO_SET(tr("Segment from points"));
   pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
   pqPipelineSource* points = builder->createSource("sources", "SeedPoints", image->getServer());
+  if (!points)
+  {
+    END_UNDO_SET();
+    qWarning() << "Segment from points: Seed Points could not be made";
+    return;
+  }
   pqView* view = active.activeView();
   if (vtkSMProxy* outline = OutlineShown(image, view))
   {
@@ -181,6 +187,6 @@ void pqDSClickToolBar::segmentActiveImage()
     view->render();
   }
   END_UNDO_SET();
-  new ChainOnFirstPoints(points, image, view);
+  new ChainOnPoints(points, image, view);
   active.setActiveSource(points);
 }
