@@ -8,6 +8,7 @@
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
 #include "pqServer.h"
+#include "pqServerManagerModel.h"
 #include "pqUndoStack.h"
 #include "pqView.h"
 #include "vtkNew.h"
@@ -52,33 +53,33 @@ bool FiltersLoaded(pqServer* server)
 }
 
 /// Delaunay Seed Surface on `points` and Deformable Surface on it and `image`, the surface shown
-/// in `view` (the image's slice left shown, for more points), whenever `points` has been applied
-/// with a point and feeds no filter: after the first such Apply, and again after those filters
-/// were undone or deleted. It lives as long as `points`.
+/// in the active render view (the image's slice left shown, for more points), whenever `points`
+/// has been applied with a point and feeds no filter: after the first such Apply, and again after
+/// those filters were undone or deleted. It lives as long as `points`.
 class ChainOnPoints : public QObject
 {
 public:
-  ChainOnPoints(pqPipelineSource* points, pqOutputPort* image, pqView* view)
+  ChainOnPoints(pqPipelineSource* points, pqOutputPort* image)
     : QObject(points)
     , Points(points)
     , Image(image)
-    , View(view)
   {
-    QObject::connect(points, QOverload<pqPipelineSource*>::of(&pqPipelineSource::dataUpdated), this,
-      &ChainOnPoints::onUpdated);
+    // An Apply marks the points unmodified, also where it updates no data (a Seed Points hidden,
+    // or brought back by Redo, which the Apply does not show).
+    QObject::connect(points, &pqProxy::modifiedStateChanged, this, &ChainOnPoints::onApplied);
   }
 
 private:
-  void onUpdated()
+  void onApplied()
   {
-    vtkPVDataInformation* info = this->Points->getOutputPort(0)->getDataInformation();
-    if (this->Pending || !this->Image || !info || info->GetNumberOfPoints() < 1 ||
-      this->Points->getNumberOfConsumers() > 0)
+    pqUndoStack* undo = pqApplicationCore::instance()->getUndoStack();
+    if (this->Pending || this->Points->modifiedState() != pqProxy::UNMODIFIED ||
+      (undo && (undo->getInUndo() || undo->getInRedo())))
     {
-      return; // applied without a point yet, or the chain is there
+      return; // not an Apply: Undo or Redo bring back what they bring back
     }
-    // After the Apply that updated the points has finished: an undo step of its own, and no
-    // proxy added while ParaView still shows the ones it applied.
+    // After the Apply has finished (its properties pushed, its proxies shown): an undo step of
+    // its own, and no proxy added while ParaView still shows the ones it applied.
     this->Pending = true;
     QTimer::singleShot(0, this, &ChainOnPoints::build);
   }
@@ -86,10 +87,12 @@ private:
   void build()
   {
     this->Pending = false;
-    if (!this->Image || this->Points->getNumberOfConsumers() > 0)
+    if (!this->Image || this->Points->getNumberOfConsumers() > 0 ||
+      vtkSMPropertyHelper(this->Points->getProxy(), "Points").GetNumberOfElements() < 3)
     {
-      return;
+      return; // the chain is there, or applied without a point
     }
+    pqView* view = pqActiveObjects::instance().activeView(); // where P was pressed
     BEGIN_UNDO_SET(tr("Deformable Surface on the seed points"));
     pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
     pqPipelineSource* seed = builder->createFilter("filters", "DelaunaySeedSurface", this->Points);
@@ -113,25 +116,24 @@ private:
                     "made (is the DeformableSurface plugin still loaded?)";
       return;
     }
-    if (this->View)
+    if (view)
     {
       vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
-      controller->Show(surface->getSourceProxy(), 0, this->View->getViewProxy());
+      controller->Show(surface->getSourceProxy(), 0, view->getViewProxy());
     }
     // Shown, so applied: the Properties panel does not offer them to Apply again.
     seed->setModifiedState(pqProxy::UNMODIFIED);
     surface->setModifiedState(pqProxy::UNMODIFIED);
     END_UNDO_SET();
-    if (this->View)
+    if (view)
     {
-      this->View->render();
+      view->render();
     }
     pqActiveObjects::instance().setActiveSource(surface);
   }
 
   pqPipelineSource* Points;
   QPointer<pqOutputPort> Image;
-  QPointer<pqView> View;
   bool Pending = false;
 };
 }
@@ -151,6 +153,18 @@ pqDSClickToolBar::pqDSClickToolBar(QWidget* parent)
     button->setObjectName("actionDSSegmentFromPoints");
   }
   QObject::connect(segment, &QAction::triggered, this, &pqDSClickToolBar::segmentActiveImage);
+  // Redo of the button's step makes its Seed Points again, with the same global id.
+  QObject::connect(pqApplicationCore::instance()->getServerManagerModel(),
+    &pqServerManagerModel::sourceAdded, this, &pqDSClickToolBar::watchAgain);
+}
+
+void pqDSClickToolBar::watchAgain(pqPipelineSource* source)
+{
+  auto image = this->ImageOfPoints.find(source->getProxy()->GetGlobalID());
+  if (image != this->ImageOfPoints.end() && image.value())
+  {
+    new ChainOnPoints(source, image.value());
+  }
 }
 
 void pqDSClickToolBar::segmentActiveImage()
@@ -187,6 +201,7 @@ void pqDSClickToolBar::segmentActiveImage()
     view->render();
   }
   END_UNDO_SET();
-  new ChainOnPoints(points, image, view);
+  this->ImageOfPoints[points->getProxy()->GetGlobalID()] = image;
+  new ChainOnPoints(points, image);
   active.setActiveSource(points);
 }

@@ -13,7 +13,8 @@
  * (a click: a sphere grown to the object) or several (picks around it). The two filters come
  * after the points because a Delaunay Seed Surface applied together with still empty Seed Points
  * ran on no points and logged an error. They come again at the next Apply of the points when
- * they were undone or deleted (Undo and Redo of the button itself leave the points without it). On
+ * they were undone or deleted, also when the points are hidden or were brought back by Redo of
+ * the button itself (an Apply that updates no data still marks the points unmodified). On
  * a source that gives no image, or without the DeformableSurface plugin's filters, it does nothing
  * but say so in the Output Messages.
  *
@@ -23,7 +24,14 @@
 #ifndef pqDSClickToolBar_h
 #define pqDSClickToolBar_h
 
+#include <QMap>
+#include <QPointer>
 #include <QToolBar>
+
+#include "vtkType.h"
+
+class pqOutputPort;
+class pqPipelineSource;
 
 class pqDSClickToolBar : public QToolBar
 {
@@ -34,6 +42,11 @@ public:
 
 private:
   void segmentActiveImage();
+  /// Watches `source` again when it is a Seed Points the button made (brought back by Redo).
+  void watchAgain(pqPipelineSource* source);
+
+  /// The image each Seed Points the button made segments, by the points' global id.
+  QMap<vtkTypeUInt32, QPointer<pqOutputPort>> ImageOfPoints;
 };
 
 #endif

@@ -9,7 +9,8 @@ down on the image's middle slice. The client then plays gui_segment_toolbar.xml,
 one-click workflow: the toolbar's "Segment from points" (Seed Points on the reader, the image now
 shown as a Slice), the mouse over the ball's centre and P, Apply (Delaunay Seed Surface and
 Deformable Surface follow the point), File > Save State: three actions after open and Apply, none
-typing a number; then Edit > Undo, a second P and Apply, saved again.
+typing a number; then Edit > Undo, Seed Points hidden, a second P and Apply, saved again; then
+Undo back to before the button, Redo of it, P and Apply, saved a third time.
 segment_toolbar_gui_check.py checks the saved state."""
 import os
 import sys

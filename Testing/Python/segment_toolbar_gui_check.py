@@ -9,8 +9,11 @@ run with pvpython after the client saved DS_TEST_OUTPUT/gui_segment_toolbar.pvsm
 - Deformable Surface, every default as the button left it, grows it into one closed surface on
   the ball: the centre of its bounding box within 0.5 mm of the ball's centre, the radius of a
   ball of its volume within 0.5 mm of the ball's radius, no self-intersecting pair;
-- Undo takes the two filters back (an undo step of their own); a second P, on the image's slice
-  with the first point shown, and Apply bring them again, on the two points."""
+- Undo takes the two filters back (an undo step of their own); with Seed Points hidden, a second
+  P, on the image's slice, and Apply bring them again, on the two points;
+- Undo, five times, goes back to before the button, each step taking back one thing (an Undo of
+  an Apply of the points brings no filter back); Redo of the button brings Seed Points back,
+  empty and with no filter; a P and Apply on it bring the two filters once more."""
 import math
 import os
 import sys
@@ -65,6 +68,41 @@ points, surfaces = simple.FindSource("SeedPoints1"), [
     p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
 check(points is not None and len(list(points.Points)) == 6 and len(surfaces) == 1
       and surfaces[0].InitialSurface.Input == points,
-      "after Undo, a second point and Apply: one Deformable Surface on the two points again (%d "
+      "after Undo, hiding, a second point and Apply: one Deformable Surface on the two points again (%d "
       "Deformable Surface, points %s)" % (len(surfaces), list(points.Points) if points else None))
+hidden = servermanager.GetRepresentation(points, simple.GetActiveView()) if points else None
+check(hidden is not None and hidden.Visibility == 0,
+      "Seed Points hidden for that Apply (its eye; an Apply then updates no data)")
+
+
+def one_chain_on_one_point(state, what):
+    simple.ResetSession()
+    simple.LoadState(os.path.join(ds_gui.OUT_DIR, state))
+    found = [p for p in simple.GetSources().values() if p.GetXMLName() == "SeedPoints"]
+    surfaces = [p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
+    placed = list(found[0].Points) if len(found) == 1 else None
+    check(placed is not None and len(placed) == 3 and math.dist(placed, centre) <= 0.5
+          and len(surfaces) == 1 and surfaces[0].InitialSurface.Input == found[0],
+          "%s: one Deformable Surface on one point at the centre (%d Seed Points, points %s, %d "
+          "Deformable Surface)" % (what, len(found), placed, len(surfaces)))
+
+
+def sources_in(state):
+    simple.ResetSession()
+    simple.LoadState(os.path.join(ds_gui.OUT_DIR, state))
+    return sorted(p.GetXMLName() for p in simple.GetSources().values())
+
+
+found = sources_in("gui_segment_toolbar_undone.pvsm")
+shown = simple.GetDisplayProperties(simple.FindSource("ball"), simple.GetActiveView())
+check(found == ["XMLImageDataReader"] and shown.Representation == "Outline",
+      "five Undo: back to before the button, the image an outline again (%s, %s)"
+      % (found, shown.Representation))
+found = sources_in("gui_segment_toolbar_button_redone.pvsm")
+points = simple.FindSource("SeedPoints1")
+check(found == ["SeedPoints", "XMLImageDataReader"] and points is not None
+      and len(list(points.Points)) == 0,
+      "Redo of the button: Seed Points again, empty, no filter (%s)" % found)
+one_chain_on_one_point("gui_segment_toolbar_redone.pvsm",
+                       "after Undo to before the button, Redo of it, a P and Apply")
 check.exit()
