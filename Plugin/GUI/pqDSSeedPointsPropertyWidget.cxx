@@ -104,7 +104,7 @@ QTableWidgetItem* NumberItem(double value)
 
 pqDSSeedPointsPropertyWidget::pqDSSeedPointsPropertyWidget(
   vtkSMProxy* smproxy, vtkSMPropertyGroup* smgroup, QWidget* parentObject)
-  : Superclass("representations", "HandleWidgetRepresentation", smproxy, smgroup, parentObject)
+  : Superclass("representations", "DSSeedPointHandleRepresentation", smproxy, smgroup, parentObject)
 {
   this->setShowLabel(false);
   this->setChangeAvailableAsChangeFinished(true);

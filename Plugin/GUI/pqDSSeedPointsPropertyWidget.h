@@ -15,11 +15,10 @@
  * - the new point seeds the object set in the "object" spin box (the ObjectId column);
  * - the table shows x, y, z and object per point; cells can be edited; Delete (or the remove
  *   button) removes the selected rows.
- * - the selected row's point carries ParaView's point handle (the HandleWidgetRepresentation of
- *   pqHandlePropertyWidget): drag it in the view to move that point. The representation proxy
- *   is ParaView's own (defined in ParaView's 3D widgets' XML, so every client and server has
- *   it), not one of the plugin's XML: one handle at a time needs nothing the stock handle lacks,
- *   and a copy in the base plugin's XML would only duplicate its definition.
+ * - the selected row's point carries a point handle: drag it in the view to move that point. Its
+ *   representation proxy, DSSeedPointHandleRepresentation, lives in the base plugin's XML
+ *   (xml/SeedPoints.xml, loaded by every client and server, Qt-free), inheriting ParaView's
+ *   HandleWidgetRepresentation (that of pqHandlePropertyWidget) rather than copying it.
  * Every change is a property change, applied with Apply, so undo/redo and state files hold it.
  *
  * It is the panel_widget "ds_seed_points" of a property group holding the DoubleVectorProperty
