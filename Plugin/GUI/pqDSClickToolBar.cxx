@@ -7,19 +7,24 @@
 #include "pqObjectBuilder.h"
 #include "pqOutputPort.h"
 #include "pqPipelineSource.h"
+#include "pqProxyModifiedStateUndoElement.h"
+#include "pqRenderView.h"
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
 #include "pqUndoStack.h"
 #include "pqView.h"
+#include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPVDataInformation.h"
 #include "vtkSMParaViewPipelineControllerWithRendering.h"
+#include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 #include "vtkSMRepresentationProxy.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMViewProxy.h"
+#include "vtkWeakPointer.h"
 
 #include <QAction>
 #include <QDebug>
@@ -52,33 +57,85 @@ bool FiltersLoaded(pqServer* server)
     proxies->GetPrototypeProxy("filters", "DeformableSurface");
 }
 
-/// Delaunay Seed Surface on `points` and Deformable Surface on it and `image`, the surface shown
-/// in the active render view (the image's slice left shown, for more points), whenever `points`
-/// has been applied with a point and feeds no filter: after the first such Apply, and again after
-/// those filters were undone or deleted. It lives as long as `points`.
+/// The image's output port `image` names, if it is still there.
+pqOutputPort* PortOf(const pqDSClickToolBar::ImageRef& image)
+{
+  auto* source =
+    pqApplicationCore::instance()->getServerManagerModel()->findItem<pqPipelineSource*>(
+      image.Source);
+  return source && source->getServer() == image.Server &&
+      image.Port < source->getNumberOfOutputPorts()
+    ? source->getOutputPort(image.Port)
+    : nullptr;
+}
+
+/// The render view to show the surface in: the active one (where P was pressed), else one that
+/// shows the image.
+pqView* RenderViewFor(pqOutputPort* image)
+{
+  if (auto* active = qobject_cast<pqRenderView*>(pqActiveObjects::instance().activeView()))
+  {
+    return active;
+  }
+  for (pqView* view : image->getViews())
+  {
+    if (qobject_cast<pqRenderView*>(view))
+    {
+      return view;
+    }
+  }
+  return nullptr;
+}
+
+/// Marks `proxy` applied (its Properties panel does not offer it to Apply again), as an Apply
+/// does, undo and redo included (pqApplyBehavior).
+void MarkApplied(pqProxy* proxy)
+{
+  proxy->setModifiedState(pqProxy::UNMODIFIED);
+  vtkNew<pqProxyModifiedStateUndoElement> undo;
+  undo->SetSession(proxy->getServer()->session());
+  undo->MadeUnmodified(proxy);
+  ADD_UNDO_ELEM(undo);
+}
+
+/// Delaunay Seed Surface on `points` and Deformable Surface on it and the image, the surface
+/// shown (the image's slice left shown, for more points), whenever an Apply has changed the
+/// points' `Points`, they hold a point and they feed no filter: after the first such Apply, and
+/// again after those filters were undone or deleted. It watches the property, not the data or
+/// the panel's state: an Apply of hidden points updates no data, and the panel's Reset marks the
+/// points unmodified without applying anything. It lives as long as `points`.
 class ChainOnPoints : public QObject
 {
 public:
-  ChainOnPoints(pqPipelineSource* points, pqOutputPort* image)
+  ChainOnPoints(pqPipelineSource* points, const pqDSClickToolBar::ImageRef& image)
     : QObject(points)
     , Points(points)
     , Image(image)
   {
-    // An Apply marks the points unmodified, also where it updates no data (a Seed Points hidden,
-    // or brought back by Redo, which the Apply does not show).
-    QObject::connect(points, &pqProxy::modifiedStateChanged, this, &ChainOnPoints::onApplied);
+    this->Watched = points->getProxy()->GetProperty("Points");
+    if (this->Watched)
+    {
+      this->Tag =
+        this->Watched->AddObserver(vtkCommand::ModifiedEvent, this, &ChainOnPoints::onChanged);
+    }
+  }
+  ~ChainOnPoints() override
+  {
+    if (this->Watched)
+    {
+      this->Watched->RemoveObserver(this->Tag);
+    }
   }
 
 private:
-  void onApplied()
+  void onChanged()
   {
     pqUndoStack* undo = pqApplicationCore::instance()->getUndoStack();
-    if (this->Pending || this->Points->modifiedState() != pqProxy::UNMODIFIED ||
-      (undo && (undo->getInUndo() || undo->getInRedo())))
+    if (this->Pending || (undo && (undo->getInUndo() || undo->getInRedo())))
     {
-      return; // not an Apply: Undo or Redo bring back what they bring back
+      return; // Undo and Redo bring back what they bring back
     }
-    // After the Apply has finished (its properties pushed, its proxies shown): an undo step of
+    // After the Apply has finished (every property pushed, its proxies shown): an undo step of
     // its own, and no proxy added while ParaView still shows the ones it applied.
     this->Pending = true;
     QTimer::singleShot(0, this, &ChainOnPoints::build);
@@ -87,12 +144,13 @@ private:
   void build()
   {
     this->Pending = false;
-    if (!this->Image || this->Points->getNumberOfConsumers() > 0 ||
-      vtkSMPropertyHelper(this->Points->getProxy(), "Points").GetNumberOfElements() < 3)
+    pqOutputPort* image = PortOf(this->Image);
+    if (!image || this->Points->getNumberOfConsumers() > 0 ||
+      vtkSMPropertyHelper(this->Points->getProxy(), "Points", true).GetNumberOfElements() < 3)
     {
-      return; // the chain is there, or applied without a point
+      return; // the image is gone, the chain is there, or the points hold none
     }
-    pqView* view = pqActiveObjects::instance().activeView(); // where P was pressed
+    pqView* view = RenderViewFor(image);
     BEGIN_UNDO_SET(tr("Deformable Surface on the seed points"));
     pqObjectBuilder* builder = pqApplicationCore::instance()->getObjectBuilder();
     pqPipelineSource* seed = builder->createFilter("filters", "DelaunaySeedSurface", this->Points);
@@ -100,10 +158,9 @@ private:
     if (seed)
     {
       QMap<QString, QList<pqOutputPort*>> inputs;
-      inputs["Input"].push_back(this->Image);
+      inputs["Input"].push_back(image);
       inputs["InitialSurface"].push_back(seed->getOutputPort(0));
-      surface =
-        builder->createFilter("filters", "DeformableSurface", inputs, this->Image->getServer());
+      surface = builder->createFilter("filters", "DeformableSurface", inputs, image->getServer());
     }
     if (!surface)
     {
@@ -121,9 +178,8 @@ private:
       vtkNew<vtkSMParaViewPipelineControllerWithRendering> controller;
       controller->Show(surface->getSourceProxy(), 0, view->getViewProxy());
     }
-    // Shown, so applied: the Properties panel does not offer them to Apply again.
-    seed->setModifiedState(pqProxy::UNMODIFIED);
-    surface->setModifiedState(pqProxy::UNMODIFIED);
+    MarkApplied(seed); // shown, so applied
+    MarkApplied(surface);
     END_UNDO_SET();
     if (view)
     {
@@ -133,7 +189,9 @@ private:
   }
 
   pqPipelineSource* Points;
-  QPointer<pqOutputPort> Image;
+  pqDSClickToolBar::ImageRef Image;
+  vtkWeakPointer<vtkSMProperty> Watched;
+  unsigned long Tag = 0;
   bool Pending = false;
 };
 }
@@ -160,10 +218,11 @@ pqDSClickToolBar::pqDSClickToolBar(QWidget* parent)
 
 void pqDSClickToolBar::watchAgain(pqPipelineSource* source)
 {
-  auto image = this->ImageOfPoints.find(source->getProxy()->GetGlobalID());
-  if (image != this->ImageOfPoints.end() && image.value())
+  const auto image = this->ImageOfPoints.constFind(source->getProxy()->GetGlobalID());
+  if (image != this->ImageOfPoints.constEnd() && image->Server == source->getServer() &&
+    std::strcmp(source->getProxy()->GetXMLName(), "SeedPoints") == 0)
   {
-    new ChainOnPoints(source, image.value());
+    new ChainOnPoints(source, *image);
   }
 }
 
@@ -201,7 +260,9 @@ void pqDSClickToolBar::segmentActiveImage()
     view->render();
   }
   END_UNDO_SET();
-  this->ImageOfPoints[points->getProxy()->GetGlobalID()] = image;
-  new ChainOnPoints(points, image);
+  const ImageRef ref{ image->getServer(), image->getSource()->getProxy()->GetGlobalID(),
+    image->getPortNumber() };
+  this->ImageOfPoints[points->getProxy()->GetGlobalID()] = ref;
+  new ChainOnPoints(points, ref);
   active.setActiveSource(points);
 }

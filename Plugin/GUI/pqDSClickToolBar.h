@@ -12,9 +12,10 @@
  * Surface and Deformable Surface, every property at their defaults, and shows the surface: one P
  * (a click: a sphere grown to the object) or several (picks around it). The two filters come
  * after the points because a Delaunay Seed Surface applied together with still empty Seed Points
- * ran on no points and logged an error. They come again at the next Apply of the points when
- * they were undone or deleted, also when the points are hidden or were brought back by Redo of
- * the button itself (an Apply that updates no data still marks the points unmodified). On
+ * ran on no points and logged an error. They come again at the next Apply that changes the points
+ * when they were undone or deleted, also when the points are hidden or were brought back by Redo
+ * of the button itself (the points' `Points` property is watched, not their data; an Undo, a Redo
+ * or the panel's Reset makes none). A Seed Points from a state file is a plain source. On
  * a source that gives no image, or without the DeformableSurface plugin's filters, it does nothing
  * but say so in the Output Messages.
  *
@@ -30,8 +31,8 @@
 
 #include "vtkType.h"
 
-class pqOutputPort;
 class pqPipelineSource;
+class pqServer;
 
 class pqDSClickToolBar : public QToolBar
 {
@@ -40,13 +41,22 @@ class pqDSClickToolBar : public QToolBar
 public:
   explicit pqDSClickToolBar(QWidget* parent = nullptr);
 
+  /// An image by its source's global id and output port (the port object itself is made anew
+  /// when Undo and Redo take the image away and bring it back).
+  struct ImageRef
+  {
+    QPointer<pqServer> Server;
+    vtkTypeUInt32 Source = 0;
+    int Port = 0;
+  };
+
 private:
   void segmentActiveImage();
   /// Watches `source` again when it is a Seed Points the button made (brought back by Redo).
   void watchAgain(pqPipelineSource* source);
 
   /// The image each Seed Points the button made segments, by the points' global id.
-  QMap<vtkTypeUInt32, QPointer<pqOutputPort>> ImageOfPoints;
+  QMap<vtkTypeUInt32, ImageRef> ImageOfPoints;
 };
 
 #endif

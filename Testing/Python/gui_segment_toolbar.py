@@ -10,7 +10,8 @@ one-click workflow: the toolbar's "Segment from points" (Seed Points on the read
 shown as a Slice), the mouse over the ball's centre and P, Apply (Delaunay Seed Surface and
 Deformable Surface follow the point), File > Save State: three actions after open and Apply, none
 typing a number; then Edit > Undo, Seed Points hidden, a second P and Apply, saved again; then
-Undo back to before the button, Redo of it, P and Apply, saved a third time.
+Undo back to before the button, two Redo, P and the panel's Reset, P and Apply, saved at each
+step.
 segment_toolbar_gui_check.py checks the saved state."""
 import os
 import sys

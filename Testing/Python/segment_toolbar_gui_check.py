@@ -11,9 +11,10 @@ run with pvpython after the client saved DS_TEST_OUTPUT/gui_segment_toolbar.pvsm
   ball of its volume within 0.5 mm of the ball's radius, no self-intersecting pair;
 - Undo takes the two filters back (an undo step of their own); with Seed Points hidden, a second
   P, on the image's slice, and Apply bring them again, on the two points;
-- Undo, five times, goes back to before the button, each step taking back one thing (an Undo of
-  an Apply of the points brings no filter back); Redo of the button brings Seed Points back,
-  empty and with no filter; a P and Apply on it bring the two filters once more."""
+- five Undo go back to before the button (an Undo of an Apply of the points brings no filter
+  back); Redo of the button brings Seed Points back, empty; Redo of the first Apply its point,
+  with no filter (a Redo makes none); a P and the panel's Reset make none either (Reset applies
+  nothing); a P and Apply bring the two filters once more, on the two points."""
 import math
 import os
 import sys
@@ -68,23 +69,11 @@ points, surfaces = simple.FindSource("SeedPoints1"), [
     p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
 check(points is not None and len(list(points.Points)) == 6 and len(surfaces) == 1
       and surfaces[0].InitialSurface.Input == points,
-      "after Undo, hiding, a second point and Apply: one Deformable Surface on the two points again (%d "
-      "Deformable Surface, points %s)" % (len(surfaces), list(points.Points) if points else None))
+      "after Undo, hiding, a second point and Apply: one Deformable Surface on the two points "
+      "again (%d Deformable Surface, points %s)" % (len(surfaces), list(points.Points) if points else None))
 hidden = servermanager.GetRepresentation(points, simple.GetActiveView()) if points else None
 check(hidden is not None and hidden.Visibility == 0,
       "Seed Points hidden for that Apply (its eye; an Apply then updates no data)")
-
-
-def one_chain_on_one_point(state, what):
-    simple.ResetSession()
-    simple.LoadState(os.path.join(ds_gui.OUT_DIR, state))
-    found = [p for p in simple.GetSources().values() if p.GetXMLName() == "SeedPoints"]
-    surfaces = [p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
-    placed = list(found[0].Points) if len(found) == 1 else None
-    check(placed is not None and len(placed) == 3 and math.dist(placed, centre) <= 0.5
-          and len(surfaces) == 1 and surfaces[0].InitialSurface.Input == found[0],
-          "%s: one Deformable Surface on one point at the centre (%d Seed Points, points %s, %d "
-          "Deformable Surface)" % (what, len(found), placed, len(surfaces)))
 
 
 def sources_in(state):
@@ -93,16 +82,34 @@ def sources_in(state):
     return sorted(p.GetXMLName() for p in simple.GetSources().values())
 
 
-found = sources_in("gui_segment_toolbar_undone.pvsm")
+def points_in(state):
+    """The sources' type names and Seed Points' coordinates in `state`."""
+    found = sources_in(state)
+    points = simple.FindSource("SeedPoints1")
+    return found, (list(points.Points) if points else None)
+
+
+found, placed = points_in("gui_segment_toolbar_undone.pvsm")
 shown = simple.GetDisplayProperties(simple.FindSource("ball"), simple.GetActiveView())
 check(found == ["XMLImageDataReader"] and shown.Representation == "Outline",
       "five Undo: back to before the button, the image an outline again (%s, %s)"
       % (found, shown.Representation))
-found = sources_in("gui_segment_toolbar_button_redone.pvsm")
-points = simple.FindSource("SeedPoints1")
-check(found == ["SeedPoints", "XMLImageDataReader"] and points is not None
-      and len(list(points.Points)) == 0,
+found, placed = points_in("gui_segment_toolbar_button_redone.pvsm")
+check(found == ["SeedPoints", "XMLImageDataReader"] and placed == [],
       "Redo of the button: Seed Points again, empty, no filter (%s)" % found)
-one_chain_on_one_point("gui_segment_toolbar_redone.pvsm",
-                       "after Undo to before the button, Redo of it, a P and Apply")
+found, placed = points_in("gui_segment_toolbar_apply_redone.pvsm")
+check(found == ["SeedPoints", "XMLImageDataReader"] and placed is not None and len(placed) == 3,
+      "Redo of the first Apply: its point again, no filter (a Redo makes none; %s, %s)"
+      % (found, placed))
+found, placed = points_in("gui_segment_toolbar_reset.pvsm")
+check(found == ["SeedPoints", "XMLImageDataReader"] and placed is not None and len(placed) == 3,
+      "P, then the panel's Reset: still one point, no filter (Reset applies nothing; %s, %s)"
+      % (found, placed))
+found, placed = points_in("gui_segment_toolbar_redone.pvsm")
+points = simple.FindSource("SeedPoints1")
+surfaces = [p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
+check(placed is not None and len(placed) == 6 and math.dist(placed[:3], centre) <= 0.5
+      and len(surfaces) == 1 and surfaces[0].InitialSurface.Input == points,
+      "a P and Apply after them: one Deformable Surface on the two points (%s, points %s)"
+      % (found, placed))
 check.exit()
