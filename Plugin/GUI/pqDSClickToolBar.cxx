@@ -28,7 +28,6 @@
 
 #include <QAction>
 #include <QDebug>
-#include <QPointer>
 #include <QTimer>
 
 #include <cstring>

@@ -62,20 +62,6 @@ check(grown.GetNumberOfPoints() > 100 and math.dist(middle, centre) <= 0.5
                                                   grown.GetNumberOfPoints()))
 check(intersecting is not None and intersecting.GetValue(0) == 0, "no self-intersecting pair")
 
-# Undo took the filters back, a second P and Apply brought them again.
-simple.ResetSession()
-simple.LoadState(os.path.join(ds_gui.OUT_DIR, "gui_segment_toolbar_again.pvsm"))
-points, surfaces = simple.FindSource("SeedPoints1"), [
-    p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
-check(points is not None and len(list(points.Points)) == 6 and len(surfaces) == 1
-      and surfaces[0].InitialSurface.Input == points,
-      "after Undo, hiding, a second point and Apply: one Deformable Surface on the two points "
-      "again (%d Deformable Surface, points %s)" % (len(surfaces), list(points.Points) if points else None))
-hidden = servermanager.GetRepresentation(points, simple.GetActiveView()) if points else None
-check(hidden is not None and hidden.Visibility == 0,
-      "Seed Points hidden for that Apply (its eye; an Apply then updates no data)")
-
-
 def sources_in(state):
     simple.ResetSession()
     simple.LoadState(os.path.join(ds_gui.OUT_DIR, state))
@@ -87,6 +73,19 @@ def points_in(state):
     found = sources_in(state)
     points = simple.FindSource("SeedPoints1")
     return found, (list(points.Points) if points else None)
+
+
+# Undo took the filters back; with Seed Points hidden, a second P and Apply brought them again.
+found, placed = points_in("gui_segment_toolbar_again.pvsm")
+points = simple.FindSource("SeedPoints1")
+surfaces = [p for p in simple.GetSources().values() if p.GetXMLName() == "DeformableSurface"]
+check(placed is not None and len(placed) == 6 and len(surfaces) == 1
+      and surfaces[0].InitialSurface.Input == points,
+      "after Undo, hiding, a second point and Apply: one Deformable Surface on the two points "
+      "again (%s, points %s)" % (found, placed))
+hidden = servermanager.GetRepresentation(points, simple.GetActiveView()) if points else None
+check(hidden is not None and hidden.Visibility == 0,
+      "Seed Points hidden for that Apply (its eye; an Apply then updates no data)")
 
 
 found, placed = points_in("gui_segment_toolbar_undone.pvsm")
