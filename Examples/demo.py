@@ -10,7 +10,8 @@ on the image as a user would:
 - picks: the points of Examples/colin27_picks.csv, clicked on six slices ~3 mm outside the
   brain -> Delaunay Seed Surface -> Deformable Surface with every default;
 - click: the one point of Examples/colin27_click.csv, in the white matter -> a 5 mm seed
-  sphere -> Deformable Surface with RegionWeight 1 and the brain's IntensityRange.
+  sphere -> Deformable Surface with the brain's IntensityRange (a click so given pulls with
+  RegionWeight 1).
 
 The same two runs are made on ITK's KmeansTest head (insighttoolkit5-examples). Each surface is
 scored against the boundary of its brain mask, which the filter never sees (Examples/ds_scoring.py).
@@ -41,8 +42,9 @@ from ds_scoring import HEADS, require_data  # noqa: E402,F401 (require_data: for
 # The filter properties each start sets; everything else is default. The picks need none: the
 # region force (on by default) estimates the brain's intensities from inside and just outside
 # the seed. One click says nothing about where the brain ends: the user gives the range read
-# off the image (HEADS), and RegionWeight 1 grows the 5 mm sphere through the brain.
-HEAD_SETTINGS = {"picks": {}, "click": {"RegionWeight": 1.0}}
+# off the image (HEADS), through which the region force grows the 5 mm sphere (a click given
+# its range pulls with RegionWeight 1, the default 0.3 being for starts near their object).
+HEAD_SETTINGS = {"picks": {}, "click": {}}
 
 
 def load_plugin(path=None):

@@ -30,7 +30,6 @@ seed = DelaunaySeedSurface(registrationName="DelaunaySeedSurface", Input=pts)
 sd = Show(seed, view); sd.SetRepresentationType("Wireframe"); sd.AmbientColor = sd.DiffuseColor = [1, 1, 0.3]
 ds = DeformableSurface(registrationName="DeformableSurface", Input=head, InitialSurface=seed)
 ds.Scalars = ["POINTS", "NIFTI"]
-ds.RegionWeight = 1.0
 ds.IntensityRange = [62, 130]
 trace = Slice(registrationName="trace", Input=ds)
 trace.SliceType = "Plane"

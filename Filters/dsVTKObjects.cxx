@@ -118,6 +118,8 @@ void AddObjectFieldData(const TriangleMesh& mesh, const std::vector<ObjectRegion
   vtkNew<vtkDoubleArray> ranges;
   ranges->SetName("ObjectIntensityRanges");
   ranges->SetNumberOfComponents(2);
+  vtkNew<vtkDoubleArray> weights;
+  weights->SetName("ObjectRegionWeights");
   for (int o = 0; o < static_cast<int>(mesh.ObjectIds.size()); ++o)
   {
     const TriangleMesh surface = ObjectSurface(mesh, o);
@@ -126,11 +128,13 @@ void AddObjectFieldData(const TriangleMesh& mesh, const std::vector<ObjectRegion
     vertices->InsertNextValue(surface.NumberOfPoints());
     const bool on = o < static_cast<int>(regions.size()) && regions[o].On;
     ranges->InsertNextTuple2(on ? regions[o].Low : 0.0, on ? regions[o].High : 0.0);
+    weights->InsertNextValue(on ? regions[o].Weight : 0.0);
   }
   fd->AddArray(ids);
   fd->AddArray(volumes);
   fd->AddArray(vertices);
   fd->AddArray(ranges);
+  fd->AddArray(weights);
   vtkNew<vtkIntArray> crossing;
   crossing->SetName("CrossingPairs");
   crossing->InsertNextValue(crossingPairs);

@@ -32,8 +32,9 @@ void CopyPolygonObjectIds(vtkPolyData* from, vtkPolyData* to);
 void AddObjectArrays(const TriangleMesh& mesh, vtkPolyData* output);
 
 /// Per object, in the order of mesh.ObjectIds: ObjectIds, ObjectVolumes (enclosed volume),
-/// ObjectVertices and ObjectIntensityRanges (two components; 0 0 where its region force was
-/// off), and CrossingPairs (triangle pairs of different objects that intersect).
+/// ObjectVertices, ObjectIntensityRanges (two components; 0 0 where its region force was off)
+/// and ObjectRegionWeights (the weight it pulled with, ObjectRegion::Weight; 0 where off), and
+/// CrossingPairs (triangle pairs of different objects that intersect).
 void AddObjectFieldData(const TriangleMesh& mesh, const std::vector<ObjectRegion>& regions,
   int crossingPairs, vtkFieldData* fd);
 } // namespace dsurf

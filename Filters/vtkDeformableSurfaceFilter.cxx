@@ -404,6 +404,7 @@ void AddFieldData(const dsurf::MultilevelSolver& solver, const dsurf::TriangleMe
     usedRange->SetNumberOfComponents(2);
     usedRange->InsertNextTuple(solver.GetIntensityRange());
     fd->AddArray(usedRange);
+    AddFieldValue<vtkDoubleArray>(fd, "RegionWeight", solver.GetRegionWeight());
   }
   AddFieldValue<vtkIntArray>(fd, "Converged", solver.GetLastLevelConverged() ? 1 : 0);
   AddFieldValue<vtkStringArray>(fd, "StopReason", dsurf::StopReasonName(solver.GetStopReason()));

@@ -52,13 +52,15 @@
  * detail", "MaxLevels", "MaxSweeps" or "aborted"), WarmStart, FrontLevels (levels past sigma's
  * floor that followed a thin part of a click's object), KeptApartLevels (levels solved with the
  * surface kept off itself, after one made it cross itself) and, with the region force,
- * IntensityRange (the range it used). Several objects (docs/METHOD.md §9.9): a start with a cell
- * array ObjectId is one object per value, solved together, each with its own sigma_0, start
+ * IntensityRange (the range it used) and RegionWeight (the weight it pulled with; with several
+ * objects, the first's). Several objects (docs/METHOD.md §9.9): a start with a cell array
+ * ObjectId is one object per value, solved together, each with its own sigma_0, start
  * subdivision and region range, never crossing another (each step limited to keep 0.1 voxel between
  * objects); the output then has ObjectId per point and per cell and field data ObjectIds,
  * ObjectVolumes, ObjectVertices, ObjectIntensityRanges (0 0 where the object's region force was
- * off) and CrossingPairs. Output 1: a vtkTable, one row per sweep: Sweep, Level, Sigma, Vertices,
- * Triangles, MeanCorrection, MaxCorrection (ParaView plots it in a Line Chart View).
+ * off), ObjectRegionWeights (0 where off) and CrossingPairs. Output 1: a vtkTable, one row per
+ * sweep: Sweep, Level, Sigma, Vertices, Triangles, MeanCorrection, MaxCorrection (ParaView plots it
+ * in a Line Chart View).
  *
  * Start surface: with SubdivideInitialSurface on, a coarse start is first
  * split 1 -> 4 at edge midpoints to the mean edge length nearest 4 sigma_0 (within a factor

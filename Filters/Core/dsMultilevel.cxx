@@ -581,8 +581,8 @@ bool MultilevelSolver::SetUpLevel(
     const double decay = state.FrontLevel || own ? 1.0 : RegionFade(sigma, state.FirstSigma);
     // Distributed, each process samples its own piece (it owns the vertices it samples).
     std::vector<Solver::RegionModel> models = this->LevelRegionModels(state, sigma);
-    state.LevelSolver.SetRegionForce(
-      this->Distributed ? this->Piece.Image : image, std::move(models), decay * P.RegionWeight * h);
+    state.LevelSolver.SetRegionForce(this->Distributed ? this->Piece.Image : image,
+      std::move(models), decay * this->GetRegionWeight() * h);
   }
   rec.Sigma = sigma;
   rec.Vertices = mesh.NumberOfPoints();

@@ -118,8 +118,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT MultilevelParameters
   /// How the edge strength is normalised in the potential (dsScaleSpace.h).
   dsurf::EdgeNormalization EdgeNormalization = dsurf::EdgeNormalization::GlobalMaximum;
   /// The region force (dsRegion.h): RegionWeight * h * speed * normal; 0 = off. The default
-  /// suits a seed near its object (the whole-head MRI of the README), ~1 a one-click seed sphere
-  /// growing to a large object given its IntensityRange. Its range is IntensityRange when
+  /// suits a seed near its object (the whole-head MRI of the README); a click given its range
+  /// pulls with at least GivenRangeClickWeight (1, dsRegion.h: a one-click seed sphere growing
+  /// to a large object; ObjectRegion::Weight). Its range is IntensityRange when
   /// IntensityRange[0] < IntensityRange[1], else estimated from the image inside and just
   /// outside the start surface (EstimateIntensityRange); without a given range it is off for a
   /// start spanning the image or an open one, so a box around the volume solves the paper's
@@ -276,6 +277,9 @@ struct DEFORMABLESURFACEFILTERS_EXPORT ObjectRegion
   /// A click's range from its competitors (RangeEstimate::Classes): after sigma's floor, front
   /// levels follow the parts the object still lies beyond (FrontTriangles).
   bool FollowsFront = false;
+  /// The RegionWeight it pulls with: MultilevelParameters::RegionWeight, at least
+  /// GivenRangeClickWeight for a click given its range (dsRegion.h).
+  double Weight = 0;
 };
 
 /// Why the levels ended (MultilevelSolver::GetStopReason; the StopReason field of the filter).
@@ -434,6 +438,9 @@ public:
   /// The intensity range the region force used (estimated or given); both 0 when it was off.
   /// With several objects, the first one's whose force was on.
   const double* GetIntensityRange() const { return this->UsedRange; }
+  /// The RegionWeight the region force pulled with (ObjectRegion::Weight; with several objects,
+  /// the first one's whose force was on); RegionWeight when it was off.
+  double GetRegionWeight() const;
   /// The region model of each object (mesh.Objects; one when the start has none).
   const std::vector<ObjectRegion>& GetObjectRegions() const { return this->ObjectRegions; }
   /// Triangle pairs of different objects that intersect on the delivered surface (0 with one

@@ -100,6 +100,13 @@ bool MultilevelSolver::ObjectRange(const ImageView& image, const TriangleMesh& m
   model.Low = lo;
   model.High = hi;
   model.On = true;
+  // A click given its range pulls harder than a start near its object (dsRegion.h).
+  const bool givenClick = given[0] < given[1] &&
+    (this->Distributed
+        ? PieceStartIsClick(this->Piece, mesh, this->Reduce)
+        : PieceStartIsClick(WholeImagePiece(image), mesh, SingleProcessReductions()));
+  const double weight = this->Parameters.RegionWeight;
+  model.Weight = givenClick ? std::max(weight, GivenRangeClickWeight) : weight;
   return true;
 }
 
@@ -136,10 +143,23 @@ bool MultilevelSolver::RegionRange(
   return any;
 }
 
+double MultilevelSolver::GetRegionWeight() const
+{
+  for (const ObjectRegion& r : this->ObjectRegions)
+  {
+    if (r.On)
+    {
+      return r.Weight;
+    }
+  }
+  return this->Parameters.RegionWeight;
+}
+
 std::vector<Solver::RegionModel> MultilevelSolver::LevelRegionModels(
   const RunState& state, double sigma) const
 {
   const bool own = this->StartSigmas.size() == this->ObjectRegions.size();
+  const double weight = this->GetRegionWeight();
   std::vector<Solver::RegionModel> models;
   for (std::size_t o = 0; o < this->ObjectRegions.size(); ++o)
   {
@@ -153,6 +173,12 @@ std::vector<Solver::RegionModel> MultilevelSolver::LevelRegionModels(
     const bool followed = o < state.FrontObjects.size() && state.FrontObjects[o];
     const double fade = RegionFade(sigma, own ? this->StartSigmas[o] : state.FirstSigma);
     m.Scale = state.FrontLevel ? (followed ? 1.0 : fade) : (own ? fade : 1.0);
+    // The level's force scale holds the first object's weight (GetRegionWeight); an object
+    // that pulls with another (a click given its range among other objects) scales its own.
+    if (r.On && r.Weight != weight)
+    {
+      m.Scale *= r.Weight / weight;
+    }
     // A click's seed lies inside its object, in the basin of the face nearest it, which its
     // sigma_0 was chosen to span: while sigma is that large (the object's first levels, its
     // force not yet faded) that edge pulls the seed's far side back across the object's own

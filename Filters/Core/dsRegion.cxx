@@ -425,6 +425,24 @@ bool EstimatePieceIntensityRange(const ImagePiece& piece, const TriangleMesh& me
   return true;
 }
 
+bool PieceStartIsClick(
+  const ImagePiece& piece, const TriangleMesh& mesh, const PieceReductions& reduce)
+{
+  if (!mesh.IsClosed())
+  {
+    return false;
+  }
+  // A start of many times a click's volume is taken for none (only a slab thinner than a voxel
+  // could hold fewer centres): no need to find its voxels (the mesh is every process's, so all
+  // skip the count alike).
+  const double* s = piece.Whole.Spacing;
+  if (std::abs(mesh.SignedVolume()) > 8.0 * ClickVoxels * s[0] * s[1] * s[2])
+  {
+    return false;
+  }
+  return CountOfAll(ValuesInside(piece, mesh), reduce) < ClickVoxels;
+}
+
 bool AnyVoxelInRange(const ImageView& image, double lo, double hi)
 {
   bool found = false;

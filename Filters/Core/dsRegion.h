@@ -84,6 +84,22 @@ inline Vec3 WithoutInwardEdgePull(const Vec3& force, const Vec3& n, double speed
 /// ball of radius ~6 voxels; a seed sphere around one point (5 mm on 1 mm voxels) holds ~520.
 constexpr long long ClickVoxels = 1000;
 
+/// A click given its object's range (IntensityRange, or its row of ObjectIntensityRanges) pulls
+/// with at least this RegionWeight (docs/METHOD.md §9.3, "A click given its range"). Its first
+/// level's sigma spans the seed's distance to the nearest edges (dsInitialSigma.h), so the edge
+/// force pulls the whole seed toward them: at the default weight, meant for a start near its
+/// object, it pulled the README's brain click in until it collapsed. A click whose range is
+/// estimated keeps RegionWeight: its first levels drop the edge's inward pull where the image
+/// says object (WithoutInwardEdgePull), which a given range, whose ends need not be the
+/// object's boundaries, cannot (with it the README's click leaked at the default weight).
+constexpr double GivenRangeClickWeight = 1.0;
+
+/// Whether a closed start encloses fewer than ClickVoxels voxel centres (a click), counted as
+/// EstimatePieceIntensityRange counts them (not counted for a start enclosing more than 8
+/// ClickVoxels of volume). Collective, as that is.
+DEFORMABLESURFACEFILTERS_EXPORT bool PieceStartIsClick(
+  const ImagePiece& piece, const TriangleMesh& mesh, const PieceReductions& reduce);
+
 /// What the estimate saw, for messages and tests.
 struct DEFORMABLESURFACEFILTERS_EXPORT RangeEstimate
 {

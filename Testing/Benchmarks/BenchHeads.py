@@ -6,7 +6,7 @@ Python user runs; pvbatch adds ParaView's pipeline around the same filter):
 
 (`scripts/benchmark.sh Heads` does this.) For each head (Colin27 from mricron-data, ITK's
 KmeansTest from insighttoolkit5-examples) and start (the picked points with every default; one
-click with RegionWeight 1 and the user's IntensityRange, as Examples/ds_scoring.py's HEADS), RUNS
+click with the user's IntensityRange (so RegionWeight 1), as Examples/ds_scoring.py's HEADS), RUNS
 solves (default 5) of vtkDeformableSurfaceFilter from the same seed, the seed and the reading
 outside the clock; and, in the same run for comparison, vtkFlyingEdges3D on the same head at the
 same CSF/cortex level (what a user would try first: README). Prints one row per solve: min,
@@ -76,7 +76,6 @@ def main():
                 surface.SetInputData(0, image)
                 surface.SetInitialSurfaceData(start_surface)
                 if start == "click":
-                    surface.SetRegionWeight(1.0)
                     surface.SetIntensityRange(*click_range)
                 return surface
 

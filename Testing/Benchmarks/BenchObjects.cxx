@@ -11,7 +11,8 @@
 //   caudate-right   colin27_caudate_clicks.csv in each caudate head, a 3 mm seed sphere; AAL
 //                   (aal.nii.gz) label 71 / 72 without its voxels darker than 60 in ch2 (CSF)
 //   wm            Colin27, each of the 50 clicks of Examples/colin27_wm_clicks.csv with
-//                 RegionWeight 1 and IntensityRange 62 130 (the README's click); the brain
+//                 IntensityRange 62 130 (the README's click; given its range, a click pulls
+//                 with RegionWeight 1); the brain
 //                 mask (ch2bet.nii.gz > 0); one row of medians and worst values
 //
 //   BenchObjects [--wm-clicks N] [--max-sweeps-per-level N] [--verbose] [--write DIR] [CASE ...]
@@ -300,7 +301,6 @@ void WhiteMatter(int limit, bool verbose)
   c.Reference = MaskOf(brain, [](double v, vtkIdType) { return v > 0; });
   c.ReferenceBoundary = MaskBoundary(c.Reference, head);
   c.ReferenceStride = BrainBoundaryStride;
-  c.Settings.RegionWeight = 1.0;
   c.Settings.IntensityRange[0] = c.FallbackRange[0] = Colin27BrainRange[0];
   c.Settings.IntensityRange[1] = c.FallbackRange[1] = Colin27BrainRange[1];
   std::vector<std::array<double, 3>> clicks = ReadClicks(DS_EXAMPLES_DIR "/colin27_wm_clicks.csv");

@@ -5,7 +5,7 @@
 // met) and what was tried.
 // - The caudate nuclei, one click each (a 3 mm seed, every default), against AAL 71 / 72
 //   without their CSF.
-// - White-matter clicks (the README's click settings: RegionWeight 1, IntensityRange 62 130),
+// - White-matter clicks (the README's click settings: IntensityRange 62 130, so RegionWeight 1),
 //   the first WhiteMatterClicks of Examples/colin27_wm_clicks.csv, against ch2bet > 0.
 // - The caudates and putamina in one run, four clicks with four ObjectIds (every default),
 //   against AAL 71-74 without CSF.
@@ -93,8 +93,7 @@ void WhiteMatter(vtkImageData* head, vtkImageData* brain)
   const std::vector<unsigned char> reference =
     MaskOf(brain, [](double v, vtkIdType) { return v > 0; });
   const vtkSmartPointer<vtkPolyData> boundary = MaskBoundary(reference, head);
-  ClickSettings settings;
-  settings.RegionWeight = 1.0;
+  ClickSettings settings; // RegionWeight default: a click given its range pulls with 1
   settings.IntensityRange[0] = Colin27BrainRange[0];
   settings.IntensityRange[1] = Colin27BrainRange[1];
   std::vector<std::array<double, 3>> clicks = ReadClicks(DS_EXAMPLES_DIR "/colin27_wm_clicks.csv");

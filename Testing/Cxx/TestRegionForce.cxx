@@ -11,6 +11,8 @@
 //   background);
 // - an IntensityRange that matches nothing: a warning, the force off, finite coordinates and
 //   the surface where the edge force alone puts it;
+// - a click given its IntensityRange pulls with RegionWeight 1 at the default (the same surface,
+//   bit for bit), a larger weight is kept, a start that is no click keeps the default;
 // - a click whose IntensityRange leaves out its object (RegionWeight 1): its surface collapses,
 //   which fails the run with an error that says so and an empty output;
 // - sigma_0: the paper's extent / 6 for a box spanning the image, about the start's distance
@@ -66,9 +68,25 @@ vtkSmartPointer<vtkPolyData> Sphere(double r)
   return s->GetOutput();
 }
 
+/// Delaunay Seed Surface's seed for one click at (x, y, z): a sphere of radius 3.
+vtkSmartPointer<vtkPolyData> ClickSeed(double x, double y, double z, const std::string& name)
+{
+  vtkNew<vtkPoints> click;
+  click->InsertNextPoint(x, y, z);
+  vtkNew<vtkPolyData> picked;
+  picked->SetPoints(click);
+  vtkNew<vtkDelaunaySeedSurface> seed;
+  seed->SetInputData(picked);
+  seed->SetSeedRadius(3.0);
+  dstest::UpdateWithInputsUnchanged(seed, name);
+  return seed->GetOutput();
+}
+
 struct Result
 {
   double Mean = 0, Max = 0, InitialSigma = 0;
+  double RegionWeight = -1; ///< the field data RegionWeight (-1: none)
+  vtkSmartPointer<vtkPolyData> Surface;
   vtkIdType Points = 0;
   int Warnings = 0, Errors = 0, SelfIntersections = -1;
   bool Finite = true, RangeReported = false;
@@ -125,6 +143,11 @@ Result Deform(vtkImageData* image, vtkPolyData* start,
   {
     r.RangeReported = a->GetComponent(0, 0) < a->GetComponent(0, 1);
   }
+  if (vtkDataArray* a = fd->GetArray("RegionWeight"))
+  {
+    r.RegionWeight = a->GetTuple1(0);
+  }
+  r.Surface = out;
   std::cout << "  " << out->GetNumberOfPoints() << " points, mean |d| " << r.Mean << ", max "
             << r.Max << ", sigma_0 " << r.InitialSigma << ", " << r.Warnings << " warning(s)"
             << std::endl;
@@ -161,16 +184,9 @@ int TestRegionForce(int, char*[])
 
   std::cout << "one click inside the ball, grown by the region force:" << std::endl;
   {
-    vtkNew<vtkPoints> click;
-    click->InsertNextPoint(C + 2, C - 1, C + 1);
-    vtkNew<vtkPolyData> picked;
-    picked->SetPoints(click);
-    vtkNew<vtkDelaunaySeedSurface> seed;
-    seed->SetInputData(picked);
-    seed->SetSeedRadius(3.0);
-    dstest::UpdateWithInputsUnchanged(seed, "one-click seed");
-    DS_CHECK(seed->GetOutput()->GetNumberOfPoints() == 162, "one click: a sphere of 162 points");
-    const Result r = Deform(ball, seed->GetOutput(), nullptr);
+    const vtkSmartPointer<vtkPolyData> seed = ClickSeed(C + 2, C - 1, C + 1, "one-click seed");
+    DS_CHECK(seed->GetNumberOfPoints() == 162, "one click: a sphere of 162 points");
+    const Result r = Deform(ball, seed, nullptr);
     DS_CHECK_LE(r.Mean, 0.3, "click grown to the ball: mean |d| (voxels)");
     DS_CHECK_LE(r.Max, 1.0, "click grown to the ball: max |d| (voxels)");
     DS_CHECK(r.RangeReported, "the estimated range is in the field data");
@@ -186,16 +202,10 @@ int TestRegionForce(int, char*[])
     // to sigma (before) 6 861 points, mean 0.26, max 0.96 voxel; the rule 5 650 points, 0.27,
     // 1.28; 4 sigma (the paper's proportion) 2 360 points, 0.38, 2.33: the ridges lost.
     auto ridged = RidgedBall();
-    vtkNew<vtkPoints> click;
-    click->InsertNextPoint(RC + 2, RC - 1, RC + 1);
-    vtkNew<vtkPolyData> picked;
-    picked->SetPoints(click);
-    vtkNew<vtkDelaunaySeedSurface> seed;
-    seed->SetInputData(picked);
-    seed->SetSeedRadius(3.0);
-    dstest::UpdateWithInputsUnchanged(seed, "one-click seed in the ridged ball");
+    const vtkSmartPointer<vtkPolyData> seed =
+      ClickSeed(RC + 2, RC - 1, RC + 1, "one-click seed in the ridged ball");
     const Result r = Deform(
-      ridged, seed->GetOutput(),
+      ridged, seed,
       [](vtkDeformableSurfaceFilter* f)
       {
         f->SetRegionWeight(1.0);
@@ -230,6 +240,44 @@ int TestRegionForce(int, char*[])
     DS_CHECK(!r.RangeReported, "range matching nothing: the force is off");
     DS_CHECK_LE(std::abs(r.Mean - off.Mean), 1e-9,
       "range matching nothing: same surface as without the force");
+  }
+
+  std::cout << "a click given its range pulls with RegionWeight 1 or more:" << std::endl;
+  {
+    // GivenRangeClickWeight (dsRegion.h, docs/METHOD.md §9.3): a click (Delaunay Seed Surface's
+    // sphere of radius 3 around one point, 113 voxel centres) given its range pulls with
+    // max(RegionWeight, 1); a start enclosing more than ClickVoxels keeps RegionWeight.
+    const vtkSmartPointer<vtkPolyData> click =
+      ClickSeed(C + 2, C - 1, C + 1, "one-click seed given its range");
+    const auto given = [](double weight)
+    {
+      return [weight](vtkDeformableSurfaceFilter* f)
+      {
+        f->SetIntensityRange(50.0, 150.0);
+        if (weight > 0)
+        {
+          f->SetRegionWeight(weight);
+        }
+      };
+    };
+    const Result byDefault = Deform(ball, click, given(0));
+    const Result one = Deform(ball, click, given(1.0));
+    const Result two = Deform(ball, click, given(2.0));
+    DS_CHECK(byDefault.RegionWeight == 1.0 && one.RegionWeight == 1.0 && two.RegionWeight == 2.0,
+      "a click given its range: field data RegionWeight 1 at 0.3 and at 1, 2 at 2");
+    bool same = byDefault.Points == one.Points && byDefault.Points > 0;
+    for (vtkIdType i = 0; same && i < one.Points; ++i)
+    {
+      double a[3], b[3];
+      byDefault.Surface->GetPoint(i, a);
+      one.Surface->GetPoint(i, b);
+      same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+    }
+    DS_CHECK(
+      same, "a click given its range: the default's surface is RegionWeight 1's, bit for bit");
+    DS_CHECK_LE(byDefault.Mean, 0.3, "a click given its range, by default: mean |d| (voxels)");
+    const Result near = Deform(ball, Sphere(19), given(0));
+    DS_CHECK(near.RegionWeight == 0.3, "a start that is no click keeps RegionWeight 0.3");
   }
 
   std::cout << "a click whose range leaves out its object: a collapse, refused:" << std::endl;

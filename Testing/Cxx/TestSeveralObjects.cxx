@@ -8,7 +8,8 @@
 // - One object with an ObjectId gives the same surface as without one, and the output carries
 //   ObjectId per point and per cell and the per-object field data.
 // - A warm start (ContinueFromLastResult) keeps the objects; starts that cross are an error.
-// - A range given for one object (ObjectIntensityRanges) is the one it uses.
+// - A range given for one object (ObjectIntensityRanges) is the one it uses, and that object, a
+//   click, pulls with RegionWeight 1 while the other keeps the default (ObjectRegionWeights).
 // - Delaunay Seed Surface seeds each ObjectId group on its own and numbers TetraIds on.
 #include "DSTestHelpers.h"
 #include "OneClick.h"
@@ -54,6 +55,10 @@ void GivenRanges()
   DS_CHECK(ranges && ranges->GetNumberOfTuples() == 2 && ranges->GetComponent(1, 0) == 80 &&
       ranges->GetComponent(1, 1) == 150 && ranges->GetComponent(0, 0) != 80,
     "object 2 uses its given range, object 1 its estimate");
+  vtkDataArray* weights = filter->GetOutput()->GetFieldData()->GetArray("ObjectRegionWeights");
+  DS_CHECK(weights && weights->GetNumberOfTuples() == 2 && weights->GetTuple1(0) == 0.3 &&
+      weights->GetTuple1(1) == 1.0 && FieldValue(filter->GetOutput(), "RegionWeight") == 0.3,
+    "object 2, a click given its range, pulls with 1; object 1 and the RegionWeight field 0.3");
   filter->RemoveAllObjectIntensityRanges();
   filter->Update();
   ranges = filter->GetOutput()->GetFieldData()->GetArray("ObjectIntensityRanges");

@@ -6,7 +6,7 @@ gui_seed_points.py).
 This script sets the scene: a phantom (DS_TEST_OUTPUT/region_sliders_phantom.vti: a ball of
 value 100 inside a shell of 200, background 0, one isolated voxel of 250 in a corner, so the
 image's values run from 0 to 250), one seed point at the centre, Delaunay Seed Surface (a seed
-sphere) and Deformable Surface with Region Weight 1, Intensity Range 50 150 and Preview Region on,
+sphere) and Deformable Surface with Intensity Range 50 150 and Preview Region on,
 shown and active, so its panel shows the two sliders. The preview then reaches the ball only; its
 PreviewVoxels goes to DS_TEST_OUTPUT/gui_region_sliders.json with the slider positions the
 events use. The client plays gui_region_sliders.xml: the low slider to its right end (the high
@@ -48,7 +48,6 @@ def scene():
     seed = simple.DelaunaySeedSurface(registrationName="DelaunaySeedSurface", Input=seeds, SeedRadius=3.0)
     surface = simple.DeformableSurface(registrationName="DeformableSurface", Input=phantom, InitialSurface=seed)
     surface.Scalars = ["POINTS", "density"]
-    surface.RegionWeight = 1.0
     surface.IntensityRange = [50.0, 150.0]
     surface.PreviewRegion = 1
     simple.Show(surface, view)

@@ -4,7 +4,8 @@
 # reference only: the filter never sees it). Two starts, both from Examples/ (chosen on the
 # image): 44 points picked ~3 mm outside the brain on six slices -> Delaunay Seed Surface ->
 # Deformable Surface with every default; and one click in the white matter -> a 5 mm seed
-# sphere -> Deformable Surface with RegionWeight 1 and the IntensityRange read off the image.
+# sphere -> Deformable Surface with the IntensityRange read off the image (a click given its
+# range pulls with RegionWeight 1).
 #
 # Measured (Release, the 2-core machine of docs/RESULTS.md): picks 1.1-1.4 s,
 # 11 113 vertices, one closed surface, 0 self-intersections, vertex -> mask boundary mean 0.60,

@@ -22,7 +22,7 @@ POINT_ARRAYS = {"Normals", "Displacement", "ExternalForce", "ErrorIndicator", "R
 FIELD_ARRAYS = {"Sweeps", "Levels", "InitialSubdivisions", "FinalMeanCorrection", "SelfIntersections",
                 "InitialSigma", "Sigma", "Converged", "StopReason", "WarmStart", "FrontLevels",
                 "KeptApartLevels"}
-REGION_FIELD = {"IntensityRange"}  # only with the region force
+REGION_FIELD = {"IntensityRange", "RegionWeight"}  # only with the region force
 TABLE_COLUMNS = {"Sweep", "Level", "Sigma", "Vertices", "Triangles", "MeanCorrection", "MaxCorrection"}
 
 n, c, r = 32, 15.5, 8.0
@@ -72,7 +72,8 @@ def documented_lists(text):
     points, rest = text[len("point arrays"):].split(" field data ", 1)
     field, rest = rest.split("with the region force,", 1)
     names = lambda part: re.findall(r"\b[A-Z][A-Za-z]+\b", part)
-    return names(points), names(field), names(rest)[:1]
+    region = re.split(r";|\.|, and ", rest, maxsplit=1)[0]  # the list ends with its clause
+    return names(points), names(field), names(region)
 
 
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
