@@ -4,7 +4,8 @@
 the GUI's own Python the script builds the README's
 one-click workflow as a user does: the whole Colin27 head (the plugin's NIfTI reader), a Slice,
 the clicked point (CSV Reader -> Table To Points), Delaunay Seed Surface (a seed sphere),
-Deformable Surface (RegionWeight 1, IntensityRange 62 130), the surface's trace on the slice.
+Deformable Surface (IntensityRange 62 130, no weight typed: a click given its range pulls with
+RegionWeight 1), the surface's trace on the slice.
 Checks: the proxies exist in the GUI's session and the surface is one closed piece around the
 click of the expected size; the render view matches Testing/Baseline/gui_one_click.png
 (ds_gui.compare_view: vtkImageDifference, AllowShift, per-pixel threshold 20, thresholded
@@ -58,7 +59,6 @@ def main():
     seed = namespace["DelaunaySeedSurface"](registrationName="DelaunaySeedSurface", Input=points)
     surface = namespace["DeformableSurface"](registrationName="DeformableSurface", Input=head, InitialSurface=seed)
     surface.Scalars = ["POINTS", "NIFTI"]
-    surface.RegionWeight = 1.0
     surface.IntensityRange = [62.0, 130.0]
     trace = Slice(registrationName="trace", Input=surface)
     trace.SliceType = "Plane"
@@ -110,6 +110,9 @@ def main():
     selfx = data.GetFieldData().GetArray("SelfIntersections")
     if selfx is None or selfx.GetTuple1(0) != 0:
         problems.append("self-intersections")
+    weight = data.GetFieldData().GetArray("RegionWeight")
+    if weight is None or weight.GetTuple1(0) != 1.0:
+        problems.append("the click given its range did not pull with RegionWeight 1")
 
     matches, found = ds_gui.compare_view(view, "gui_one_click.png", [500, 500])
     if not matches:
