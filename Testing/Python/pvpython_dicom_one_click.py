@@ -4,7 +4,7 @@
 by the test tool DICOMFromNIfTI), opened with OpenDataFile on the folder after LoadPlugin (the
 plugin's DICOM Series Reader), one click in the white matter (Examples/colin27_click.csv) ->
 Table To Points -> Delaunay Seed Surface -> Deformable Surface with the README's region force
-(RegionWeight 1, IntensityRange 62-130). The surface must be closed, and the same as the one the
+(IntensityRange 62-130, so RegionWeight 1). The surface must be closed, and the same as the one the
 plugin's NIfTI reader gives for the NIfTI file: the DICOM image has its voxels and its place.
 Skipped (exit 77) when the plugin was built without GDCM (no DS_DICOM_FROM_NIFTI)."""
 import os
@@ -37,7 +37,6 @@ def one_click(path):
     points = TableToPoints(Input=CSVReader(FileName=[CLICK]), XColumn="x", YColumn="y", ZColumn="z")
     seed = DelaunaySeedSurface(Input=points)  # noqa: F821 (from LoadPlugin)
     surface = DeformableSurface(Input=volume, InitialSurface=seed)  # noqa: F821
-    surface.RegionWeight = 1.0
     surface.IntensityRange = [62.0, 130.0]
     surface.UpdatePipeline()
     return volume, servermanager.Fetch(volume), servermanager.Fetch(surface, arg1=0), \

@@ -6,10 +6,10 @@ pvpython after the client saved DS_TEST_OUTPUT/gui_seed_points.pvsm.
   within half a voxel (0.5 mm) of where the mouse aimed, on the slice (the first where its
   handle was dragged to: as far as the mouse moved, in whole pixels), with ObjectIds 0 0 1 as the
   spin box said;
-- Delaunay Seed Surface (three points: a seed sphere each) and Deformable Surface (RegionWeight 1,
-  IntensityRange 50 150) grow them into three closed surfaces, each on its ball: the centre of its
-  bounding box within 0.5 mm of the ball's centre, the radius of a ball of its volume within
-  0.5 mm of the ball's radius;
+- Delaunay Seed Surface (three points: a seed sphere each) and Deformable Surface (IntensityRange
+  50 150, so the clicks pull with RegionWeight 1) grow them into three closed surfaces, each on
+  its ball: the centre of its bounding box within 0.5 mm of the ball's centre, the radius of a
+  ball of its volume within 0.5 mm of the ball's radius;
 - the client's view (its camera, the slice) with the traces of the grown surfaces on the slice,
   drawn at 480x360 pixels, matches Testing/Baseline/gui_seed_points.png (ds_gui.compare_view): a
   surface grown elsewhere or to another size fails it;
@@ -71,7 +71,6 @@ phantom = simple.FindSource("phantom")
 seed = simple.DelaunaySeedSurface(Input=seeds, SeedRadius=3.0)
 surface = simple.DeformableSurface(Input=phantom, InitialSurface=seed)
 surface.Scalars = ["POINTS", "density"]
-surface.RegionWeight = 1.0
 surface.IntensityRange = [50.0, 150.0]
 grown = servermanager.Fetch(surface, arg1=0)
 found = pieces(grown)

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # A few folds on the schedule's last level are smoothed open, not solved again kept apart
 # (docs/METHOD.md §9.3, "Why one click can fold"; MultilevelSolver::SolveLevelKeptApart):
-# the click of ITK's KmeansTest head with the README's click settings (RegionWeight 1, the
-# user's IntensityRange, as Examples/ds_scoring.py's HEADS give them) ends its last level with
+# the click of ITK's KmeansTest head with the README's click settings (the user's
+# IntensityRange, so RegionWeight 1, as Examples/ds_scoring.py's HEADS give them) ends its last level with
 # 17 intersecting pairs on 7 268 vertices; solved again kept apart it took four to five times as long for a surface
 # about 0.02 mm nearer its mask (docs/RESULTS.md). Checked: no level kept apart, no intersecting
 # pair left, and the surface within 2.2 mm (mean) of the skull-stripped mask's boundary (2.06
@@ -27,7 +27,6 @@ image = read_nifti(head["image"])
 surface = vtkDeformableSurfaceFilter()
 surface.SetInputData(0, image)
 surface.SetInitialSurfaceData(seed("kmeans", "click"))
-surface.SetRegionWeight(1.0)
 surface.SetIntensityRange(*head["range"])
 surface.Update()
 out = surface.GetOutput()
