@@ -16,6 +16,8 @@ packages=(
   paraview paraview-dev python3-paraview libopenmpi-dev
   # XML_DOCUMENTATION ON (the GUI help pages)
   qttools5-dev qtxmlpatterns5-dev-tools libqt5svg5-dev
+  # Qt5 OpenGL's CMake config, which ParaView's VTK looks for (without it a configure warning)
+  libqt5opengl5-dev
   # third-party headers/config that ParaView's bundled VTK asks find_package() for
   libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libjsoncpp-dev libutfcpp-dev
   libpugixml-dev libeigen3-dev libglew-dev libfreetype-dev libpng-dev libjpeg-dev libtiff-dev
