@@ -5,10 +5,11 @@ random (a Gaussian of SD mm along each axis, DRAWS draws, seed 1), through Seed 
 Seed Surface and Deformable Surface, every default, as the picks of the GUI would come (the P key
 places a pick within half a pixel of where it was aimed). Prints a row per draw: sigma_0
 (InitialSigma), levels, vertices, the mean distance of its vertices to the surface of the
-unmoved picks, and its mean distance to the brain mask's boundary (ch2bet > 0).
+unmoved picks, and its mean distance to the brain mask's boundary (ch2bet > 0). With TOLERANCE,
+every solve (the unmoved picks' too) takes that ConvergenceTolerance instead of the default.
 
     PYTHONPATH=build/lib/python3/dist-packages pvpython Testing/Benchmarks/colin27_jittered_picks.py \\
-        build/lib/paraview-5.11/plugins/DeformableSurface/DeformableSurface.so [DRAWS [SD]]
+        build/lib/paraview-5.11/plugins/DeformableSurface/DeformableSurface.so [DRAWS [SD [TOLERANCE]]]
 """
 import csv
 import math
@@ -50,9 +51,13 @@ def brain_boundary():
     return ds_scoring._iso_surface(mask, 0.5)
 
 
-def main(plugin, draws, sd):
+def main(plugin, draws, sd, tolerance=None):
     demo.load_plugin(plugin)
     reference = demo.segment_head("colin27", "picks")
+    settings = {} if tolerance is None else {"ConvergenceTolerance": tolerance}
+    if settings:
+        demo.solve(reference["surface"], settings)
+        reference["polydata"] = servermanager.Fetch(reference["surface"], idx=0)
     truth = brain_boundary()
 
     def accuracy(poly):
@@ -75,7 +80,7 @@ def main(plugin, draws, sd):
         points = simple.SeedPoints(Points=moved)
         seed = simple.DelaunaySeedSurface(Input=points)
         surface = simple.DeformableSurface(Input=reference["image_proxy"], InitialSurface=seed)
-        demo.solve(surface, {})
+        demo.solve(surface, settings)
         poly = servermanager.Fetch(surface, idx=0)
         print("| %d | %.3f | %d | %d | %.3f | %.3f |" % (
             draw + 1, field(poly, "InitialSigma"), field(poly, "Levels"), poly.GetNumberOfPoints(),
@@ -86,4 +91,5 @@ def main(plugin, draws, sd):
 
 if __name__ == "__main__":
     main(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 10,
-         float(sys.argv[3]) if len(sys.argv) > 3 else 0.07)
+         float(sys.argv[3]) if len(sys.argv) > 3 else 0.07,
+         float(sys.argv[4]) if len(sys.argv) > 4 else None)
