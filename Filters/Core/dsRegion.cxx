@@ -236,6 +236,33 @@ int OtsuSplit(const std::vector<double>& w)
   return split;
 }
 
+/// Whether every value inside the start, on every process, is a whole number.
+bool IntegerValued(const SharedValues& in, const PieceReductions& reduce)
+{
+  const bool whole =
+    std::all_of(in.Values.begin(), in.Values.end(), [](float x) { return x == std::nearbyint(x); });
+  return reduce.Max(whole ? 0.0 : 1.0) == 0.0;
+}
+
+/// Adds a unit spread evenly over [x - 0.5, x + 0.5), the values a whole grey level stands for,
+/// to the bins (of `width` from `lo`) it overlaps, the parts beyond the ends to the end bins.
+/// Each part is a multiple of 2^-20, so that sums of them are exact in any order: the counts of
+/// a distributed image, summed over the processes, are the serial counts.
+void AddSpread(double* counts, int bins, double x, double lo, double width)
+{
+  constexpr double Grain = 1048576.0; // 2^20
+  const double a = (x - 0.5 - lo) / width, b = (x + 0.5 - lo) / width;
+  const int first = static_cast<int>(std::floor(a)), last = static_cast<int>(std::floor(b));
+  for (int k = first; k <= last; ++k)
+  {
+    const double overlap = std::min<double>(b, k + 1) - std::max<double>(a, k);
+    if (overlap > 0)
+    {
+      counts[std::clamp(k, 0, bins - 1)] += std::round(Grain * overlap / (b - a)) / Grain;
+    }
+  }
+}
+
 /// The histograms (bins of equal width over the values' common span) of the inside and outside
 /// shares, each normalised to 1. False when all the values are equal.
 bool ShareHistograms(const SharedValues& in, const SharedValues& out, const PieceReductions& reduce,
@@ -261,10 +288,19 @@ bool ShareHistograms(const SharedValues& in, const SharedValues& out, const Piec
   // Each share's bin counts, summed over the processes, then divided by the share's size: the
   // histogram does not depend on how the values were split.
   std::vector<double> counts(2 * bins, 0.0);
+  // Voxel values of whole numbers, each counted over the unit it stands for: bins narrower than
+  // a unit held one value or two, and the mode of that comb moved with a start moved by
+  // micrometres (docs/METHOD.md §9.1). The outside values are interpolated, continuous already.
+  const bool spread = IntegerValued(in, reduce);
   for (int side = 0; side < 2; ++side)
   {
     for (float x : side == 0 ? in.Values : out.Values)
     {
+      if (side == 0 && spread)
+      {
+        AddSpread(counts.data(), bins, x, lo, width);
+        continue;
+      }
       counts[side * bins + std::min(bins - 1, static_cast<int>((x - low) / width))] += 1.0;
     }
   }

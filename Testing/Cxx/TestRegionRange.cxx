@@ -16,6 +16,8 @@
 //   and each neighbour; the air keeps its class.
 // - a click beside a dark tissue that lies between two brighter ones (CSF between brain and
 //   scalp, the image's empty margin beyond) ends its range at that tissue: it is no blend.
+// - a start around an object of an integer image, moved by thousandths of a voxel, keeps its
+//   range's low end (whole values counted over the unit each stands for).
 #include "DSTestHelpers.h"
 #include "TestSolverMeshes.h"
 
@@ -364,6 +366,48 @@ int TestRegionRange(int, char*[])
     DS_CHECK(one.Classes == 1 && !one.Contrast, "one noisy class around the click: one class");
     DS_CHECK(one.Range[0] < 1100.0 - 2.0 * 60.0 && one.Range[1] > 1100.0 + 2.0 * 60.0,
       "one noisy class: the range holds the class's values within 2 s.d. of its mean");
+  }
+
+  // An integer image (a ball of 100-120, radius 12, in 20 +- 5, with a small dark blob of -200
+  // four voxels beyond it, rounded to whole values) and a sphere of radius 14.5 around the ball
+  // moved by a few thousandths of a voxel: the range's low end stays put. The lowest values are
+  // the few outside samples interpolated on the blob's steep flanks, so the histogram's span
+  // moves with the start; binned as they came, the whole values fell into bins about a level
+  // wide, some holding one value and some two, and the object's mode jumped between the teeth of
+  // that comb as the bins' edges moved (docs/METHOD.md §9.1).
+  {
+    const std::vector<float> ball = NoisyImage(n, 9,
+      [](int i, int j, int k, auto noise)
+      {
+        const double r =
+          std::sqrt((i - 20.0) * (i - 20.0) + (j - 20.0) * (j - 20.0) + (k - 20.0) * (k - 20.0));
+        const double inside = 1.0 / (1.0 + std::exp(2.0 * (r - 12.0)));
+        // The object's values spread evenly over 100-120 (a flat top, as grey and white matter
+        // together make one), the background's noisy.
+        const double flat = 0.5 * std::erfc(-noise() / std::sqrt(2.0));
+        const double blob =
+          std::sqrt((i - 20.0) * (i - 20.0) + (j - 20.0) * (j - 20.0) + (k - 36.0) * (k - 36.0));
+        const double value = blob <= 1.0
+          ? -200.0 + noise()
+          : 20.0 + (80.0 + 20.0 * flat) * inside + 5.0 * (1.0 - inside) * noise();
+        return static_cast<float>(std::lround(value));
+      });
+    double lowest = 1e300, highest = -1e300;
+    for (double shift : { 0.0, 0.003, 0.006, 0.009, 0.012, 0.015 })
+    {
+      TriangleMesh sphere = dstest::MakeIcosphere(3, 14.5, { 20.0 + shift, 20.0, 20.0 });
+      DS_CHECK(sphere.BuildTopology(&error), error);
+      RangeEstimate r;
+      DS_CHECK(
+        EstimateIntensityRange(ImageView::Of(ball.data(), g), sphere, 1.0, r, &error), error);
+      std::cout << "sphere around an integer ball, moved " << shift << " voxel: range ["
+                << r.Range[0] << ", " << r.Range[1] << "]" << std::endl;
+      DS_CHECK(r.Contrast, "integer ball: object against background");
+      lowest = std::min(lowest, r.Range[0]);
+      highest = std::max(highest, r.Range[0]);
+    }
+    DS_CHECK_LE(highest - lowest, 0.2,
+      "integer ball: the low end moves by less than 0.2 when the start moves by 0.015 voxel");
   }
 
   // The mixture itself: two Gaussians (means 40 and 160, s.d. 10 and 25, weights 0.3 and 0.7)
