@@ -244,11 +244,11 @@ bool IntegerValued(const SharedValues& in, const PieceReductions& reduce)
   return reduce.Max(whole ? 0.0 : 1.0) == 0.0;
 }
 
-/// Adds a unit spread evenly over [x - 0.5, x + 0.5), the values a whole grey level stands for,
-/// to the bins (of `width` from `lo`) it overlaps, the parts beyond the ends to the end bins.
-/// Each part is a multiple of 2^-20, so that sums of them are exact in any order: the counts of
-/// a distributed image, summed over the processes, are the serial counts.
-void AddSpread(double* counts, int bins, double x, double lo, double width)
+/// Adds `n` units spread evenly over [x - 0.5, x + 0.5), the values a whole grey level stands
+/// for, to the bins (of `width` from `lo`) it overlaps, the parts beyond the ends to the end bins.
+/// Each part is n times a multiple of 2^-20, so that sums of them are exact in any order: the
+/// counts of a distributed image, summed over the processes, are the serial counts.
+void AddSpread(double* counts, int bins, double x, double n, double lo, double width)
 {
   constexpr double Grain = 1048576.0; // 2^20
   const double a = (x - 0.5 - lo) / width, b = (x + 0.5 - lo) / width;
@@ -258,7 +258,37 @@ void AddSpread(double* counts, int bins, double x, double lo, double width)
     const double overlap = std::min<double>(b, k + 1) - std::max<double>(a, k);
     if (overlap > 0)
     {
-      counts[std::clamp(k, 0, bins - 1)] += std::round(Grain * overlap / (b - a)) / Grain;
+      counts[std::clamp(k, 0, bins - 1)] += n * (std::round(Grain * overlap / (b - a)) / Grain);
+    }
+  }
+}
+
+/// AddSpread of every whole value of `values` (all within [lo, lo + bins * width]). Where a unit
+/// spans many bins (a 0/1 mask: 256 bins a value) the span holds few whole values, so each is
+/// spread once with its tally; elsewhere a unit spans a few bins and each value is spread alone.
+void AddSpreadValues(
+  double* counts, int bins, const std::vector<float>& values, double lo, double width)
+{
+  if (!(width < 0.25))
+  {
+    for (float x : values)
+    {
+      AddSpread(counts, bins, x, 1.0, lo, width);
+    }
+    return;
+  }
+  // At most bins * width + 2 < 66 whole values.
+  const double first = std::ceil(lo);
+  std::vector<double> tally(static_cast<std::size_t>(bins * width) + 2, 0.0);
+  for (float x : values)
+  {
+    tally[std::min(tally.size() - 1, static_cast<std::size_t>(std::max(0.0, x - first)))] += 1.0;
+  }
+  for (std::size_t v = 0; v < tally.size(); ++v)
+  {
+    if (tally[v] > 0)
+    {
+      AddSpread(counts, bins, first + static_cast<double>(v), tally[v], lo, width);
     }
   }
 }
@@ -294,13 +324,13 @@ bool ShareHistograms(const SharedValues& in, const SharedValues& out, const Piec
   const bool spread = IntegerValued(in, reduce);
   for (int side = 0; side < 2; ++side)
   {
+    if (side == 0 && spread)
+    {
+      AddSpreadValues(counts.data(), bins, in.Values, lo, width);
+      continue;
+    }
     for (float x : side == 0 ? in.Values : out.Values)
     {
-      if (side == 0 && spread)
-      {
-        AddSpread(counts.data(), bins, x, lo, width);
-        continue;
-      }
       counts[side * bins + std::min(bins - 1, static_cast<int>((x - low) / width))] += 1.0;
     }
   }

@@ -5,7 +5,7 @@
 // - the voxels counted inside are those of the box and nothing else (no scan line paired
 //   wrongly where it passes through the box's vertices and edges);
 // - the range's low end lies midway between the object and its background, its high end
-//   below the brighter neighbour;
+//   below the brighter neighbour; on a 0/1 mask of the cube too;
 // - a start inside one region (no contrast with its outside) gives median -+ 3 s;
 // - an inward-oriented start gives the same range once its pieces are turned outward;
 // - spheres around a blurred ball in an empty image put the low end at the ball's half level.
@@ -88,6 +88,20 @@ int TestRegionRange(int, char*[])
     "range low end midway between object (100) and background (0)");
   DS_CHECK(e.Range[1] >= 100.0 && e.Range[1] < 250.0,
     "range high end above the object, below the bright slab");
+
+  // The cube alone as a 0/1 mask: its whole values span 256 bins each (counted once per value,
+  // AddSpreadValues); the low end still lies midway.
+  {
+    std::vector<float> mask(image.size());
+    std::transform(
+      image.begin(), image.end(), mask.begin(), [](float v) { return v == 100.f ? 1.f : 0.f; });
+    RangeEstimate m;
+    DS_CHECK(EstimateIntensityRange(ImageView::Of(mask.data(), g), box, 1.0, m, &error), error);
+    std::cout << "box start on the cube's 0/1 mask: range [" << m.Range[0] << ", " << m.Range[1]
+              << "]" << std::endl;
+    DS_CHECK(m.Contrast, "0/1 mask: object against background");
+    DS_CHECK_LE(std::abs(m.Range[0] - 0.5), 0.05, "0/1 mask: the low end midway between 0 and 1");
+  }
 
   // The same box, inward-oriented, turned outward first: the same estimate.
   TriangleMesh inward = box;
