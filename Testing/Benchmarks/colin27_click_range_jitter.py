@@ -32,13 +32,13 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
 def clicks():
     """(name, AAL label or None, x, y, z) of every committed Colin27 click measured here."""
     names = {71: "left caudate", 72: "right caudate", 73: "left putamen", 74: "right putamen"}
-    for row in csv.DictReader(open(os.path.join(EXAMPLES, "colin27_nuclei_clicks.csv"))):
-        label = int(row["ObjectId"])
-        yield (names[label], label) + tuple(float(row[k]) for k in "xyz")
-    for row in csv.DictReader(open(os.path.join(EXAMPLES, "colin27_ventricle_clicks.csv"))):
-        yield ("ventricle", None) + tuple(float(row[k]) for k in "xyz")
-    for row in csv.DictReader(open(os.path.join(EXAMPLES, "colin27_click.csv"))):
-        yield ("white matter", None) + tuple(float(row[k]) for k in "xyz")
+    for name, path in (("nuclei", "colin27_nuclei_clicks.csv"),
+                       ("ventricle", "colin27_ventricle_clicks.csv"),
+                       ("white matter", "colin27_click.csv")):
+        with open(os.path.join(EXAMPLES, path)) as rows:
+            for row in csv.DictReader(rows):
+                label = int(row["ObjectId"]) if name == "nuclei" else None
+                yield (names.get(label, name), label) + tuple(float(row[k]) for k in "xyz")
 
 
 def label_boundaries(image):
