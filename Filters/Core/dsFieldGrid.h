@@ -142,8 +142,9 @@ DEFORMABLESURFACEFILTERS_EXPORT bool ComputeBrickedForce(const ImageView& part,
 
 /// A bricked field smooths its cut in slabs (ComputeBrickedForce's inSlabs) when the cut holds
 /// more than this share of the image's voxels, so that no float field of the whole image is made
-/// (docs/METHOD.md §9.7). A smaller cut is smoothed whole: its x and y passes run once, not twice
-/// as with the recursive filter along z in slabs, and it holds less than half the image.
+/// (docs/METHOD.md §9.7). A smaller cut is smoothed whole: its bricks read G_sigma * f in place,
+/// not from tiles copied out of the slabs, its recursive filter along z runs forward once, and it
+/// holds less than half the image.
 constexpr double SlabSmoothingShare = 0.5;
 
 /// Whether a bricked field over FieldCut's part `cut` of an image of geometry `whole` is

@@ -740,8 +740,16 @@ void RecursiveAxisPass::Backward(
 void SmoothGaussianSeparable(
   const float* src, float* dst, const int dims[3], const double sigmaVoxels[3])
 {
-  SmoothX(src, dst, dims, MakeSmoother(sigmaVoxels[0]));
-  SmoothGaussianAxis(dst, dims, 1, sigmaVoxels[1]);
+  // z first: a volume smoothed slab by slab along z (dsSmoothSlabs.h) then runs its x and y
+  // passes once, on each slab's final slices, whichever filter z takes (docs/METHOD.md §9.7).
+  if (src != dst)
+  {
+    const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+    vtkSMPTools::For(0, dims[2],
+      [&](int k0, int k1) { std::copy(src + k0 * slice, src + k1 * slice, dst + k0 * slice); });
+  }
   SmoothGaussianAxis(dst, dims, 2, sigmaVoxels[2]);
+  SmoothX(dst, dst, dims, MakeSmoother(sigmaVoxels[0]));
+  SmoothGaussianAxis(dst, dims, 1, sigmaVoxels[1]);
 }
 } // namespace dsurf

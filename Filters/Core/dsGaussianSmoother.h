@@ -28,9 +28,10 @@ namespace dsurf
 constexpr double GaussianRecursiveFromSigmaVoxels = 3.0;
 
 /// G_sigma * src into dst (dst may equal src; no other aliasing), sigmaVoxels[a] voxels along
-/// axis a (below 0.001: that axis is left alone). Volume of dims voxels, x fastest. Its loops
-/// run with vtkSMPTools, so the caller's SMP scope sets the threads; the result does not depend
-/// on their number.
+/// axis a (below 0.001: that axis is left alone), along z first, then x, then y (every path
+/// that must equal it bit for bit passes in that order). Volume of dims voxels, x fastest. Its
+/// loops run with vtkSMPTools, so the caller's SMP scope sets the threads; the result does not
+/// depend on their number.
 void SmoothGaussianSeparable(
   const float* src, float* dst, const int dims[3], const double sigmaVoxels[3]);
 

@@ -270,8 +270,8 @@ double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParame
     return 5 * sizeof(float) * slab * slice + kept;
   }
   // ScanRecursiveSlabs: G_2sigma * g of a core, G_sigma * f and g of its slab (two slices more),
-  // the slices smoothed along x and y that either Gaussian's pass along z reads (a sampled one's
-  // reach on either side), the core's candidates; the recorded states of both passes along z
+  // the slices that either Gaussian's pass along z reads (a sampled one's reach on either
+  // side), the core's candidates; the recorded states of both passes along z
   // and what a pass along z holds besides while it runs: the state carried between slabs, the
   // states it records and a RecursiveAxisPass's own (21 doubles a line, as SmoothInSlabsBytes).
   const int core = coreSlices > 0 ? coreSlices : DefaultSlabCore(geometry.Dimensions, 2 * sigmaZ);
@@ -369,8 +369,8 @@ void ScanSampledSlabs(const ImageView& image, const ScaleSpaceParameters& parame
 }
 
 /// G_sigma * f of slab s of `cores` (its core and a slice on either side, which g's differences
-/// read), in any order: sampled along z from the slab's reach of slices smoothed along x and y,
-/// or, recursive along z, from a RecursiveSlabsZ prepared by a pass up and down the slabs.
+/// read), in any order: along z sampled from the slab's reach of slices, or, recursive, from a
+/// RecursiveSlabsZ prepared by a pass up and down the slabs; then along x and y.
 class SmoothedSlabs
 {
 public:
@@ -382,28 +382,30 @@ public:
     if (GaussianAxisReach(this->Sigma[2]) < 0)
     {
       this->Recursive.reset(new RecursiveSlabsZ(image.Geometry.Dimensions, this->Sigma[2], cores, 1,
-        [this](int z0, int z1, float* out)
-        { SmoothSlicesXY(this->Image, z0, z1, this->Sigma, out); }));
+        [this](int z0, int z1, float* out) { SlicesAsFloat(this->Image, z0, z1, out); }));
       this->Recursive->Prepare();
     }
   }
   void Slab(int s, std::vector<float>& out)
   {
-    if (this->Recursive)
-    {
-      this->Recursive->Slab(s, out);
-      return;
-    }
     const int* dims = this->Image.Geometry.Dimensions;
     const std::ptrdiff_t sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
     const int f0 = std::max(0, this->Cores[s] - 1), f1 = std::min(dims[2], this->Cores[s + 1] + 1);
-    const int r = std::max(0, GaussianAxisReach(this->Sigma[2]));
-    const int w0 = std::max(0, f0 - r), w1 = std::min(dims[2], f1 + r);
-    this->Window.resize(static_cast<std::size_t>((w1 - w0) * sz));
-    SmoothSlicesXY(this->Image, w0, w1, this->Sigma, this->Window.data());
-    out.resize(static_cast<std::size_t>((f1 - f0) * sz));
-    const int wdims[3] = { dims[0], dims[1], w1 - w0 };
-    SampledAxisZ(this->Window.data(), out.data(), wdims, this->Sigma[2], f0 - w0, f1 - w0);
+    if (this->Recursive)
+    {
+      this->Recursive->Slab(s, out);
+    }
+    else
+    {
+      const int r = std::max(0, GaussianAxisReach(this->Sigma[2]));
+      const int w0 = std::max(0, f0 - r), w1 = std::min(dims[2], f1 + r);
+      this->Window.resize(static_cast<std::size_t>((w1 - w0) * sz));
+      SlicesAsFloat(this->Image, w0, w1, this->Window.data());
+      out.resize(static_cast<std::size_t>((f1 - f0) * sz));
+      const int wdims[3] = { dims[0], dims[1], w1 - w0 };
+      SampledAxisZ(this->Window.data(), out.data(), wdims, this->Sigma[2], f0 - w0, f1 - w0);
+    }
+    SmoothSlabXY(out.data(), dims[0], dims[1], f1 - f0, this->Sigma);
   }
 
 private:
@@ -443,9 +445,9 @@ void CoreEdges(const float* smooth, const int dims[3], const GradientToWorld& to
 
 /// LocalPotentialAt's pass when G_2sigma * g is recursive along z (2 sigma of 3 voxels or more,
 /// so it reads whole lines of g): slabs of `core` slices (SmoothedSlabs gives G_sigma * f of
-/// each); g of each core, smoothed along x and y at 2 sigma, is the input of the second
-/// Gaussian's RecursiveSlabsZ, which runs up the slabs and then down them, where each slab's
-/// values are final and scanned.
+/// each); g of each core is the input of the second Gaussian's RecursiveSlabsZ, which runs up
+/// the slabs and then down them, where each slab, smoothed along x and y at 2 sigma, is final
+/// and scanned.
 void ScanRecursiveSlabs(const ImageView& image, const ScaleSpaceParameters& parameters,
   const VoxelSet& wanted, int core, LocalEdgeScan& scan)
 {
@@ -466,15 +468,14 @@ void ScanRecursiveSlabs(const ImageView& image, const ScaleSpaceParameters& para
     assert(cores[made] == z0 && cores[made + 1] == z1);
     smoothed.Slab(made, smooth);
     CoreEdges(smooth.data(), dims, toWorld, z0, z1, out);
-    const int coreDims[3] = { dims[0], dims[1], z1 - z0 };
-    SmoothGaussianSeparable(out, out, coreDims, wideXY);
   };
   RecursiveSlabsZ wideZ(dims, 2 * sv[2], cores, 0, wideInput);
   wideZ.Prepare(
-    [&](int s, const std::vector<float>& wide)
+    [&](int s, std::vector<float>& wide)
     {
       assert(made == s); // the pass made this slab's G_2sigma * g just now, from `smooth`
       const int z0 = cores[s], z1 = cores[s + 1], f0 = std::max(0, z0 - 1);
+      SmoothSlabXY(wide.data(), dims[0], dims[1], z1 - z0, wideXY);
       const int slabDims[3] = { dims[0], dims[1], std::min(dims[2], z1 + 1) - f0 };
       g.resize(smooth.size());
       const SlabBox where = SlabBoxOf(parameters, f0, z0, z1);

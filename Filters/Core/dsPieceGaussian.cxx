@@ -205,8 +205,9 @@ void PieceGaussianRounds(const ImagePiece& piece, const VoxelBox& cut, const Vox
 {
   const bool recursive = std::any_of(sigmaVoxels, sigmaVoxels + 3, IsRecursive);
   const RegionEnds ends = recursive ? GatherEnds(cut, region, hasRegion, reduce) : RegionEnds();
-  // The axes in the serial order (x, y, z), each pass reading the previous one's floats.
-  for (int a = 0; a < 3; ++a)
+  // The axes in the serial order (z, x, y: SmoothGaussianSeparable), each pass reading the
+  // previous one's floats.
+  for (const int a : { 2, 0, 1 })
   {
     // A sampled axis, or a recursive one no piece is cut along: the serial pass itself.
     if (!IsRecursive(sigmaVoxels[a]) || (ends.Firsts[a].size() <= 1 && ends.Lasts[a].size() <= 1))

@@ -44,8 +44,8 @@ public:
     std::vector<std::vector<double>>& recorded) = 0;
 };
 
-/// The rounds of SmoothPieceGaussian without its arithmetic: for each axis a in order whose
-/// filter is recursive and along which the pieces' regions start or end at different voxels,
+/// The rounds of SmoothPieceGaussian without its arithmetic: for each axis a in order (z, x, y)
+/// whose filter is recursive and along which the pieces' regions start or end at different voxels,
 /// the runs and the sums that pass the states between them, runOf(a) making this process's run
 /// along a (called once per such axis; null with no region); `uncut(a)` is called for every
 /// other axis (the serial pass there). Every process makes the same sums whatever its runs do.

@@ -46,20 +46,25 @@ void SmoothSlabAxis(float* slab, const int dims[3], int a, int z0, const PieceSm
   pass.Backward(StatesAt(smoothing.Ends[a].Ahead, offset), {}, none);
 }
 
-/// Slices [z0, z1) of the region as floats, smoothed along the axes below `axes`.
-void SlicesUpTo(const ImageView& regionImage, const PieceSmoothing& smoothing, int axes, int z0,
-  int z1, float* out)
+/// The region's slabs (coreSlices each, 0: DefaultSlabCore) smoothed along z and then along
+/// the first `axesXY` of x and y (0, 1 or 2), as SmoothPieceGaussian makes them: visit(slab).
+void EachSmoothedSlab(const ImageView& regionImage, const PieceSmoothing& smoothing, int axesXY,
+  int coreSlices, const std::function<void(const SmoothSlab&)>& visit)
 {
-  const ImageGeometry& geometry = regionImage.Geometry;
-  VoxelBox slab = VoxelBox::Whole(geometry);
-  slab.Begin[2] = z0;
-  slab.End[2] = z1;
-  CopyToFloat(regionImage.Box(slab), out);
-  const int dims[3] = { geometry.Dimensions[0], geometry.Dimensions[1], z1 - z0 };
-  for (int a = 0; a < axes; ++a)
-  {
-    SmoothSlabAxis(out, dims, a, z0, smoothing);
-  }
+  const int* dims = regionImage.Geometry.Dimensions;
+  SmoothSlabsOf(
+    dims, smoothing.SigmaVoxels, coreSlices,
+    [&](int z0, int z1, float* out) { SlicesAsFloat(regionImage, z0, z1, out); },
+    smoothing.Rounds[2] ? smoothing.Ends[2] : AxisEnds(),
+    [&](float* values, int first, int count)
+    {
+      const int slabDims[3] = { dims[0], dims[1], count };
+      for (int a = 0; a < axesXY; ++a)
+      {
+        SmoothSlabAxis(values, slabDims, a, first, smoothing);
+      }
+    },
+    visit);
 }
 
 /// The positions of `record` shifted to start at `first` (those outside a slab from there are
@@ -88,12 +93,12 @@ std::vector<int> LocalRecord(const std::vector<int>& record, int first, int extr
 class StreamedRun : public PieceAxisRun
 {
 public:
-  StreamedRun(
-    const ImageView& regionImage, PieceSmoothing& smoothing, int a, std::vector<int> cores)
+  StreamedRun(const ImageView& regionImage, PieceSmoothing& smoothing, int a, int core)
     : RegionImage(regionImage)
     , Smoothing(smoothing)
     , Axis(a)
-    , Cores(std::move(cores))
+    , Core(core)
+    , Cores(SlabCores(regionImage.Geometry.Dimensions[2], core))
   {
     const int* dims = regionImage.Geometry.Dimensions;
     this->Lines = a == 0 ? static_cast<std::size_t>(dims[1]) * dims[2]
@@ -162,37 +167,39 @@ private:
 
   int Slabs() const { return static_cast<int>(this->Cores.size()) - 1; }
 
-  /// Along x or y: each slab's slices smoothed along the axes before, then run(pass over them,
-  /// the offset of their lines' states, the states recorded), the records copied into place.
+  /// Along x or y: each slab's own slices smoothed along z and the axes before a (the rounds
+  /// along z ran first: the smoothing's ends along z are known), then run(pass over them, the
+  /// offset of their lines' states, the states recorded), the records copied into place.
   template <typename Run>
   void EachSlab(Run&& run, std::vector<std::vector<double>>& recorded)
   {
     std::vector<float> buffer;
     std::vector<std::vector<double>> states;
-    for (int s = 0; s < this->Slabs(); ++s)
-    {
-      const int z0 = this->Cores[s], z1 = this->Cores[s + 1];
-      const int dims[3] = { this->Dims()[0], this->Dims()[1], z1 - z0 };
-      buffer.resize(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
-      SlicesUpTo(this->RegionImage, this->Smoothing, this->Axis, z0, z1, buffer.data());
-      RecursiveAxisPass pass(
-        buffer.data(), dims, this->Axis, this->Smoothing.SigmaVoxels[this->Axis]);
-      const std::size_t offset = K * LinesPerSlice(dims, this->Axis) * z0;
-      run(pass, offset, states);
-      for (std::size_t r = 0; r < recorded.size(); ++r)
+    const std::ptrdiff_t slice = static_cast<std::ptrdiff_t>(this->Dims()[0]) * this->Dims()[1];
+    EachSmoothedSlab(this->RegionImage, this->Smoothing, this->Axis, this->Core,
+      [&](const SmoothSlab& slab)
       {
-        std::copy(states[r].begin(), states[r].end(), recorded[r].begin() + offset);
-      }
-    }
+        const int dims[3] = { this->Dims()[0], this->Dims()[1], slab.Core1 - slab.Core0 };
+        const float* own = slab.Values + (slab.Core0 - slab.First) * slice;
+        buffer.assign(own, own + dims[2] * slice);
+        RecursiveAxisPass pass(
+          buffer.data(), dims, this->Axis, this->Smoothing.SigmaVoxels[this->Axis]);
+        const std::size_t offset = K * LinesPerSlice(dims, this->Axis) * slab.Core0;
+        run(pass, offset, states);
+        for (std::size_t r = 0; r < recorded.size(); ++r)
+        {
+          std::copy(states[r].begin(), states[r].end(), recorded[r].begin() + offset);
+        }
+      });
   }
 
-  /// Slab s's slices smoothed along x and y into `buffer`, and a pass along z over them.
+  /// Slab s's slices into `buffer`, and a pass along z over them (the first axis smoothed).
   std::unique_ptr<RecursiveAxisPass> SlabZ(int s, std::vector<float>& buffer) const
   {
     const int z0 = this->Cores[s], z1 = this->Cores[s + 1];
     const int dims[3] = { this->Dims()[0], this->Dims()[1], z1 - z0 };
     buffer.resize(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
-    SlicesUpTo(this->RegionImage, this->Smoothing, 2, z0, z1, buffer.data());
+    SlicesAsFloat(this->RegionImage, z0, z1, buffer.data());
     return std::unique_ptr<RecursiveAxisPass>(
       new RecursiveAxisPass(buffer.data(), dims, 2, this->Smoothing.SigmaVoxels[2]));
   }
@@ -266,7 +273,8 @@ private:
   const ImageView& RegionImage;
   PieceSmoothing& Smoothing;
   int Axis;
-  std::vector<int> Cores;
+  int Core;               // the slices of a slab's own part
+  std::vector<int> Cores; // the slabs along z of a run along z
   std::size_t Lines = 0;
 };
 } // namespace
@@ -288,12 +296,12 @@ PieceSmoothing GatherPieceSmoothing(const ImagePiece& piece, const VoxelBox& cut
 {
   PieceSmoothing smoothing;
   std::copy(sigmaVoxels, sigmaVoxels + 3, smoothing.SigmaVoxels);
-  std::vector<int> cores;
+  int core = 0;
   if (regionImage)
   {
-    const int* dims = regionImage->Geometry.Dimensions;
-    cores = SlabCores(
-      dims[2], std::max(2, coreSlices > 0 ? coreSlices : DefaultSlabCore(dims, sigmaVoxels[2])));
+    core = std::max(2,
+      coreSlices > 0 ? coreSlices
+                     : DefaultSlabCore(regionImage->Geometry.Dimensions, sigmaVoxels[2]));
   }
   vtkSMPTools::LocalScope(
     vtkSMPTools::Config{ ResolveThreads(numberOfThreads), "STDThread", false },
@@ -304,7 +312,7 @@ PieceSmoothing GatherPieceSmoothing(const ImagePiece& piece, const VoxelBox& cut
         [&](int a) -> std::unique_ptr<PieceAxisRun>
         {
           smoothing.Rounds[a] = true;
-          return std::unique_ptr<PieceAxisRun>(new StreamedRun(*regionImage, smoothing, a, cores));
+          return std::unique_ptr<PieceAxisRun>(new StreamedRun(*regionImage, smoothing, a, core));
         },
         [](int) {}, reduce);
     });
@@ -314,9 +322,6 @@ PieceSmoothing GatherPieceSmoothing(const ImagePiece& piece, const VoxelBox& cut
 void SmoothPieceInSlabs(const ImageView& regionImage, const PieceSmoothing& smoothing,
   int coreSlices, const std::function<void(const SmoothSlab&)>& visit)
 {
-  SmoothSlabsOf(
-    regionImage.Geometry.Dimensions, smoothing.SigmaVoxels, coreSlices,
-    [&](int z0, int z1, float* out) { SlicesUpTo(regionImage, smoothing, 2, z0, z1, out); },
-    smoothing.Rounds[2] ? smoothing.Ends[2] : AxisEnds(), visit);
+  EachSmoothedSlab(regionImage, smoothing, 2, coreSlices, visit);
 }
 } // namespace dsurf

@@ -31,12 +31,12 @@ int LongestCore(const std::vector<int>& cores)
   return longest;
 }
 
-/// The sampled Gaussian (or none) along z. Each slice is smoothed along x and y once, into a
-/// window of the slices the slab's z pass reads (its radius on either side of the slab; the
-/// window's later slices move to its front for the next slab), and the z pass computes the
-/// slab's slices alone.
-void SampledSlabs(const int dims[3], const double sv[3], int core,
-  const RecursiveSlabsZ::Input& slicesXY, const std::function<void(const SmoothSlab&)>& visit)
+/// The sampled Gaussian (or none) along z. Each slice is read once, into a window of the slices
+/// the slab's z pass reads (its radius on either side of the slab; the window's later slices
+/// move to its front for the next slab); the z pass computes the slab's slices alone, and the
+/// x and y passes smooth those.
+void SampledSlabs(const int dims[3], const double sv[3], int core, const SlabSlices& slices,
+  const SlabPassesXY& passesXY, const std::function<void(const SmoothSlab&)>& visit)
 {
   const int nz = dims[2];
   const int radius = std::max(0, GaussianAxisReach(sv[2]));
@@ -51,34 +51,37 @@ void SampledSlabs(const int dims[3], const double sv[3], int core,
   {
     const int f0 = std::max(0, cores[s] - 1), f1 = std::min(nz, cores[s + 1] + 1);
     const int i0 = std::max(0, f0 - radius), i1 = std::min(nz, f1 + radius);
-    // The window's slices from i0 on move to its front (i0 only grows); the rest are smoothed.
+    // The window's slices from i0 on move to its front (i0 only grows); the rest are read.
     const int kept = std::max(0, w1 - i0);
     if (kept > 0 && i0 > w0)
     {
       std::copy_n(window.data() + (i0 - w0) * slice, kept * slice, window.data());
     }
-    slicesXY(i0 + kept, i1, window.data() + kept * slice);
+    slices(i0 + kept, i1, window.data() + kept * slice);
     w0 = i0;
     w1 = i1;
     const int wdims[3] = { dims[0], dims[1], w1 - w0 };
     SampledAxisZ(window.data(), out.data(), wdims, sv[2], f0 - w0, f1 - w0);
+    passesXY(out.data(), f0, f1 - f0);
     visit(SmoothSlab{ out.data(), f0, f1 - f0, cores[s], cores[s + 1] });
   }
 }
 
 /// The recursive filter along z, in two passes (the header's comment): slab s covers its core
-/// and one slice on either side within the volume, and is visited on the pass down.
-void RecursiveSlabs(const int dims[3], const double sv[3], int core,
-  const RecursiveSlabsZ::Input& slicesXY, const AxisEnds& z,
+/// and one slice on either side within the volume, and is visited on the pass down, after its
+/// x and y passes.
+void RecursiveSlabs(const int dims[3], const double sv[3], int core, const SlabSlices& slices,
+  const SlabPassesXY& passesXY, const AxisEnds& z,
   const std::function<void(const SmoothSlab&)>& visit)
 {
   const std::vector<int> cores = SlabCores(dims[2], core);
-  RecursiveSlabsZ slabs(dims, sv[2], cores, 1, slicesXY, z);
+  RecursiveSlabsZ slabs(dims, sv[2], cores, 1, slices, z);
   slabs.Prepare(
-    [&](int s, const std::vector<float>& values)
+    [&](int s, std::vector<float>& values)
     {
-      visit(SmoothSlab{
-        values.data(), slabs.Begin(s), slabs.End(s) - slabs.Begin(s), cores[s], cores[s + 1] });
+      const int first = slabs.Begin(s), count = slabs.End(s) - slabs.Begin(s);
+      passesXY(values.data(), first, count);
+      visit(SmoothSlab{ values.data(), first, count, cores[s], cores[s + 1] });
     });
 }
 } // namespace
@@ -96,23 +99,19 @@ std::vector<int> SlabCores(int nz, int core)
   return first;
 }
 
-void SmoothSlicesXY(const ImageView& image, int z0, int z1, const double sigmaVoxels[3], float* out)
+void SlicesAsFloat(const ImageView& image, int z0, int z1, float* out)
 {
   VoxelBox slab = VoxelBox::Whole(image.Geometry);
   slab.Begin[2] = z0;
   slab.End[2] = z1;
-  const ImageView part = image.Box(slab);
-  const int* dims = part.Geometry.Dimensions;
+  CopyToFloat(image.Box(slab), out);
+}
+
+void SmoothSlabXY(float* values, int nx, int ny, int count, const double sigmaVoxels[3])
+{
+  const int dims[3] = { nx, ny, count };
   const double sv[3] = { sigmaVoxels[0], sigmaVoxels[1], 0.0 };
-  if (part.IsContiguousFloat())
-  {
-    SmoothGaussianSeparable(static_cast<const float*>(part.Data), out, dims, sv);
-  }
-  else
-  {
-    CopyToFloat(part, out);
-    SmoothGaussianSeparable(out, out, dims, sv);
-  }
+  SmoothGaussianSeparable(values, values, dims, sv);
 }
 
 RecursiveSlabsZ::RecursiveSlabsZ(const int dims[3], double sigmaVoxelsZ, std::vector<int> cores,
@@ -228,27 +227,30 @@ int DefaultSlabCore(const int dims[3], double sigmaVoxelsZ)
 }
 
 void SmoothSlabsOf(const int dims[3], const double sigmaVoxels[3], int coreSlices,
-  const std::function<void(int z0, int z1, float* out)>& slicesXY, const AxisEnds& z,
+  const SlabSlices& slices, const AxisEnds& z, const SlabPassesXY& passesXY,
   const std::function<void(const SmoothSlab&)>& visit)
 {
   const int core = std::max(2, coreSlices > 0 ? coreSlices : DefaultSlabCore(dims, sigmaVoxels[2]));
   if (GaussianAxisReach(sigmaVoxels[2]) < 0)
   {
-    RecursiveSlabs(dims, sigmaVoxels, core, slicesXY, z, visit);
+    RecursiveSlabs(dims, sigmaVoxels, core, slices, passesXY, z, visit);
   }
   else
   {
-    SampledSlabs(dims, sigmaVoxels, core, slicesXY, visit);
+    SampledSlabs(dims, sigmaVoxels, core, slices, passesXY, visit);
   }
 }
 
 void SmoothInSlabs(const ImageView& image, const double sigmaVoxels[3], int coreSlices,
   const std::function<void(const SmoothSlab&)>& visit)
 {
+  const int* dims = image.Geometry.Dimensions;
   SmoothSlabsOf(
-    image.Geometry.Dimensions, sigmaVoxels, coreSlices,
-    [&](int z0, int z1, float* out) { SmoothSlicesXY(image, z0, z1, sigmaVoxels, out); },
-    AxisEnds(), visit);
+    dims, sigmaVoxels, coreSlices,
+    [&](int z0, int z1, float* out) { SlicesAsFloat(image, z0, z1, out); }, AxisEnds(),
+    [&](float* values, int, int count)
+    { SmoothSlabXY(values, dims[0], dims[1], count, sigmaVoxels); },
+    visit);
 }
 
 double SmoothInSlabsBytes(const ImageGeometry& geometry, double sigma, int coreSlices)
@@ -262,7 +264,7 @@ double SmoothInSlabsBytes(const ImageGeometry& geometry, double sigma, int coreS
   const int reach = GaussianAxisReach(sigmaVoxels[2]);
   if (reach >= 0)
   {
-    // The window of slices smoothed along x and y, and the slab's output.
+    // The window of slices the z pass reads, and the slab's output.
     return sizeof(float) * slice *
       (std::min(dims[2], longest + 2 + 2 * reach) + std::min(dims[2], longest + 2));
   }

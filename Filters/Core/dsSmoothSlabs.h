@@ -4,16 +4,17 @@
 // (dsFieldBricks.h), and its normalisation needs every voxel's edge strength once. Plain C++.
 //
 // Every value handed out equals SmoothGaussianSeparable's over the whole image bit for bit: the
-// same passes on the same values in the same order (x, then y within each slice, then z).
+// same passes on the same values in the same order (z, then x and y within each slice).
 //   Along z the sampled Gaussian (below 3 voxels of sigma) reads its radius on either side: a
-//   slab is smoothed with that many more slices around it.
+//   slab's z pass reads that many more slices around it.
 //   Along z the recursive filter reads the whole line: a first pass runs its forward recursion
 //   up the image slab by slab and records each slab's starting state (5 doubles a line); a
-//   second pass, down the image, smooths each slab again along x and y, runs the forward
-//   recursion again from its recorded state (the same floats) and the backward one from the
-//   state the slab above ended with (RecursiveAxisPass, as the pieces of a distributed image
-//   pass theirs: dsPieceGaussian.h). The x and y passes run twice: the cost of not holding the
+//   second pass, down the image, runs the forward recursion of each slab again from its
+//   recorded state (the same floats) and the backward one from the state the slab above ended
+//   with (RecursiveAxisPass, as the pieces of a distributed image pass theirs:
+//   dsPieceGaussian.h). The forward recursion along z runs twice: the cost of not holding the
 //   image's forward outputs.
+//   The x and y passes then run once, on each slab's final slices.
 #ifndef dsSmoothSlabs_h
 #define dsSmoothSlabs_h
 
@@ -62,13 +63,18 @@ DEFORMABLESURFACEFILTERS_EXPORT int DefaultSlabCore(const int dims[3], double si
 DEFORMABLESURFACEFILTERS_EXPORT void SmoothInSlabs(const ImageView& image,
   const double sigmaVoxels[3], int coreSlices, const std::function<void(const SmoothSlab&)>& visit);
 
-/// SmoothInSlabs of a volume of `dims` voxels that is never held whole: `slicesXY(z0, z1, out)`
-/// gives its slices [z0, z1) already smoothed along x and y, whenever asked; `z` the recursive
-/// filter's states at its ends along z (a region of a distributed image; empty for an image's
-/// own lines).
+/// A volume's slices [z0, z1) as floats, into `out`, whenever asked: the values its z pass reads.
+using SlabSlices = std::function<void(int z0, int z1, float* out)>;
+
+/// The x and y passes of `count` slices from slice `first` on, in place (after the z pass).
+using SlabPassesXY = std::function<void(float* values, int first, int count)>;
+
+/// SmoothInSlabs of a volume of `dims` voxels that is never held whole: `slices` gives its
+/// values, `z` the recursive filter's states at its ends along z (a region of a distributed
+/// image; empty for an image's own lines), `passesXY` the x and y passes of a slab's slices.
 DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlabsOf(const int dims[3], const double sigmaVoxels[3],
-  int coreSlices, const std::function<void(int z0, int z1, float* out)>& slicesXY,
-  const AxisEnds& z, const std::function<void(const SmoothSlab&)>& visit);
+  int coreSlices, const SlabSlices& slices, const AxisEnds& z, const SlabPassesXY& passesXY,
+  const std::function<void(const SmoothSlab&)>& visit);
 
 /// Bytes SmoothInSlabs holds at most for an image of `geometry` at `sigma` (world units).
 DEFORMABLESURFACEFILTERS_EXPORT double SmoothInSlabsBytes(
@@ -79,23 +85,26 @@ DEFORMABLESURFACEFILTERS_EXPORT double SmoothInSlabsBytes(
 /// when there are several.
 DEFORMABLESURFACEFILTERS_EXPORT std::vector<int> SlabCores(int nz, int core);
 
-/// Slices [z0, z1) of `image` smoothed along x and y (sigmaVoxels[0], [1]; each slice alone, as
-/// the whole image's passes smooth it) into `out`, converted to float first when the view is
-/// not a contiguous float one. In the caller's SMP scope.
-DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlicesXY(
-  const ImageView& image, int z0, int z1, const double sigmaVoxels[3], float* out);
+/// Slices [z0, z1) of `image` (any value type) as floats into `out`. In the caller's SMP scope.
+DEFORMABLESURFACEFILTERS_EXPORT void SlicesAsFloat(
+  const ImageView& image, int z0, int z1, float* out);
+
+/// SmoothGaussianSeparable's x and y passes (sigmaVoxels[0], [1]) of `count` slices of nx by ny
+/// voxels, in place: each slice alone, as the whole image's passes smooth it. In the caller's
+/// SMP scope.
+DEFORMABLESURFACEFILTERS_EXPORT void SmoothSlabXY(
+  float* values, int nx, int ny, int count, const double sigmaVoxels[3]);
 
 /// The recursive filter along z (sigma at least GaussianRecursiveFromSigmaVoxels) of a volume
-/// that is never held whole: `input(z0, z1, out)` gives its slices [z0, z1), already smoothed
-/// along x and y, whenever asked. Prepare runs a forward pass up the slabs' cores and a pass
-/// down the slabs, recording each slab's forward start and backward start (5 doubles a line a
-/// slab each); the pass down computes each slab's final values, handed to `visit` when given
-/// (the states then freed as it goes, as SmoothInSlabs does). Without a visitor, Slab then gives
-/// any slab's values, in any order. Every value is bit for bit the whole lines'
-/// (the pieces' arithmetic, RecursiveAxisPass). Slab s spans its core [cores[s], cores[s + 1])
-/// and `margin` (0 or 1) slices on either side within the volume. `ends`: the states at the
-/// volume's ends when its lines go on beyond it (empty: they end with it). In the caller's SMP
-/// scope.
+/// that is never held whole: `input(z0, z1, out)` gives its slices [z0, z1) whenever asked. Prepare
+/// runs a forward pass up the slabs' cores and a pass down the slabs, recording each slab's forward
+/// start and backward start (5 doubles a line a slab each); the pass down computes each slab's
+/// final values, handed to `visit` when given (the states then freed as it goes, as SmoothInSlabs
+/// does). Without a visitor, Slab then gives any slab's values, in any order. Every value is bit
+/// for bit the whole lines' (the pieces' arithmetic, RecursiveAxisPass). Slab s spans its core
+/// [cores[s], cores[s + 1]) and `margin` (0 or 1) slices on either side within the volume. `ends`:
+/// the states at the volume's ends when its lines go on beyond it (empty: they end with it). In the
+/// caller's SMP scope.
 class DEFORMABLESURFACEFILTERS_EXPORT RecursiveSlabsZ
 {
 public:
@@ -105,7 +114,8 @@ public:
   int Slabs() const { return static_cast<int>(this->Cores.size()) - 1; }
   int Begin(int s) const;
   int End(int s) const;
-  using Visit = std::function<void(int s, const std::vector<float>& values)>;
+  /// The visitor may change the values (a slab's x and y passes run in place).
+  using Visit = std::function<void(int s, std::vector<float>& values)>;
   void Prepare(const Visit& visit = nullptr);
   /// Slab s's values (End(s) - Begin(s) slices, x fastest) into `values`.
   void Slab(int s, std::vector<float>& values);
