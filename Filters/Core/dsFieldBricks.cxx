@@ -11,10 +11,37 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace dsurf
 {
+namespace
+{
+/// A row of a tile into a brick's neighbourhood: the brick's own BrickSize values, or the one or
+/// two values of a neighbouring tile, without a call to memmove (most rows are one of these, and
+/// a call per row was the largest cost of a field kept in tiles).
+inline void CopyRow(const float* from, int n, float* to)
+{
+  if (n == FieldBricks::BrickSize)
+  {
+    std::memcpy(to, from, sizeof(float) * FieldBricks::BrickSize);
+  }
+  else if (n <= 2)
+  {
+    to[0] = from[0];
+    if (n == 2)
+    {
+      to[1] = from[1];
+    }
+  }
+  else
+  {
+    std::copy(from, from + n, to);
+  }
+}
+} // namespace
+
 namespace
 {
 /// Marks every brick within `grow` bricks along axis `a` of a marked one (bricks: the grid's
@@ -183,7 +210,7 @@ bool FieldBricks::SmoothTiles(const std::vector<char>& keep, std::string* error)
               for (int j = tile.Begin[1]; j < tile.End[1]; ++j)
               {
                 const float* from = slab.Values + (k - slab.First) * slice + j * nx + tile.Begin[0];
-                std::copy(from, from + tx,
+                CopyRow(from, static_cast<int>(tx),
                   values.data() + (j - tile.Begin[1]) * tx + (k - tile.Begin[2]) * tx * ty);
               }
           }
@@ -491,7 +518,9 @@ const float* FieldBricks::SmoothAround(
     over.End[a] = std::min(this->Grid.Dimensions[a], box.End[a] + 1);
   }
   const std::ptrdiff_t ox = over.End[0] - over.Begin[0], oy = over.End[1] - over.Begin[1];
-  values.assign(static_cast<std::size_t>(over.NumberOfVoxels()), 0.0f);
+  // Every value is a tile's (the tiles cover the grid): the buffer, reused by the thread's
+  // bricks, is not cleared.
+  values.resize(static_cast<std::size_t>(over.NumberOfVoxels()));
   for (int tk = std::max(0, b[2] - 1); tk <= std::min(this->Bricks[2] - 1, b[2] + 1); ++tk)
     for (int tj = std::max(0, b[1] - 1); tj <= std::min(this->Bricks[1] - 1, b[1] + 1); ++tj)
       for (int ti = std::max(0, b[0] - 1); ti <= std::min(this->Bricks[0] - 1, b[0] + 1); ++ti)
@@ -510,7 +539,7 @@ const float* FieldBricks::SmoothAround(
           {
             const float* from = tile.data() + (i0 - tb.Begin[0]) + (j - tb.Begin[1]) * tx +
               (k - tb.Begin[2]) * tx * ty;
-            std::copy(from, from + (i1 - i0),
+            CopyRow(from, i1 - i0,
               values.data() + (i0 - over.Begin[0]) + (j - over.Begin[1]) * ox +
                 (k - over.Begin[2]) * ox * oy);
           }
@@ -545,7 +574,7 @@ void FieldBricks::ComputeBrick(const int b[3], int slot)
   const std::size_t n = static_cast<std::size_t>(box.NumberOfVoxels());
   this->Potential[slot].resize(n);
   this->Force[slot].resize(3 * n);
-  std::vector<float> around;
+  thread_local std::vector<float> around; // SmoothAround's, reused
   VoxelBox over;
   const float* smooth = this->SmoothAround(b, around, over);
   if (this->Local())
@@ -563,7 +592,7 @@ void FieldBricks::CompleteBrick(const int b[3], int slot)
   const VoxelBox box = this->BrickBox(b), own = this->OwnBox(b);
   float* potential = this->Potential[slot].data();
   float* force = this->Force[slot].data();
-  std::vector<float> around; // gathered when a voxel is computed here
+  thread_local std::vector<float> around; // gathered when a voxel is computed here (reused)
   VoxelBox over;
   const float* smooth = nullptr;
   const std::ptrdiff_t bx = box.End[0] - box.Begin[0], by = box.End[1] - box.Begin[1];
