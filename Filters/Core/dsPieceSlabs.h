@@ -10,12 +10,13 @@
 //   started from, the region's AxisEnds along each axis it is cut along.
 // - SmoothPieceInSlabs then smooths the region slab by slab from those ends, with no sums: as
 //   often as the field's tiles are made again (FieldBricks), on this process alone.
-// A slab's z pass is RecursiveSlabsZ from the ends along z, its x and y passes start each line
-// from its ends (a slab's lines along x, or along y, are a contiguous run of the region's), so
-// every value equals SmoothPieceGaussian's, and the serial image's, bit for bit. The cost of not
-// holding the region: each round a process runs in reads the region again, a run along z its
-// slices (twice for the backward one), a run along x or y its slabs smoothed along z (up and
-// down the slabs) and, for y, along x.
+// A slab's z pass is SmoothSlabsOf's (RecursiveSlabsZ from the ends along z where z's filter is
+// recursive), its x and y passes start each line from its ends (a slab's lines along x, or along
+// y, are a contiguous run of the region's), so every value equals SmoothPieceGaussian's, and the
+// serial image's, bit for bit. The cost of not holding the region: each round a process runs in
+// reads the region again, a run along z its slices (twice for the backward one), a run along x or
+// y its slabs smoothed along z (up and down the slabs, for the recursive filter) and, for y,
+// along x.
 #ifndef dsPieceSlabs_h
 #define dsPieceSlabs_h
 
