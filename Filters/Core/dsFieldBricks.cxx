@@ -23,6 +23,7 @@ namespace
 /// a call per row was the largest cost of a field kept in tiles).
 inline void CopyRow(const float* from, int n, float* to)
 {
+  assert(n > 0);
   if (n == FieldBricks::BrickSize)
   {
     std::memcpy(to, from, sizeof(float) * FieldBricks::BrickSize);
@@ -40,10 +41,7 @@ inline void CopyRow(const float* from, int n, float* to)
     std::copy(from, from + n, to);
   }
 }
-} // namespace
 
-namespace
-{
 /// Marks every brick within `grow` bricks along axis `a` of a marked one (bricks: the grid's
 /// bricks along each axis, x fastest), by a running count along each line of bricks.
 void GrowMarks(std::vector<char>& mark, const int bricks[3], int a, int grow)

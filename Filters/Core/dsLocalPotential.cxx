@@ -271,9 +271,9 @@ double LocalPotentialBytes(const ImageGeometry& geometry, const ScaleSpaceParame
   }
   // ScanRecursiveSlabs: G_2sigma * g of a core, G_sigma * f and g of its slab (two slices more),
   // the slices that either Gaussian's pass along z reads (a sampled one's reach on either
-  // side), the core's candidates; the recorded states of both passes along z
-  // and what a pass along z holds besides while it runs: the state carried between slabs, the
-  // states it records and a RecursiveAxisPass's own (21 doubles a line, as SmoothInSlabsBytes).
+  // side), the core's candidates; the recorded states of both passes along z and what a pass
+  // along z holds besides while it runs: the state carried between slabs, the states it records
+  // and a RecursiveAxisPass's own (21 doubles a line, as SmoothInSlabsBytes).
   const int core = coreSlices > 0 ? coreSlices : DefaultSlabCore(geometry.Dimensions, 2 * sigmaZ);
   const std::vector<int> cores = SlabCores(nz, core);
   int longest = 0;
